@@ -1,0 +1,71 @@
+// One arena: an episode of the game with its physics, spawns, rewards and labels.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <random>
+
+#include "hideseek_world/agent.h"
+#include "hideseek_world/free_space_grid.h"
+
+namespace hideseek_world {
+
+// Ground-truth labels of the current state (SPEC section 2); never given to the learner.
+struct Labels {
+  bool hider_sees_seeker = false;  // S
+  bool seeker_sees_hider = false;  // H
+  bool obstacle_in_view = false;   // O
+};
+
+enum class Outcome : uint8_t { kRunning = 0, kCaptured = 1, kSurvived = 2 };
+
+struct StepResult {
+  double reward = 0.0;
+  Outcome outcome = Outcome::kRunning;
+  bool done() const { return outcome != Outcome::kRunning; }
+};
+
+// Resolution of the grid used to check that a path joins the two spawns.
+constexpr double kSpawnGridResolution = 0.1;
+
+class Arena {
+ public:
+  Arena(const GameOptions& options, std::shared_ptr<const MapSpec> map);
+
+  // Starts an episode: draws the layout (stochastic maps) and the spawns from `seed` alone.
+  void reset(uint32_t seed);
+  // Advances one decision step (action_repeat physics frames).
+  StepResult step(Action hider, Action seeker);
+
+  const AgentState& hider() const { return hider_; }
+  const AgentState& seeker() const { return seeker_; }
+  const Layout& layout() const { return layout_; }
+  const Labels& labels() const { return labels_; }
+  int stepCount() const { return step_; }
+  uint32_t seed() const { return seed_; }
+  double episodeReturn() const { return return_; }
+  // Changes whenever the layout does, so renderers and planners know when to rebuild.
+  uint64_t layoutVersion() const { return layout_version_; }
+  const GameOptions& options() const { return options_; }
+  const MapSpec& map() const { return *map_; }
+
+ private:
+  bool trySpawn(std::mt19937& rng, const FreeSpaceGrid& grid);
+  bool fits(Vec2 p, const FreeSpaceGrid& grid) const;
+  void updateLabels();
+
+  GameOptions options_;
+  std::shared_ptr<const MapSpec> map_;
+  std::unique_ptr<FreeSpaceGrid> fixed_grid_;  // fixed maps: built once
+  Layout layout_;
+  AgentState hider_;
+  AgentState seeker_;
+  Labels labels_;
+  int step_ = 0;
+  uint32_t seed_ = 0;
+  double return_ = 0.0;
+  bool captured_ = false;
+  uint64_t layout_version_ = 0;
+};
+
+}  // namespace hideseek_world

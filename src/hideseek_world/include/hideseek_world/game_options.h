@@ -1,0 +1,68 @@
+// Every number of the game (SPEC section 2), with SPEC's values as defaults.
+#pragma once
+
+#include <string>
+
+#include "hideseek_world/geometry.h"
+
+namespace hideseek_world {
+
+enum class SpeedMode { kConstant, kAccelerate };
+
+// How an agent moves under the five actions.
+struct MotionOptions {
+  SpeedMode mode = SpeedMode::kConstant;
+  double speed = 2.0;         // m/s, constant mode
+  double max_speed = 4.0;     // m/s, accelerate mode
+  double acceleration = 2.0;  // m/s^2, accelerate mode
+  double turn_rate = kPi;     // rad/s
+};
+
+struct CameraOptions {
+  int width = 84;
+  int height = 84;
+  double horizontal_fov = 120.0 * kPi / 180.0;  // rad
+  double mount_height = 1.0;                    // m above the floor
+  double near_clip = 0.05;
+  double far_clip = 30.0;
+  // Vertical field of view implied by the horizontal one and the aspect ratio.
+  double verticalFov() const;
+};
+
+struct RewardOptions {
+  double survive = 0.001;   // every step the hider is not captured
+  double capture = -1.0;    // the step it is captured (replaces every other term)
+  bool visibility = false;  // add the visibility terms below
+  double unseen = 0.001;    // a step after which the seeker does not see the hider
+  double seen = -0.001;     // a step after which it does
+};
+
+struct GameOptions {
+  double physics_dt = 0.02;
+  int action_repeat = 6;
+  int max_steps = 1000;
+  double agent_radius = 0.4;
+  double agent_height = 1.2;
+  double capture_distance = 0.8;
+  double min_spawn_distance = 3.0;
+  MotionOptions hider;
+  MotionOptions seeker{SpeedMode::kConstant, 1.5, 1.5, 2.0, kPi};
+  CameraOptions camera;
+  RewardOptions rewards;
+
+  double stepDuration() const { return physics_dt * action_repeat; }
+};
+
+// A variant file (config/variants/*.yaml): the game options plus what other nodes need.
+struct VariantConfig {
+  std::string name;
+  std::string source;
+  std::string map_file;        // resolved against the variant file's ../maps/
+  std::string seeker_policy;   // deterministic | stochastic
+  GameOptions game;
+};
+
+// Reads game defaults (config/game.yaml) then a variant file over them; throws ConfigError.
+VariantConfig loadVariantConfig(const std::string& game_file, const std::string& variant_file);
+
+}  // namespace hideseek_world

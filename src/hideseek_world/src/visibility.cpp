@@ -1,0 +1,110 @@
+#include "hideseek_world/visibility.h"
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace hideseek_world {
+
+namespace {
+
+// The viewer's camera: where it is and the tangents of its half fields of view.
+struct Frustum {
+  Vec3 eye;
+  Vec2 forward;
+  double tan_half_h;
+  double tan_half_v;
+  double near_clip;
+
+  Frustum(const AgentState& viewer, const CameraOptions& camera)
+      : eye{viewer.position.x, viewer.position.y, camera.mount_height},
+        forward{std::cos(viewer.yaw), std::sin(viewer.yaw)},
+        tan_half_h(std::tan(0.5 * camera.horizontal_fov)),
+        tan_half_v(std::tan(0.5 * camera.verticalFov())),
+        near_clip(camera.near_clip) {}
+
+  bool contains(const Vec3& p) const {
+    const double dx = p.x - eye.x, dy = p.y - eye.y;
+    const double depth = dx * forward.x + dy * forward.y;
+    if (depth <= near_clip) return false;
+    const double lateral = -dx * forward.y + dy * forward.x;
+    return std::abs(lateral) <= tan_half_h * depth && std::abs(p.z - eye.z) <= tan_half_v * depth;
+  }
+};
+
+bool occluded(const Layout& layout, const Vec3& a, const Vec3& b, const Box* except) {
+  for (const Box& box : layout.obstacles) {
+    if (&box != except && segmentHitsBox(box, a, b)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool agentSeesAgent(const AgentState& viewer, const AgentState& target, const Layout& layout,
+                    const GameOptions& options) {
+  const Frustum frustum(viewer, options.camera);
+  const Vec2 to_target = target.position - viewer.position;
+  const double d = norm(to_target);
+  if (d < 1e-9) return true;
+  const Vec2 toward{to_target.x / d, to_target.y / d};
+  const Vec2 side{-toward.y, toward.x};
+  const double r = options.agent_radius;
+  // Silhouette as the viewer sees it: the near face and both side edges, at several heights.
+  constexpr std::array<double, 5> kLateral = {0.0, -0.98, 0.98, -0.7, 0.7};
+  constexpr std::array<double, 5> kHeight = {0.5, 0.02, 0.98, 0.25, 0.75};
+  for (double lateral : kLateral) {
+    const double depth = -std::sqrt(1.0 - lateral * lateral) * r;
+    const Vec2 base = target.position + (lateral * r) * side + depth * toward;
+    for (double h : kHeight) {
+      const Vec3 p{base.x, base.y, h * options.agent_height};
+      if (frustum.contains(p) && !occluded(layout, frustum.eye, p, nullptr)) return true;
+    }
+  }
+  return false;
+}
+
+bool obstacleInView(const AgentState& viewer, const Layout& layout, const GameOptions& options) {
+  if (layout.obstacles.empty()) return false;
+  const Frustum frustum(viewer, options.camera);
+  // Points on each box: corners at the floor and the top, and the side centres at eye height.
+  for (const Box& box : layout.obstacles) {
+    const double hx = 0.5 * box.size.x, hy = 0.5 * box.size.y;
+    const double c = box.cos_yaw, s = box.sin_yaw;
+    const std::array<Vec2, 8> local = {Vec2{hx, hy}, Vec2{-hx, hy}, Vec2{-hx, -hy}, Vec2{hx, -hy},
+                                       Vec2{hx, 0.0}, Vec2{-hx, 0.0}, Vec2{0.0, hy}, Vec2{0.0, -hy}};
+    for (size_t i = 0; i < local.size(); ++i) {
+      const Vec2 w{box.center.x + c * local[i].x - s * local[i].y, box.center.y + s * local[i].x + c * local[i].y};
+      const std::array<double, 3> heights = {0.0, std::min(box.height, frustum.eye.z), box.height};
+      for (double z : heights) {
+        const Vec3 p{w.x, w.y, z};
+        if (frustum.contains(p) && !occluded(layout, frustum.eye, p, &box)) return true;
+      }
+    }
+  }
+  // A box wider than the view shows none of its corners: cast rays across the view instead.
+  constexpr int kRays = 15;
+  const double reach = 4.0 * layout.half_extent;
+  const std::vector<Box> walls = wallBoxes(layout.half_extent, layout.wall_height);
+  for (int i = 0; i < kRays; ++i) {
+    const double u = -1.0 + 2.0 * i / (kRays - 1);
+    const double lateral = u * frustum.tan_half_h;
+    const Vec2 dir{frustum.forward.x - lateral * frustum.forward.y, frustum.forward.y + lateral * frustum.forward.x};
+    for (double v : {-0.9, 0.0}) {
+      const Vec3 end{frustum.eye.x + reach * dir.x, frustum.eye.y + reach * dir.y,
+                     frustum.eye.z + v * frustum.tan_half_v * reach};
+      double nearest_wall = 2.0;
+      for (const Box& w : walls) {
+        nearest_wall = std::min(nearest_wall, segmentEntry(w, frustum.eye, end));
+      }
+      const double floor_t = end.z < frustum.eye.z ? frustum.eye.z / (frustum.eye.z - end.z) : 2.0;
+      const double limit = std::min(nearest_wall, floor_t);
+      for (const Box& box : layout.obstacles) {
+        if (segmentEntry(box, frustum.eye, end) < limit) return true;
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace hideseek_world
