@@ -352,6 +352,8 @@ void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, ui
     for (const Quad& q : r.cylinder) emit(q, at, c, s, tint, true);
   }
 
+  // Several renderers may share a thread (tests do); each draws into its own context.
+  OSMesaMakeCurrent(r.context, r.framebuffer.data(), GL_UNSIGNED_BYTE, r.fb_width, r.fb_height);
   glClearColor(sky.r, sky.g, sky.b, 1.f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (r.frame.size() > r.buffer_capacity) {

@@ -8,20 +8,25 @@ namespace hideseek_world {
 
 namespace {
 
-// The viewer's camera: where it is and the tangents of its half fields of view.
+// The viewer's camera: where it is and the tangents of its half fields of view, reduced to the
+// centres of the outermost pixels: a point outside them covers no pixel centre of the image.
 struct Frustum {
   Vec3 eye;
   Vec2 forward;
   double tan_half_h;
   double tan_half_v;
   double near_clip;
+  double half_pixel;  // tangent of half a pixel's angular width at the image centre
 
   Frustum(const AgentState& viewer, const CameraOptions& camera)
       : eye{viewer.position.x, viewer.position.y, camera.mount_height},
         forward{std::cos(viewer.yaw), std::sin(viewer.yaw)},
-        tan_half_h(std::tan(0.5 * camera.horizontal_fov)),
-        tan_half_v(std::tan(0.5 * camera.verticalFov())),
-        near_clip(camera.near_clip) {}
+        tan_half_h(std::tan(0.5 * camera.horizontal_fov) * (1.0 - 1.0 / camera.width)),
+        tan_half_v(std::tan(0.5 * camera.verticalFov()) * (1.0 - 1.0 / camera.height)),
+        near_clip(camera.near_clip),
+        half_pixel(std::tan(0.5 * camera.horizontal_fov) / camera.width) {}
+
+  double depth(const Vec3& p) const { return (p.x - eye.x) * forward.x + (p.y - eye.y) * forward.y; }
 
   bool contains(const Vec3& p) const {
     const double dx = p.x - eye.x, dy = p.y - eye.y;
@@ -50,15 +55,25 @@ bool agentSeesAgent(const AgentState& viewer, const AgentState& target, const La
   const Vec2 toward{to_target.x / d, to_target.y / d};
   const Vec2 side{-toward.y, toward.x};
   const double r = options.agent_radius;
-  // Silhouette as the viewer sees it: the near face and both side edges, at several heights.
-  constexpr std::array<double, 5> kLateral = {0.0, -0.98, 0.98, -0.7, 0.7};
-  constexpr std::array<double, 5> kHeight = {0.5, 0.02, 0.98, 0.25, 0.75};
+  // Silhouette as the viewer sees it: the near face and, slightly inset, both side edges, at
+  // several heights. The inset keeps sub-pixel slivers at the rim from counting as seen.
+  constexpr std::array<double, 5> kLateral = {0.0, -0.9, 0.9, -0.6, 0.6};
+  constexpr std::array<double, 5> kHeight = {0.5, 0.05, 0.95, 0.25, 0.75};
   for (double lateral : kLateral) {
     const double depth = -std::sqrt(1.0 - lateral * lateral) * r;
     const Vec2 base = target.position + (lateral * r) * side + depth * toward;
     for (double h : kHeight) {
       const Vec3 p{base.x, base.y, h * options.agent_height};
-      if (frustum.contains(p) && !occluded(layout, frustum.eye, p, nullptr)) return true;
+      if (!frustum.contains(p)) continue;
+      // A sliver narrower than a pixel past an obstacle's edge covers no pixel centre: the sight
+      // lines half a pixel to either side must be clear too.
+      const double shift = frustum.half_pixel * frustum.depth(p);
+      const Vec3 left{p.x + shift * side.x, p.y + shift * side.y, p.z};
+      const Vec3 right{p.x - shift * side.x, p.y - shift * side.y, p.z};
+      if (!occluded(layout, frustum.eye, p, nullptr) && !occluded(layout, frustum.eye, left, nullptr) &&
+          !occluded(layout, frustum.eye, right, nullptr)) {
+        return true;
+      }
     }
   }
   return false;

@@ -1,0 +1,27 @@
+# The two commands of the README: `make run` and `make test`. Both install what is missing first.
+SHELL := /bin/bash
+ROOT := $(abspath .)
+CATKIN := source scripts/env.sh && catkin_make -DCMAKE_BUILD_TYPE=Release \
+	-DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=ON
+JOBS ?= $(shell nproc)
+
+.PHONY: deps build run test bench clean
+
+deps:
+	scripts/install_deps.sh
+
+build: deps
+	$(CATKIN) -j$(JOBS)
+
+# The basic game: rviz when a display is available, otherwise headless with one line per episode.
+run: build
+	source scripts/env.sh && scripts/run_basic.sh
+
+test: build
+	scripts/run_tests.sh
+
+bench: build
+	scripts/bench.sh
+
+clean:
+	rm -rf build devel install

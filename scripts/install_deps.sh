@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs every system dependency from Debian 12's own packages. Idempotent: when all are
+# present it changes nothing and needs no network.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake
+  ros-base-dev catkin python3-catkin-pkg python3-rospkg python3-rostest rosbash
+  librosbag-dev libtf2-ros-dev libtf2-geometry-msgs-dev libstd-srvs-dev ros-std-srvs libdiagnostic-msgs-dev
+  rviz
+  libosmesa6-dev libeigen3-dev libyaml-cpp-dev
+  libtorch-dev libopenblas0-pthread
+  libgtest-dev googletest
+  xvfb xauth imagemagick
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install_deps: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

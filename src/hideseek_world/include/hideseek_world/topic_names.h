@@ -1,0 +1,21 @@
+// Default topic and service names of the game graph; launch files remap them.
+#pragma once
+
+namespace hideseek_world {
+
+constexpr char kHiderObservationsTopic[] = "hider/observations";
+constexpr char kSeekerObservationsTopic[] = "seeker/observations";
+constexpr char kHiderActionsTopic[] = "hider/actions";
+constexpr char kSeekerActionsTopic[] = "seeker/actions";
+constexpr char kHiderImageTopic[] = "hider/camera/image_raw";
+constexpr char kHiderCameraInfoTopic[] = "hider/camera/camera_info";
+constexpr char kSeekerImageTopic[] = "seeker/camera/image_raw";
+constexpr char kSeekerCameraInfoTopic[] = "seeker/camera/camera_info";
+constexpr char kMarkersTopic[] = "world/markers";
+constexpr char kMapTopic[] = "map";
+constexpr char kHiderPathTopic[] = "hider/path";
+constexpr char kSeekerPathTopic[] = "seeker/path";
+constexpr char kGameStateTopic[] = "game_state";
+constexpr char kResetService[] = "world/reset";
+
+}  // namespace hideseek_world

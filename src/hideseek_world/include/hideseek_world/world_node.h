@@ -1,0 +1,92 @@
+// Wires the world core to ROS: observation and action batches, standard outputs for arena 0.
+#pragma once
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <hideseek_msgs/ActionBatch.h>
+#include <hideseek_msgs/Reset.h>
+#include <nav_msgs/Path.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <ros/ros.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hideseek_world/world.h"
+#include "hideseek_world/world_node_options.h"
+
+namespace hideseek_world {
+
+// Counts of rejected input, published on /diagnostics.
+struct RejectionCounts {
+  uint64_t wrong_arena_count = 0;
+  uint64_t invalid_action = 0;
+  uint64_t wrong_step = 0;
+  uint64_t second_publisher = 0;
+};
+
+// One agent's side of the exchange: its latest actions and who may send them.
+struct AgentChannel {
+  std::string name;                          // "hider" or "seeker"
+  std::vector<std::optional<Action>> pending;  // lockstep: action for the current step
+  std::vector<Action> latest;                // realtime: last action received
+  std::vector<ros::WallTime> received;       // realtime: when it arrived
+  std::string owner;                         // caller id of the accepted publisher
+  ros::WallTime owner_last_seen;
+};
+
+// All callbacks run on the one spinner thread that created the node, which also owns the
+// OSMesa context of the renderer.
+class WorldNode {
+ public:
+  WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+
+ private:
+  void onActions(const ros::MessageEvent<const hideseek_msgs::ActionBatch>& event, AgentChannel& channel);
+  bool acceptPublisher(const std::string& caller, AgentChannel& channel);
+  void tryAdvanceLockstep();
+  void onRealtimeTick(const ros::WallTimerEvent&);
+  void onWatchdog(const ros::WallTimerEvent&);
+  bool onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset::Response& res);
+  void stepAll(const std::vector<Action>& hider, const std::vector<Action>& seeker);
+  void publishObservations();
+  void publishArenaZero(bool force_visuals);
+  void startEpisodeVisuals();
+  void publishDiagnostics(const ros::WallTimerEvent&);
+  ros::Time simNow() const;
+
+  ros::NodeHandle nh_;
+  WorldNodeOptions options_;
+  std::unique_ptr<World> world_;
+  std::vector<uint8_t> images_;
+  std::vector<uint8_t> seeker_image_;
+  std::vector<float> rewards_;
+  std::vector<uint8_t> done_;
+  std::vector<uint8_t> outcome_;
+  AgentChannel hider_;
+  AgentChannel seeker_;
+  RejectionCounts rejected_;
+  uint64_t world_steps_ = 0;  // decision steps of arena 0's clock, for /clock in lockstep
+  uint64_t batches_published_ = 0;
+  ros::WallTime last_progress_;
+  ros::WallTime last_visuals_;
+  bool started_ = false;
+  std::optional<EpisodeSummary> last_finished_;  // arena 0's episode that ended in the last step
+
+  ros::Publisher hider_obs_pub_, seeker_obs_pub_, clock_pub_, hider_image_pub_, hider_info_pub_, seeker_image_pub_,
+      seeker_info_pub_, markers_pub_, map_pub_, hider_path_pub_, seeker_path_pub_, state_pub_, diagnostics_pub_;
+  ros::Subscriber hider_sub_, seeker_sub_;
+  ros::ServiceServer reset_srv_;
+  ros::WallTimer tick_timer_, watchdog_timer_, diagnostics_timer_;
+  tf2_ros::TransformBroadcaster tf_;
+  tf2_ros::StaticTransformBroadcaster static_tf_;
+  nav_msgs::Path hider_path_, seeker_path_;
+  sensor_msgs::CameraInfo camera_info_;
+  std::vector<Action> last_hider_actions_, last_seeker_actions_;
+};
+
+}  // namespace hideseek_world

@@ -1,0 +1,33 @@
+// Options of the world node, read once from the parameter server and validated.
+#pragma once
+
+#include <ros/ros.h>
+
+#include <string>
+
+#include "hideseek_world/game_options.h"
+#include "hideseek_world/map.h"
+
+namespace hideseek_world {
+
+enum class ClockMode { kRealtime, kLockstep };
+
+struct WorldNodeOptions {
+  VariantConfig variant;
+  MapSpec map;
+  ClockMode mode = ClockMode::kRealtime;
+  int num_arenas = 1;
+  uint32_t seed = 0;
+  std::string frame_id = "map";
+  double stale_action_timeout = 0.5;  // s of wall time; realtime agents without news stand still
+  double resend_period = 1.0;         // s of wall time; lockstep re-sends a batch nobody answered
+  double publish_rate = 30.0;         // Hz of wall time for rviz outputs (markers, paths, images) in lockstep
+};
+
+constexpr int kMaxArenas = 64;
+
+// Reads ~game_config, ~variant_config, ~mode, ~num_arenas, ~seed, ... Throws std::runtime_error
+// (or ConfigError for files) naming the parameter or file field at fault.
+WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& private_nh);
+
+}  // namespace hideseek_world

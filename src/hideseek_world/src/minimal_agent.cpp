@@ -1,0 +1,62 @@
+// A minimal agent for tests and benchmarks: answers every observation batch at once with
+// uniformly random actions. Each action is a hash of (episode seed, step, arena), so an
+// answer re-sent for the same step is the same answer and runs are reproducible.
+#include <hideseek_msgs/ActionBatch.h>
+#include <hideseek_msgs/ObservationBatch.h>
+#include <hideseek_msgs/SeekerObservationBatch.h>
+#include <ros/ros.h>
+
+#include <cstdint>
+
+#include "hideseek_world/agent.h"
+#include "hideseek_world/topic_names.h"
+
+namespace {
+
+uint8_t randomAction(uint32_t seed, uint32_t step, uint32_t arena, uint32_t salt) {
+  // splitmix64 finaliser: cheap, well mixed.
+  uint64_t z = (static_cast<uint64_t>(seed) << 32 | step) ^ (static_cast<uint64_t>(arena) << 17) ^ salt;
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return static_cast<uint8_t>((z ^ (z >> 31)) % hideseek_world::kNumActions);
+}
+
+template <typename Batch>
+hideseek_msgs::ActionBatch answer(const Batch& obs, uint32_t salt) {
+  hideseek_msgs::ActionBatch out;
+  out.header.stamp = obs.header.stamp;
+  out.step = obs.step;
+  for (uint32_t i = 0; i < obs.num_arenas; ++i) out.actions.push_back(randomAction(obs.seed[i], obs.step[i], i, salt));
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "minimal_agent");
+  ros::NodeHandle nh, pnh("~");
+  const std::string role = pnh.param<std::string>("role", "hider");
+  if (role != "hider" && role != "seeker") {
+    ROS_FATAL("minimal_agent: parameter %s must be 'hider' or 'seeker', got '%s'", pnh.resolveName("role").c_str(),
+              role.c_str());
+    return 1;
+  }
+  const auto hints = ros::TransportHints().tcpNoDelay();
+  ros::Publisher pub;
+  ros::Subscriber sub;
+  if (role == "hider") {
+    pub = nh.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kHiderActionsTopic, 2);
+    sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
+        hideseek_world::kHiderObservationsTopic, 2,
+        [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) { pub.publish(answer(*m, 0x51)); }, ros::VoidConstPtr(), hints);
+  } else {
+    pub = nh.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kSeekerActionsTopic, 2);
+    sub = nh.subscribe<hideseek_msgs::SeekerObservationBatch>(
+        hideseek_world::kSeekerObservationsTopic, 2,
+        [&](const hideseek_msgs::SeekerObservationBatch::ConstPtr& m) { pub.publish(answer(*m, 0x5e)); },
+        ros::VoidConstPtr(), hints);
+  }
+  ros::spin();
+  return 0;
+}

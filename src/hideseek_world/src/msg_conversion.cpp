@@ -1,0 +1,185 @@
+#include "hideseek_world/msg_conversion.h"
+
+#include <cmath>
+
+#include "hideseek_world/free_space_grid.h"
+
+namespace hideseek_world {
+
+geometry_msgs::Pose2D toPose2D(const AgentState& agent) {
+  geometry_msgs::Pose2D p;
+  p.x = agent.position.x;
+  p.y = agent.position.y;
+  p.theta = agent.yaw;
+  return p;
+}
+
+hideseek_msgs::ArenaMap toArenaMap(const Layout& layout) {
+  hideseek_msgs::ArenaMap m;
+  m.half_extent = static_cast<float>(layout.half_extent);
+  for (const Box& b : layout.obstacles) {
+    hideseek_msgs::Box box;
+    box.x = static_cast<float>(b.center.x);
+    box.y = static_cast<float>(b.center.y);
+    box.size_x = static_cast<float>(b.size.x);
+    box.size_y = static_cast<float>(b.size.y);
+    box.height = static_cast<float>(b.height);
+    box.yaw = static_cast<float>(b.yaw);
+    m.obstacles.push_back(box);
+  }
+  for (const Vec2& w : layout.waypoints) {
+    geometry_msgs::Point p;
+    p.x = w.x;
+    p.y = w.y;
+    m.waypoints.push_back(p);
+  }
+  return m;
+}
+
+nav_msgs::OccupancyGrid toOccupancyGrid(const Layout& layout, double resolution, const std::string& frame_id) {
+  // A grid inflated by nothing marks exactly the cells whose centre lies in an obstacle.
+  const FreeSpaceGrid grid(layout, 0.0, resolution);
+  nav_msgs::OccupancyGrid msg;
+  msg.header.frame_id = frame_id;
+  msg.info.resolution = static_cast<float>(resolution);
+  msg.info.width = grid.width();
+  msg.info.height = grid.height();
+  msg.info.origin.position.x = grid.originX();
+  msg.info.origin.position.y = grid.originY();
+  msg.info.origin.orientation.w = 1.0;
+  msg.data.resize(static_cast<size_t>(grid.width()) * grid.height());
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) msg.data[grid.index({x, y})] = grid.isFree({x, y}) ? 0 : 100;
+  }
+  return msg;
+}
+
+sensor_msgs::CameraInfo toCameraInfo(const CameraOptions& camera, const std::string& optical_frame) {
+  sensor_msgs::CameraInfo info;
+  info.header.frame_id = optical_frame;
+  info.width = camera.width;
+  info.height = camera.height;
+  info.distortion_model = "plumb_bob";
+  info.D.assign(5, 0.0);
+  const double fx = 0.5 * camera.width / std::tan(0.5 * camera.horizontal_fov);
+  const double fy = 0.5 * camera.height / std::tan(0.5 * camera.verticalFov());
+  const double cx = 0.5 * camera.width, cy = 0.5 * camera.height;
+  info.K = {fx, 0, cx, 0, fy, cy, 0, 0, 1};
+  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  info.P = {fx, 0, cx, 0, 0, fy, cy, 0, 0, 0, 1, 0};
+  return info;
+}
+
+geometry_msgs::TransformStamped agentTransform(const AgentState& agent, const std::string& parent,
+                                               const std::string& child, const ros::Time& stamp) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = agent.position.x;
+  t.transform.translation.y = agent.position.y;
+  t.transform.rotation.z = std::sin(0.5 * agent.yaw);
+  t.transform.rotation.w = std::cos(0.5 * agent.yaw);
+  return t;
+}
+
+namespace {
+
+std_msgs::ColorRGBA color(const Rgb& c, float alpha) {
+  std_msgs::ColorRGBA out;
+  out.r = c.r;
+  out.g = c.g;
+  out.b = c.b;
+  out.a = alpha;
+  return out;
+}
+
+visualization_msgs::Marker boxMarker(const Box& b, int id, const std::string& ns, const Rgb& c) {
+  visualization_msgs::Marker m;
+  m.ns = ns;
+  m.id = id;
+  m.type = visualization_msgs::Marker::CUBE;
+  m.pose.position.x = b.center.x;
+  m.pose.position.y = b.center.y;
+  m.pose.position.z = 0.5 * b.height;
+  m.pose.orientation.z = std::sin(0.5 * b.yaw);
+  m.pose.orientation.w = std::cos(0.5 * b.yaw);
+  m.scale.x = b.size.x;
+  m.scale.y = b.size.y;
+  m.scale.z = b.height;
+  m.color = color(c, 1.f);
+  return m;
+}
+
+// The view cone on the floor: a fan over the horizontal field of view, reaching `range`.
+visualization_msgs::Marker coneMarker(const AgentState& a, const CameraOptions& camera, const std::string& ns,
+                                      bool sees_other) {
+  constexpr int kSegments = 12;
+  constexpr double kRange = 4.0;
+  visualization_msgs::Marker m;
+  m.ns = ns;
+  m.type = visualization_msgs::Marker::TRIANGLE_LIST;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = m.scale.z = 1.0;
+  m.color = sees_other ? color({0.1f, 0.85f, 0.2f}, 0.45f) : color({0.6f, 0.6f, 0.6f}, 0.3f);
+  geometry_msgs::Point apex;
+  apex.x = a.position.x;
+  apex.y = a.position.y;
+  apex.z = 0.02;
+  for (int i = 0; i < kSegments; ++i) {
+    const double a0 = a.yaw - 0.5 * camera.horizontal_fov + camera.horizontal_fov * i / kSegments;
+    const double a1 = a.yaw - 0.5 * camera.horizontal_fov + camera.horizontal_fov * (i + 1) / kSegments;
+    geometry_msgs::Point p0 = apex, p1 = apex;
+    p0.x += kRange * std::cos(a0);
+    p0.y += kRange * std::sin(a0);
+    p1.x += kRange * std::cos(a1);
+    p1.y += kRange * std::sin(a1);
+    m.points.push_back(apex);
+    m.points.push_back(p0);
+    m.points.push_back(p1);
+  }
+  return m;
+}
+
+visualization_msgs::Marker agentMarker(const AgentState& a, const GameOptions& g, const std::string& ns, const Rgb& c) {
+  visualization_msgs::Marker m;
+  m.ns = ns;
+  m.type = visualization_msgs::Marker::CYLINDER;
+  m.pose.position.x = a.position.x;
+  m.pose.position.y = a.position.y;
+  m.pose.position.z = 0.5 * g.agent_height;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = 2.0 * g.agent_radius;
+  m.scale.z = g.agent_height;
+  m.color = color(c, 1.f);
+  return m;
+}
+
+}  // namespace
+
+visualization_msgs::MarkerArray toMarkers(const Arena& arena, const std::string& frame_id, const ros::Time& stamp) {
+  visualization_msgs::MarkerArray out;
+  const MapColors& colors = arena.map().colors;
+  const Layout& layout = arena.layout();
+  visualization_msgs::Marker clear;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  out.markers.push_back(clear);
+  int id = 0;
+  for (const Box& b : layout.obstacles) out.markers.push_back(boxMarker(b, id++, "obstacles", colors.obstacle));
+  id = 0;
+  for (const Box& b : wallBoxes(layout.half_extent, layout.wall_height)) {
+    out.markers.push_back(boxMarker(b, id++, "walls", colors.wall));
+  }
+  const GameOptions& g = arena.options();
+  out.markers.push_back(agentMarker(arena.hider(), g, "hider", colors.hider));
+  out.markers.push_back(agentMarker(arena.seeker(), g, "seeker", colors.seeker));
+  out.markers.push_back(coneMarker(arena.hider(), g.camera, "hider_view", arena.labels().hider_sees_seeker));
+  out.markers.push_back(coneMarker(arena.seeker(), g.camera, "seeker_view", arena.labels().seeker_sees_hider));
+  for (auto& m : out.markers) {
+    m.header.frame_id = frame_id;
+    m.header.stamp = stamp;
+  }
+  return out;
+}
+
+}  // namespace hideseek_world

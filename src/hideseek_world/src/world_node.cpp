@@ -1,0 +1,456 @@
+#include "hideseek_world/world_node.h"
+
+#include <hideseek_msgs/GameState.h>
+#include <hideseek_msgs/ObservationBatch.h>
+#include <hideseek_msgs/SeekerObservationBatch.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/image_encodings.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "hideseek_world/msg_conversion.h"
+#include "hideseek_world/topic_names.h"
+
+namespace hideseek_world {
+
+namespace {
+
+constexpr double kMapResolution = 0.05;         // m per cell of the published OccupancyGrid
+constexpr double kOwnerTimeout = 2.0;           // s a silent publisher keeps its topic
+constexpr double kSimTimeOrigin = 1.0;          // s; sim time 0 means "no time" to tf and rosbag
+constexpr double kWarnPeriod = 2.0;             // s between repeated warnings of one kind
+
+const char* outcomeName(Outcome o) {
+  switch (o) {
+    case Outcome::kCaptured:
+      return "captured";
+    case Outcome::kSurvived:
+      return "survived";
+    default:
+      return "running";
+  }
+}
+
+geometry_msgs::TransformStamped fixedTransform(const std::string& parent, const std::string& child, double z,
+                                               double qx, double qy, double qz, double qw) {
+  geometry_msgs::TransformStamped t;
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.z = z;
+  t.transform.rotation.x = qx;
+  t.transform.rotation.y = qy;
+  t.transform.rotation.z = qz;
+  t.transform.rotation.w = qw;
+  return t;
+}
+
+}  // namespace
+
+WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
+    : nh_(nh), options_(loadWorldNodeOptions(private_nh)) {
+  const GameOptions& game = options_.variant.game;
+  const int n = options_.num_arenas;
+  world_ = std::make_unique<World>(game, std::make_shared<const MapSpec>(options_.map), n, options_.seed, true);
+  images_.resize(world_->imageBytes() * n);
+  seeker_image_.resize(world_->imageBytes());
+  rewards_.assign(n, 0.f);
+  done_.assign(n, 0);
+  outcome_.assign(n, 0);
+  last_hider_actions_.assign(n, Action::kStay);
+  last_seeker_actions_.assign(n, Action::kStay);
+  for (AgentChannel* c : {&hider_, &seeker_}) {
+    c->pending.assign(n, std::nullopt);
+    c->latest.assign(n, Action::kStay);
+    c->received.assign(n, ros::WallTime());
+  }
+  hider_.name = "hider";
+  seeker_.name = "seeker";
+  camera_info_ = toCameraInfo(game.camera, "hider/camera_optical_frame");
+
+  const bool lockstep = options_.mode == ClockMode::kLockstep;
+  hider_obs_pub_ = nh_.advertise<hideseek_msgs::ObservationBatch>(kHiderObservationsTopic, 2);
+  seeker_obs_pub_ = nh_.advertise<hideseek_msgs::SeekerObservationBatch>(kSeekerObservationsTopic, 2);
+  if (lockstep) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  hider_image_pub_ = nh_.advertise<sensor_msgs::Image>(kHiderImageTopic, 2);
+  hider_info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>(kHiderCameraInfoTopic, 2);
+  seeker_image_pub_ = nh_.advertise<sensor_msgs::Image>(kSeekerImageTopic, 2);
+  seeker_info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>(kSeekerCameraInfoTopic, 2);
+  markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>(kMarkersTopic, 2);
+  map_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>(kMapTopic, 1, true);
+  hider_path_pub_ = nh_.advertise<nav_msgs::Path>(kHiderPathTopic, 2);
+  seeker_path_pub_ = nh_.advertise<nav_msgs::Path>(kSeekerPathTopic, 2);
+  state_pub_ = nh_.advertise<hideseek_msgs::GameState>(kGameStateTopic, 50);
+  diagnostics_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
+
+  const auto hints = ros::TransportHints().tcpNoDelay();
+  hider_sub_ = nh_.subscribe<hideseek_msgs::ActionBatch>(
+      kHiderActionsTopic, 2 * n, [this](const ros::MessageEvent<const hideseek_msgs::ActionBatch>& e) { onActions(e, hider_); },
+      ros::VoidConstPtr(), hints);
+  seeker_sub_ = nh_.subscribe<hideseek_msgs::ActionBatch>(
+      kSeekerActionsTopic, 2 * n, [this](const ros::MessageEvent<const hideseek_msgs::ActionBatch>& e) { onActions(e, seeker_); },
+      ros::VoidConstPtr(), hints);
+  reset_srv_ = nh_.advertiseService(kResetService, &WorldNode::onReset, this);
+
+  // REP 103/105 camera frames: camera_link looks along the agent's x; the optical frame has
+  // z forward, x right, y down.
+  std::vector<geometry_msgs::TransformStamped> fixed;
+  for (const std::string agent : {"hider", "seeker"}) {
+    fixed.push_back(fixedTransform(agent + "/base_link", agent + "/camera_link", game.camera.mount_height, 0, 0, 0, 1));
+    fixed.push_back(fixedTransform(agent + "/camera_link", agent + "/camera_optical_frame", 0, -0.5, 0.5, -0.5, 0.5));
+  }
+  for (auto& t : fixed) t.header.stamp = simNow();
+  static_tf_.sendTransform(fixed);
+
+  world_->renderHiderViews(images_.data());
+  startEpisodeVisuals();
+  if (lockstep) {
+    watchdog_timer_ = nh_.createWallTimer(ros::WallDuration(0.05), &WorldNode::onWatchdog, this);
+  } else {
+    tick_timer_ = nh_.createWallTimer(ros::WallDuration(game.stepDuration()), &WorldNode::onRealtimeTick, this);
+    publishObservations();
+    publishArenaZero(true);
+  }
+  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(1.0), &WorldNode::publishDiagnostics, this);
+  ROS_INFO("world: variant '%s', map '%s', %d arena(s), %s mode, seed %u, images %dx%d",
+           options_.variant.name.c_str(), options_.map.name.c_str(), n, lockstep ? "lockstep" : "realtime",
+           options_.seed, game.camera.width, game.camera.height);
+}
+
+ros::Time WorldNode::simNow() const {
+  if (options_.mode == ClockMode::kRealtime) return ros::Time::now();
+  return ros::Time(kSimTimeOrigin + static_cast<double>(world_steps_) * options_.variant.game.stepDuration());
+}
+
+bool WorldNode::acceptPublisher(const std::string& caller, AgentChannel& channel) {
+  const ros::WallTime now = ros::WallTime::now();
+  if (channel.owner.empty() || channel.owner == caller ||
+      (now - channel.owner_last_seen).toSec() > kOwnerTimeout) {
+    if (channel.owner != caller) {
+      if (!channel.owner.empty()) ROS_INFO("world: %s actions now come from %s", channel.name.c_str(), caller.c_str());
+      channel.owner = caller;
+    }
+    channel.owner_last_seen = now;
+    return true;
+  }
+  return false;
+}
+
+void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBatch>& event, AgentChannel& channel) {
+  const std::string caller = event.getPublisherName();
+  if (!acceptPublisher(caller, channel)) {
+    ++rejected_.second_publisher;
+    ROS_WARN_THROTTLE(kWarnPeriod, "world: rejected %s actions from %s: %s already publishes them", channel.name.c_str(),
+                      caller.c_str(), channel.owner.c_str());
+    return;
+  }
+  const hideseek_msgs::ActionBatch& msg = *event.getConstMessage();
+  const size_t n = static_cast<size_t>(options_.num_arenas);
+  if (msg.actions.size() != n || msg.step.size() != n) {
+    ++rejected_.wrong_arena_count;
+    ROS_WARN_THROTTLE(kWarnPeriod, "world: rejected %s action batch: %zu actions and %zu step ids for %zu arenas",
+                      channel.name.c_str(), msg.actions.size(), msg.step.size(), n);
+    return;
+  }
+  const bool lockstep = options_.mode == ClockMode::kLockstep;
+  const ros::WallTime now = ros::WallTime::now();
+  for (size_t i = 0; i < n; ++i) {
+    if (msg.actions[i] >= kNumActions) {
+      ++rejected_.invalid_action;
+      ROS_WARN_THROTTLE(kWarnPeriod, "world: rejected %s action %u for arena %zu: actions are 0..%d",
+                        channel.name.c_str(), msg.actions[i], i, kNumActions - 1);
+      continue;
+    }
+    const uint32_t current = static_cast<uint32_t>(world_->arena(i).stepCount());
+    // Realtime agents may answer one step late; lockstep ones must answer the current step.
+    const bool fresh = lockstep ? msg.step[i] == current : (msg.step[i] == current || msg.step[i] + 1 == current);
+    if (!fresh) {
+      ++rejected_.wrong_step;
+      ROS_WARN_THROTTLE(kWarnPeriod, "world: rejected %s action for arena %zu: step id %u, current step is %u",
+                        channel.name.c_str(), i, msg.step[i], current);
+      continue;
+    }
+    const Action a = static_cast<Action>(msg.actions[i]);
+    channel.pending[i] = a;
+    channel.latest[i] = a;
+    channel.received[i] = now;
+  }
+  if (lockstep) tryAdvanceLockstep();
+}
+
+void WorldNode::tryAdvanceLockstep() {
+  if (!started_) return;
+  const int n = options_.num_arenas;
+  for (int i = 0; i < n; ++i) {
+    if (!hider_.pending[i] || !seeker_.pending[i]) return;
+  }
+  std::vector<Action> h(n), s(n);
+  for (int i = 0; i < n; ++i) {
+    h[i] = *hider_.pending[i];
+    s[i] = *seeker_.pending[i];
+    hider_.pending[i].reset();
+    seeker_.pending[i].reset();
+  }
+  stepAll(h, s);
+  publishObservations();
+  publishArenaZero(false);
+}
+
+void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
+  const int n = options_.num_arenas;
+  const ros::WallTime now = ros::WallTime::now();
+  std::vector<Action> h(n), s(n);
+  // Like turtlesim: an agent whose commands went stale stands still.
+  for (int i = 0; i < n; ++i) {
+    h[i] = (now - hider_.received[i]).toSec() <= options_.stale_action_timeout ? hider_.latest[i] : Action::kStay;
+    s[i] = (now - seeker_.received[i]).toSec() <= options_.stale_action_timeout ? seeker_.latest[i] : Action::kStay;
+  }
+  stepAll(h, s);
+  publishObservations();
+  publishArenaZero(true);
+}
+
+void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
+  const ros::WallTime now = ros::WallTime::now();
+  if (!started_) {
+    // Start once both agents listen, so the first batch is not lost.
+    if (hider_obs_pub_.getNumSubscribers() == 0 || seeker_obs_pub_.getNumSubscribers() == 0) return;
+    started_ = true;
+    ROS_INFO("world: both agents connected, starting lockstep");
+    publishObservations();
+    publishArenaZero(true);
+    return;
+  }
+  if ((now - last_progress_).toSec() > options_.resend_period) {
+    ROS_WARN_THROTTLE(10.0, "world: no complete action batches for %.1f s (hider %s, seeker %s); re-sending step",
+                      (now - last_progress_).toSec(), hider_.owner.empty() ? "silent" : hider_.owner.c_str(),
+                      seeker_.owner.empty() ? "silent" : seeker_.owner.c_str());
+    publishObservations();
+  }
+}
+
+void WorldNode::stepAll(const std::vector<Action>& hider, const std::vector<Action>& seeker) {
+  last_finished_.reset();
+  for (int i = 0; i < options_.num_arenas; ++i) {
+    const ArenaStep s = world_->stepArena(i, hider[i], seeker[i]);
+    rewards_[i] = static_cast<float>(s.result.reward);
+    done_[i] = s.result.done();
+    outcome_[i] = static_cast<uint8_t>(s.result.outcome);
+    if (s.finished) {
+      const EpisodeSummary& e = *s.finished;
+      if (i == 0) last_finished_ = e;
+      const auto level = i == 0 ? ros::console::levels::Info : ros::console::levels::Debug;
+      ROS_LOG(level, ROSCONSOLE_DEFAULT_NAME, "arena %d episode %u (seed %u): %s after %d steps, return %.3f", i,
+              e.episode, e.seed, outcomeName(e.outcome), e.steps, e.episode_return);
+    }
+  }
+  last_hider_actions_ = hider;
+  last_seeker_actions_ = seeker;
+  ++world_steps_;
+  world_->renderHiderViews(images_.data());
+}
+
+void WorldNode::publishObservations() {
+  const int n = options_.num_arenas;
+  const ros::Time stamp = simNow();
+  if (options_.mode == ClockMode::kLockstep) {
+    rosgraph_msgs::Clock clock;
+    clock.clock = stamp;
+    clock_pub_.publish(clock);
+  }
+  hideseek_msgs::ObservationBatch obs;
+  obs.header.stamp = stamp;
+  obs.header.frame_id = options_.frame_id;
+  obs.num_arenas = n;
+  obs.height = options_.variant.game.camera.height;
+  obs.width = options_.variant.game.camera.width;
+  obs.images = images_;
+  obs.rewards = rewards_;
+  obs.done = done_;
+  obs.outcome = outcome_;
+  hideseek_msgs::SeekerObservationBatch seen;
+  seen.header = obs.header;
+  seen.num_arenas = n;
+  seen.done = done_;
+  for (int i = 0; i < n; ++i) {
+    const Arena& a = world_->arena(i);
+    obs.step.push_back(a.stepCount());
+    obs.episode.push_back(world_->episode(i));
+    obs.seed.push_back(a.seed());
+    obs.hider_sees_seeker.push_back(a.labels().hider_sees_seeker);
+    obs.seeker_sees_hider.push_back(a.labels().seeker_sees_hider);
+    obs.obstacle_in_view.push_back(a.labels().obstacle_in_view);
+    seen.pose.push_back(toPose2D(a.seeker()));
+    seen.sees_hider.push_back(a.labels().seeker_sees_hider);
+    geometry_msgs::Point hider;
+    // The seeker learns where the hider is only while it sees it.
+    if (a.labels().seeker_sees_hider) {
+      hider.x = a.hider().position.x;
+      hider.y = a.hider().position.y;
+    }
+    seen.hider_position.push_back(hider);
+    seen.step.push_back(a.stepCount());
+    seen.episode.push_back(world_->episode(i));
+    seen.seed.push_back(a.seed());
+    seen.maps.push_back(toArenaMap(a.layout()));
+  }
+  hider_obs_pub_.publish(obs);
+  seeker_obs_pub_.publish(seen);
+  last_progress_ = ros::WallTime::now();
+  ++batches_published_;
+}
+
+void WorldNode::startEpisodeVisuals() {
+  const ros::Time stamp = simNow();
+  nav_msgs::OccupancyGrid grid = toOccupancyGrid(world_->arena(0).layout(), kMapResolution, options_.frame_id);
+  grid.header.stamp = stamp;
+  grid.info.map_load_time = stamp;
+  map_pub_.publish(grid);
+  hider_path_.poses.clear();
+  seeker_path_.poses.clear();
+  hider_path_.header.frame_id = seeker_path_.header.frame_id = options_.frame_id;
+}
+
+void WorldNode::publishArenaZero(bool force_visuals) {
+  const Arena& a = world_->arena(0);
+  const ros::Time stamp = simNow();
+  const GameOptions& game = options_.variant.game;
+
+  hideseek_msgs::GameState state;
+  state.header.stamp = stamp;
+  state.header.frame_id = options_.frame_id;
+  state.arena = 0;
+  // A step that ended the episode reports how it ended, not the next episode's start.
+  const AgentState& hider = last_finished_ ? last_finished_->hider : a.hider();
+  const AgentState& seeker = last_finished_ ? last_finished_->seeker : a.seeker();
+  const Labels& labels = last_finished_ ? last_finished_->labels : a.labels();
+  state.episode = last_finished_ ? last_finished_->episode : world_->episode(0);
+  state.seed = last_finished_ ? last_finished_->seed : a.seed();
+  state.step = last_finished_ ? last_finished_->steps : a.stepCount();
+  state.hider_pose = toPose2D(hider);
+  state.seeker_pose = toPose2D(seeker);
+  state.hider_speed = static_cast<float>(hider.speed);
+  state.seeker_speed = static_cast<float>(seeker.speed);
+  state.hider_action = static_cast<uint8_t>(last_hider_actions_[0]);
+  state.seeker_action = static_cast<uint8_t>(last_seeker_actions_[0]);
+  state.hider_sees_seeker = labels.hider_sees_seeker;
+  state.seeker_sees_hider = labels.seeker_sees_hider;
+  state.obstacle_in_view = labels.obstacle_in_view;
+  state.distance = static_cast<float>(distance(hider.position, seeker.position));
+  state.reward = rewards_[0];
+  state.episode_return = static_cast<float>(last_finished_ ? last_finished_->episode_return : a.episodeReturn());
+  state.outcome = outcome_[0];
+  state_pub_.publish(state);
+
+  tf_.sendTransform({agentTransform(a.hider(), options_.frame_id, "hider/base_link", stamp),
+                     agentTransform(a.seeker(), options_.frame_id, "seeker/base_link", stamp)});
+
+  if (last_finished_) startEpisodeVisuals();
+  geometry_msgs::PoseStamped hp, sp;
+  hp.header.stamp = sp.header.stamp = stamp;
+  hp.header.frame_id = sp.header.frame_id = options_.frame_id;
+  hp.pose.position.x = a.hider().position.x;
+  hp.pose.position.y = a.hider().position.y;
+  hp.pose.orientation = agentTransform(a.hider(), "", "", stamp).transform.rotation;
+  sp.pose.position.x = a.seeker().position.x;
+  sp.pose.position.y = a.seeker().position.y;
+  sp.pose.orientation = agentTransform(a.seeker(), "", "", stamp).transform.rotation;
+  hider_path_.poses.push_back(hp);
+  seeker_path_.poses.push_back(sp);
+
+  // Visual outputs cost time: only for listeners, and in lockstep at most publish_rate per wall second.
+  const ros::WallTime now = ros::WallTime::now();
+  if (!force_visuals && (now - last_visuals_).toSec() < 1.0 / options_.publish_rate) return;
+  last_visuals_ = now;
+  if (markers_pub_.getNumSubscribers() > 0) markers_pub_.publish(toMarkers(a, options_.frame_id, stamp));
+  hider_path_.header.stamp = seeker_path_.header.stamp = stamp;
+  if (hider_path_pub_.getNumSubscribers() > 0) hider_path_pub_.publish(hider_path_);
+  if (seeker_path_pub_.getNumSubscribers() > 0) seeker_path_pub_.publish(seeker_path_);
+  auto image = [&](const uint8_t* data, const std::string& frame) {
+    sensor_msgs::Image img;
+    img.header.stamp = stamp;
+    img.header.frame_id = frame;
+    img.height = game.camera.height;
+    img.width = game.camera.width;
+    img.encoding = sensor_msgs::image_encodings::RGB8;
+    img.step = img.width * 3;
+    img.data.assign(data, data + world_->imageBytes());
+    return img;
+  };
+  if (hider_image_pub_.getNumSubscribers() > 0 || hider_info_pub_.getNumSubscribers() > 0) {
+    hider_image_pub_.publish(image(images_.data(), "hider/camera_optical_frame"));
+    sensor_msgs::CameraInfo info = camera_info_;
+    info.header.stamp = stamp;
+    hider_info_pub_.publish(info);
+  }
+  if (seeker_image_pub_.getNumSubscribers() > 0 || seeker_info_pub_.getNumSubscribers() > 0) {
+    world_->renderSeekerView(0, seeker_image_.data());
+    seeker_image_pub_.publish(image(seeker_image_.data(), "seeker/camera_optical_frame"));
+    sensor_msgs::CameraInfo info = camera_info_;
+    info.header.stamp = stamp;
+    info.header.frame_id = "seeker/camera_optical_frame";
+    seeker_info_pub_.publish(info);
+  }
+}
+
+bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset::Response& res) {
+  const int n = options_.num_arenas;
+  if (req.arena < -1 || req.arena >= n) {
+    res.success = false;
+    res.message = "arena " + std::to_string(req.arena) + " does not exist (0.." + std::to_string(n - 1) + ", or -1 for all)";
+    return true;
+  }
+  if (req.seed < -1 || req.seed > static_cast<int64_t>(UINT32_MAX)) {
+    res.success = false;
+    res.message = "seed must be -1 or in [0, 2^32)";
+    return true;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (req.arena != -1 && req.arena != i) continue;
+    std::optional<uint32_t> seed;
+    if (req.seed >= 0) seed = static_cast<uint32_t>(req.seed + (req.arena == -1 ? i : 0));
+    world_->resetArena(i, seed);
+    rewards_[i] = 0.f;
+    done_[i] = 0;
+    outcome_[i] = 0;
+    hider_.pending[i].reset();
+    seeker_.pending[i].reset();
+  }
+  world_->renderHiderViews(images_.data());
+  last_finished_.reset();
+  if (req.arena <= 0) startEpisodeVisuals();
+  res.success = true;
+  res.message = "reset " + (req.arena == -1 ? std::string("all arenas") : "arena " + std::to_string(req.arena));
+  if (started_ || options_.mode == ClockMode::kRealtime) {
+    publishObservations();
+    publishArenaZero(true);
+  }
+  return true;
+}
+
+void WorldNode::publishDiagnostics(const ros::WallTimerEvent&) {
+  diagnostic_msgs::DiagnosticArray array;
+  array.header.stamp = ros::Time::now();
+  diagnostic_msgs::DiagnosticStatus status;
+  status.name = "hideseek world: input";
+  status.hardware_id = "world";
+  const uint64_t total = rejected_.wrong_arena_count + rejected_.invalid_action + rejected_.wrong_step + rejected_.second_publisher;
+  status.level = total ? diagnostic_msgs::DiagnosticStatus::WARN : diagnostic_msgs::DiagnosticStatus::OK;
+  status.message = total ? "rejected malformed or unexpected action messages" : "all input accepted";
+  auto add = [&](const std::string& key, uint64_t v) {
+    diagnostic_msgs::KeyValue kv;
+    kv.key = key;
+    kv.value = std::to_string(v);
+    status.values.push_back(kv);
+  };
+  add("rejected_wrong_arena_count", rejected_.wrong_arena_count);
+  add("rejected_invalid_action", rejected_.invalid_action);
+  add("rejected_wrong_step", rejected_.wrong_step);
+  add("rejected_second_publisher", rejected_.second_publisher);
+  add("decision_steps", world_steps_);
+  add("observation_batches", batches_published_);
+  array.status.push_back(status);
+  diagnostics_pub_.publish(array);
+}
+
+}  // namespace hideseek_world
