@@ -1,0 +1,242 @@
+// Launches against the real world node (see world_node.test) and checks what a ROS user sees.
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <gtest/gtest.h>
+#include <hideseek_msgs/ActionBatch.h>
+#include <hideseek_msgs/GameState.h>
+#include <hideseek_msgs/ObservationBatch.h>
+#include <hideseek_msgs/SeekerObservationBatch.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <functional>
+#include <map>
+
+namespace {
+
+constexpr int kArenas = 2;
+
+// Spins until pred() holds or the wall-clock timeout passes.
+bool waitFor(const std::function<bool()>& pred, double seconds) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    ros::spinOnce();
+    if (pred()) return true;
+    ros::WallDuration(0.002).sleep();
+  }
+  return pred();
+}
+
+class WorldNodeTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    hider_obs_sub_ = nh_.subscribe<hideseek_msgs::ObservationBatch>(
+        "hider/observations", 10, [this](const hideseek_msgs::ObservationBatch::ConstPtr& m) { hider_obs_ = m; });
+    seeker_obs_sub_ = nh_.subscribe<hideseek_msgs::SeekerObservationBatch>(
+        "seeker/observations", 10, [this](const hideseek_msgs::SeekerObservationBatch::ConstPtr& m) { seeker_obs_ = m; });
+    hider_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>("hider/actions", 10);
+    seeker_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>("seeker/actions", 10);
+    ASSERT_TRUE(waitFor([&] { return hider_obs_ && seeker_obs_; }, 30.0)) << "no observations from the world";
+    ASSERT_TRUE(waitFor([&] { return hider_pub_.getNumSubscribers() > 0 && seeker_pub_.getNumSubscribers() > 0; }, 10.0));
+  }
+
+  hideseek_msgs::ActionBatch batch(uint8_t action, const std::vector<uint32_t>& steps) {
+    hideseek_msgs::ActionBatch b;
+    b.actions.assign(steps.size(), action);
+    b.step = steps;
+    return b;
+  }
+
+  // Answers the current observation for both agents and waits for the next one.
+  bool playStep(uint8_t hider_action, uint8_t seeker_action) {
+    const auto before = hider_obs_;
+    hider_pub_.publish(batch(hider_action, before->step));
+    seeker_pub_.publish(batch(seeker_action, before->step));
+    return waitFor([&] { return hider_obs_ != before; }, 10.0);
+  }
+
+  ros::NodeHandle nh_;
+  ros::Subscriber hider_obs_sub_, seeker_obs_sub_;
+  ros::Publisher hider_pub_, seeker_pub_;
+  hideseek_msgs::ObservationBatch::ConstPtr hider_obs_;
+  hideseek_msgs::SeekerObservationBatch::ConstPtr seeker_obs_;
+};
+
+TEST_F(WorldNodeTest, ObservationBatchesCarryEveryArena) {
+  EXPECT_EQ(hider_obs_->num_arenas, static_cast<uint32_t>(kArenas));
+  EXPECT_EQ(hider_obs_->images.size(), static_cast<size_t>(kArenas) * 84 * 84 * 3);
+  EXPECT_EQ(hider_obs_->step.size(), static_cast<size_t>(kArenas));
+  EXPECT_EQ(hider_obs_->seed[0], 5u);
+  EXPECT_EQ(hider_obs_->seed[1], 6u);
+  EXPECT_EQ(seeker_obs_->maps.size(), static_cast<size_t>(kArenas));
+  EXPECT_EQ(seeker_obs_->maps[0].obstacles.size(), 10u);
+  for (int i = 0; i < kArenas; ++i) {
+    if (!seeker_obs_->sees_hider[i]) {
+      EXPECT_EQ(seeker_obs_->hider_position[i].x, 0.0) << "the seeker must not learn where an unseen hider is";
+      EXPECT_EQ(seeker_obs_->hider_position[i].y, 0.0);
+    }
+  }
+}
+
+TEST_F(WorldNodeTest, CameraImageHasSizeEncodingAndOpticalFrame) {
+  sensor_msgs::Image::ConstPtr image;
+  sensor_msgs::CameraInfo::ConstPtr info;
+  auto s1 = nh_.subscribe<sensor_msgs::Image>("hider/camera/image_raw", 1, [&](const sensor_msgs::Image::ConstPtr& m) { image = m; });
+  auto s2 = nh_.subscribe<sensor_msgs::CameraInfo>("hider/camera/camera_info", 1,
+                                                   [&](const sensor_msgs::CameraInfo::ConstPtr& m) { info = m; });
+  ASSERT_TRUE(waitFor([&] { return s1.getNumPublishers() > 0 && s2.getNumPublishers() > 0; }, 5.0));
+  ros::WallDuration(0.3).sleep();
+  ASSERT_TRUE(playStep(0, 0));
+  ASSERT_TRUE(waitFor([&] { return image && info; }, 10.0));
+  EXPECT_EQ(image->width, 84u);
+  EXPECT_EQ(image->height, 84u);
+  EXPECT_EQ(image->encoding, "rgb8");
+  EXPECT_EQ(image->step, 84u * 3);
+  EXPECT_EQ(image->header.frame_id, "hider/camera_optical_frame");
+  EXPECT_EQ(info->header.frame_id, "hider/camera_optical_frame");
+  EXPECT_NEAR(info->K[0], 42.0 / std::tan(60.0 * M_PI / 180.0), 1e-6);
+  // The image is the arena-0 image of the batch (visuals go out at most 30 times a wall second).
+  ros::WallDuration(0.1).sleep();
+  image.reset();
+  ASSERT_TRUE(playStep(0, 0));
+  const auto obs = hider_obs_;
+  ASSERT_TRUE(waitFor([&] { return image && image->header.stamp == obs->header.stamp; }, 10.0));
+  EXPECT_TRUE(std::equal(image->data.begin(), image->data.end(), obs->images.begin()));
+}
+
+TEST_F(WorldNodeTest, TfTreeJoinsMapToBothCameraOpticalFrames) {
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  for (int i = 0; i < 5; ++i) ASSERT_TRUE(playStep(3, 3));
+  for (const std::string agent : {"hider", "seeker"}) {
+    // The world sends tf as it steps: keep stepping until the listener has caught up.
+    ASSERT_TRUE(waitFor([&] { return playStep(3, 3) && buffer.canTransform("map", agent + "/camera_optical_frame", ros::Time(0)); }, 10.0))
+        << agent;
+    const auto t = buffer.lookupTransform("map", agent + "/camera_optical_frame", ros::Time(0));
+    EXPECT_NEAR(t.transform.translation.z, 1.0, 1e-9) << "camera at 1.0 m";
+  }
+}
+
+TEST_F(WorldNodeTest, MapIsLatchedForLateSubscribers) {
+  nav_msgs::OccupancyGrid::ConstPtr map;
+  auto sub = nh_.subscribe<nav_msgs::OccupancyGrid>("map", 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& m) { map = m; });
+  ASSERT_TRUE(waitFor([&] { return map != nullptr; }, 10.0)) << "a late subscriber must get the map without a new episode";
+  EXPECT_EQ(map->header.frame_id, "map");
+  EXPECT_NEAR(map->info.origin.position.x, -7.0, 1e-9);
+  EXPECT_EQ(map->info.width * map->info.resolution, 14.0f);
+  int occupied = 0;
+  for (int8_t c : map->data) occupied += c == 100;
+  EXPECT_GT(occupied, 0);
+  EXPECT_LT(occupied, static_cast<int>(map->data.size()) / 2);
+}
+
+TEST_F(WorldNodeTest, MarkersShowObstaclesAgentsAndViewCones) {
+  visualization_msgs::MarkerArray::ConstPtr markers;
+  auto sub = nh_.subscribe<visualization_msgs::MarkerArray>(
+      "world/markers", 1, [&](const visualization_msgs::MarkerArray::ConstPtr& m) { markers = m; });
+  ASSERT_TRUE(waitFor([&] { return sub.getNumPublishers() > 0; }, 5.0));
+  ros::WallDuration(0.3).sleep();
+  ASSERT_TRUE(waitFor([&] { return playStep(0, 0) && markers != nullptr; }, 10.0));
+  std::map<std::string, int> by_ns;
+  for (const auto& m : markers->markers) by_ns[m.ns]++;
+  EXPECT_EQ(by_ns["obstacles"], 10);
+  EXPECT_EQ(by_ns["walls"], 4);
+  EXPECT_EQ(by_ns["hider"], 1);
+  EXPECT_EQ(by_ns["seeker"], 1);
+  EXPECT_EQ(by_ns["hider_view"], 1);
+  EXPECT_EQ(by_ns["seeker_view"], 1);
+}
+
+TEST_F(WorldNodeTest, LockstepEpisodeRunsToCaptureOrStepLimit) {
+  // The seeker walks forward (it starts facing the hider), the hider stands: arena 0 ends by
+  // capture, or by the step limit when an obstacle stands between them.
+  hideseek_msgs::GameState::ConstPtr last;
+  auto sub = nh_.subscribe<hideseek_msgs::GameState>("game_state", 2000,
+                                                     [&](const hideseek_msgs::GameState::ConstPtr& m) { last = m; });
+  ASSERT_TRUE(waitFor([&] { return sub.getNumPublishers() > 0; }, 5.0));
+  const uint32_t episode = hider_obs_->episode[0];
+  uint32_t last_step = hider_obs_->step[0];
+  for (int i = 0; i < 1100; ++i) {
+    ASSERT_TRUE(playStep(0, 1)) << "world stopped answering at step " << i;
+    if (hider_obs_->done[0]) {
+      const uint8_t outcome = hider_obs_->outcome[0];
+      EXPECT_TRUE(outcome == hideseek_msgs::GameState::OUTCOME_CAPTURED ||
+                  (outcome == hideseek_msgs::GameState::OUTCOME_SURVIVED && last_step + 1 == 1000u));
+      if (outcome == hideseek_msgs::GameState::OUTCOME_CAPTURED) EXPECT_FLOAT_EQ(hider_obs_->rewards[0], -1.f);
+      EXPECT_EQ(hider_obs_->episode[0], episode + 1);
+      EXPECT_EQ(hider_obs_->step[0], 0u);
+      ASSERT_TRUE(waitFor([&] { return last && last->outcome != 0; }, 5.0));
+      EXPECT_EQ(last->outcome, outcome);
+      if (outcome == hideseek_msgs::GameState::OUTCOME_CAPTURED) EXPECT_LE(last->distance, 0.8f);
+      return;
+    }
+    EXPECT_EQ(hider_obs_->step[0], last_step + 1);
+    EXPECT_FLOAT_EQ(hider_obs_->rewards[0], 0.001f);
+    last_step = hider_obs_->step[0];
+  }
+  FAIL() << "episode did not end within 1000 steps";
+}
+
+TEST_F(WorldNodeTest, MalformedInputIsRejectedCountedAndTheWorldKeepsServing) {
+  diagnostic_msgs::DiagnosticArray::ConstPtr diag;
+  auto sub = nh_.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& s : m->status) {
+          if (s.name == "hideseek world: input") diag = m;
+        }
+      });
+  const auto before = hider_obs_;
+  // Wrong arena count, an out-of-range action, a stale step id.
+  hider_pub_.publish(batch(1, {before->step[0]}));
+  auto bad_action = batch(1, before->step);
+  bad_action.actions[1] = 9;
+  seeker_pub_.publish(bad_action);
+  auto stale = batch(1, before->step);
+  stale.step[0] += 7;
+  hider_pub_.publish(stale);
+  // The incomplete batches must not advance the world.
+  ros::WallDuration(0.2).sleep();
+  ros::spinOnce();
+  EXPECT_EQ(hider_obs_->step, before->step);
+  // Correct actions are still served.
+  ASSERT_TRUE(playStep(0, 0));
+  EXPECT_NE(hider_obs_->header.stamp, before->header.stamp);
+  std::map<std::string, std::string> counts;
+  ASSERT_TRUE(waitFor(
+      [&] {
+        if (!diag) return false;
+        std::map<std::string, std::string> v;
+        for (const auto& s : diag->status) {
+          for (const auto& kv : s.values) v[kv.key] = kv.value;
+        }
+        counts = v;
+        return v["rejected_wrong_arena_count"] != "0" && v["rejected_invalid_action"] != "0" &&
+               v["rejected_wrong_step"] != "0";
+      },
+      5.0))
+      << "rejections are counted in /diagnostics: arena count " << counts["rejected_wrong_arena_count"] << ", action "
+      << counts["rejected_invalid_action"] << ", step " << counts["rejected_wrong_step"] << ", second publisher "
+      << counts["rejected_second_publisher"];
+}
+
+TEST_F(WorldNodeTest, BrokenConfigStopsTheNodeBeforeItPublishes) {
+  ros::WallDuration(1.0).sleep();
+  ros::master::V_TopicInfo topics;
+  ASSERT_TRUE(ros::master::getTopics(topics));
+  for (const auto& t : topics) EXPECT_NE(t.name.rfind("/broken/", 0), 0u) << "broken world published " << t.name;
+  std::vector<std::string> nodes;
+  ASSERT_TRUE(ros::master::getNodes(nodes));
+  for (const auto& n : nodes) EXPECT_NE(n, "/broken/world") << "a world with a bad config must exit";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "world_node_test");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
