@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -187,6 +188,8 @@ Renderer::Renderer(const RendererOptions& options) : options_(options), impl_(st
   r.fb_width = r.tiles_x * w;
   r.fb_height = r.tiles_y * h;
   r.framebuffer.assign(static_cast<size_t>(r.fb_width) * r.fb_height * 4, 0);
+  // llvmpipe reads its thread count when the first context is made; an explicit environment wins.
+  setenv("LP_NUM_THREADS", std::to_string(options.render_threads).c_str(), 0);
   const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
                             OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0};
   r.context = OSMesaCreateContextAttribs(attributes, nullptr);

@@ -5,7 +5,7 @@
 namespace hideseek_world {
 
 World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int num_arenas, uint32_t seed,
-             bool render)
+             bool render, int render_threads)
     : options_(options),
       episodes_(num_arenas, 0),
       next_seeds_(num_arenas),
@@ -20,6 +20,7 @@ World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int
     r.agent_radius = options.agent_radius;
     r.agent_height = options.agent_height;
     r.colors = map->colors;
+    r.render_threads = render_threads;
     renderer_ = std::make_unique<Renderer>(r);
   }
   for (int i = 0; i < num_arenas; ++i) startEpisode(i, seed + static_cast<uint32_t>(i));

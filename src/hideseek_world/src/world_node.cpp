@@ -51,7 +51,8 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), options_(loadWorldNodeOptions(private_nh)) {
   const GameOptions& game = options_.variant.game;
   const int n = options_.num_arenas;
-  world_ = std::make_unique<World>(game, std::make_shared<const MapSpec>(options_.map), n, options_.seed, true);
+  world_ = std::make_unique<World>(game, std::make_shared<const MapSpec>(options_.map), n, options_.seed, true,
+                                   options_.render_threads);
   images_.resize(world_->imageBytes() * n);
   seeker_image_.resize(world_->imageBytes());
   rewards_.assign(n, 0.f);
@@ -83,13 +84,16 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   state_pub_ = nh_.advertise<hideseek_msgs::GameState>(kGameStateTopic, 50);
   diagnostics_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
 
+  // The callback must take the MessageEvent itself: a lambda would be wrapped as a ConstPtr
+  // callback (MessageEvent converts from a pointer) and lose the publisher's caller id.
+  using ActionEvent = const ros::MessageEvent<const hideseek_msgs::ActionBatch>&;
   const auto hints = ros::TransportHints().tcpNoDelay();
-  hider_sub_ = nh_.subscribe<hideseek_msgs::ActionBatch>(
-      kHiderActionsTopic, 2 * n, [this](const ros::MessageEvent<const hideseek_msgs::ActionBatch>& e) { onActions(e, hider_); },
-      ros::VoidConstPtr(), hints);
-  seeker_sub_ = nh_.subscribe<hideseek_msgs::ActionBatch>(
-      kSeekerActionsTopic, 2 * n, [this](const ros::MessageEvent<const hideseek_msgs::ActionBatch>& e) { onActions(e, seeker_); },
-      ros::VoidConstPtr(), hints);
+  const boost::function<void(ActionEvent)> on_hider = [this](ActionEvent e) { onActions(e, hider_); };
+  const boost::function<void(ActionEvent)> on_seeker = [this](ActionEvent e) { onActions(e, seeker_); };
+  hider_sub_ = nh_.subscribe<hideseek_msgs::ActionBatch, ActionEvent>(kHiderActionsTopic, 2 * n, on_hider,
+                                                                      ros::VoidConstPtr(), hints);
+  seeker_sub_ = nh_.subscribe<hideseek_msgs::ActionBatch, ActionEvent>(kSeekerActionsTopic, 2 * n, on_seeker,
+                                                                       ros::VoidConstPtr(), hints);
   reset_srv_ = nh_.advertiseService(kResetService, &WorldNode::onReset, this);
 
   // REP 103/105 camera frames: camera_link looks along the agent's x; the optical frame has

@@ -59,6 +59,7 @@ WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& nh) {
   o.stale_action_timeout = readDouble(nh, "stale_action_timeout", 0.5, 0.01, 60.0);
   o.resend_period = readDouble(nh, "resend_period", 1.0, 0.05, 60.0);
   o.publish_rate = readDouble(nh, "publish_rate", 30.0, 0.1, 1000.0);
+  o.render_threads = readInt(nh, "render_threads", 2, 0, 64);
   return o;
 }
 

@@ -197,6 +197,10 @@ TEST_F(WorldNodeTest, MalformedInputIsRejectedCountedAndTheWorldKeepsServing) {
   auto stale = batch(1, before->step);
   stale.step[0] += 7;
   hider_pub_.publish(stale);
+  // A second process publishing hider actions: the intruder node answers what we feed it.
+  ros::Publisher feed = nh_.advertise<hideseek_msgs::ObservationBatch>("intruder/observations", 1);
+  ASSERT_TRUE(waitFor([&] { return feed.getNumSubscribers() > 0; }, 10.0));
+  feed.publish(*before);
   // The incomplete batches must not advance the world.
   ros::WallDuration(0.2).sleep();
   ros::spinOnce();
@@ -214,7 +218,8 @@ TEST_F(WorldNodeTest, MalformedInputIsRejectedCountedAndTheWorldKeepsServing) {
         }
         counts = v;
         return v["rejected_wrong_arena_count"] != "0" && v["rejected_invalid_action"] != "0" &&
-               v["rejected_wrong_step"] != "0";
+               v["rejected_wrong_step"] != "0" &&
+               v["rejected_second_publisher"] != "0";
       },
       5.0))
       << "rejections are counted in /diagnostics: arena count " << counts["rejected_wrong_arena_count"] << ", action "

@@ -33,7 +33,7 @@ struct ArenaStep {
 class World {
  public:
   World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int num_arenas, uint32_t seed,
-        bool render);
+        bool render, int render_threads = 2);
 
   int numArenas() const { return static_cast<int>(arenas_.size()); }
   const Arena& arena(int i) const { return arenas_[i]; }

@@ -22,6 +22,7 @@ struct WorldNodeOptions {
   double stale_action_timeout = 0.5;  // s of wall time; realtime agents without news stand still
   double resend_period = 1.0;         // s of wall time; lockstep re-sends a batch nobody answered
   double publish_rate = 30.0;         // Hz of wall time for rviz outputs (markers, paths, images) in lockstep
+  int render_threads = 2;             // llvmpipe rasteriser threads
 };
 
 constexpr int kMaxArenas = 64;
