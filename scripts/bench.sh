@@ -1,10 +1,9 @@
 #!/usr/bin/env bash
 # `make bench`: throughput figures of this machine, one `name value` line each.
 # Timing goals live here, never in tests.
-set -eo pipefail
+set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/env.sh
-set -u
 ARENAS=${ARENAS:-16}
 SECONDS_PER_RUN=${SECONDS_PER_RUN:-10}
 echo "# world core: physics, labels and rendering of $ARENAS arenas at 84x84 in one process"

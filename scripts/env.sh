@@ -4,6 +4,10 @@ export PATH="/usr/bin:$PATH"
 export ROS_PYTHON_VERSION=3
 _hideseek_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 if [ -f "$_hideseek_root/devel/setup.bash" ]; then
+  # ROS's setup scripts read unset variables; allow that while they run.
+  case $- in *u*) _hideseek_nounset=1; set +u ;; *) _hideseek_nounset=0 ;; esac
   # shellcheck disable=SC1091
   source "$_hideseek_root/devel/setup.bash"
+  [ "$_hideseek_nounset" = 1 ] && set -u
 fi
+true

@@ -1,0 +1,67 @@
+// The scripted seeker of SPEC section 3, acting only on what it perceives.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "hideseek_seeker/grid_planner.h"
+#include "hideseek_world/agent.h"
+
+namespace hideseek_seeker {
+
+using hideseek_world::Action;
+using hideseek_world::AgentState;
+
+enum class SeekerPolicyType { kDeterministic, kStochastic };
+
+// What the seeker perceives at one step. hider_position is set only while it sees the hider.
+struct SeekerPerception {
+  AgentState pose;
+  std::optional<Vec2> hider_position;
+};
+
+struct SeekerOptions {
+  SeekerPolicyType type = SeekerPolicyType::kDeterministic;
+  double radius = 0.4;               // m: the map is inflated by this for planning
+  double grid_resolution = 0.1;      // m
+  double turn_per_step = 0.12 * hideseek_world::kPi;  // rad turned by one turn action
+  double goal_tolerance = 0.5;       // m: a waypoint or last known position counts as reached
+};
+
+enum class SeekerMode { kPatrol, kChase, kLastKnown, kWander };
+const char* modeName(SeekerMode mode);
+
+// One arena's seeker: chase what it sees, go to where it last saw the hider, else patrol
+// (deterministic) or wander to random free points (stochastic).
+class SeekerPolicy {
+ public:
+  explicit SeekerPolicy(const SeekerOptions& options) : options_(options) {}
+
+  // Starts an episode on a new map; `seed` drives the stochastic seeker's choices.
+  void reset(const Layout& layout, uint32_t seed);
+  Action act(const SeekerPerception& perception);
+
+  SeekerMode mode() const { return mode_; }
+  const std::vector<Vec2>& path() const { return path_; }
+  std::optional<Vec2> goal() const { return goal_; }
+
+ private:
+  Action steerTowards(const AgentState& pose, Vec2 target) const;
+  void setGoal(const AgentState& pose, Vec2 goal);
+
+  SeekerOptions options_;
+  std::unique_ptr<GridPlanner> planner_;
+  std::vector<Vec2> waypoints_;
+  size_t next_waypoint_ = 0;
+  std::optional<Vec2> last_known_;
+  std::optional<Vec2> goal_;
+  std::vector<Vec2> path_;
+  SeekerMode mode_ = SeekerMode::kPatrol;
+  std::mt19937 rng_;
+};
+
+}  // namespace hideseek_seeker

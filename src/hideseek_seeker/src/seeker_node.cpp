@@ -1,0 +1,77 @@
+#include "hideseek_seeker/seeker_node.h"
+
+#include <hideseek_msgs/ActionBatch.h>
+
+#include <stdexcept>
+
+#include "hideseek_world/topic_names.h"
+
+namespace hideseek_seeker {
+
+Layout toLayout(const hideseek_msgs::ArenaMap& map) {
+  Layout layout;
+  layout.half_extent = map.half_extent;
+  for (const auto& b : map.obstacles) {
+    layout.obstacles.push_back(hideseek_world::Box::make({b.x, b.y}, {b.size_x, b.size_y}, b.height, b.yaw));
+  }
+  for (const auto& w : map.waypoints) layout.waypoints.push_back({w.x, w.y});
+  return layout;
+}
+
+SeekerPerception toPerception(const hideseek_msgs::SeekerObservationBatch& batch, size_t i) {
+  SeekerPerception p;
+  p.pose.position = {batch.pose[i].x, batch.pose[i].y};
+  p.pose.yaw = batch.pose[i].theta;
+  if (batch.sees_hider[i]) p.hider_position = Vec2{batch.hider_position[i].x, batch.hider_position[i].y};
+  return p;
+}
+
+SeekerNode::SeekerNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
+  std::string game, variant;
+  if (!pnh.getParam("game_config", game) || !pnh.getParam("variant_config", variant)) {
+    throw std::runtime_error("parameters " + pnh.resolveName("game_config") + " and " +
+                             pnh.resolveName("variant_config") + " are required (file paths)");
+  }
+  const hideseek_world::VariantConfig v = hideseek_world::loadVariantConfig(game, variant);
+  options_.type = v.seeker_policy == "stochastic" ? SeekerPolicyType::kStochastic : SeekerPolicyType::kDeterministic;
+  options_.radius = v.game.agent_radius;
+  options_.turn_per_step = v.game.seeker.turn_rate * v.game.stepDuration();
+  options_.grid_resolution = pnh.param("grid_resolution", 0.1);
+  if (!(options_.grid_resolution >= 0.02 && options_.grid_resolution <= 1.0)) {
+    throw std::runtime_error("parameter " + pnh.resolveName("grid_resolution") + " must be in [0.02, 1.0] m");
+  }
+  actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kSeekerActionsTopic, 2);
+  observations_sub_ = nh_.subscribe(hideseek_world::kSeekerObservationsTopic, 2, &SeekerNode::onObservations, this,
+                                    ros::TransportHints().tcpNoDelay());
+  ROS_INFO("seeker: %s policy, planning on a %.2f m grid", v.seeker_policy.c_str(), options_.grid_resolution);
+}
+
+void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::ConstPtr& msg) {
+  const size_t n = msg->num_arenas;
+  if (msg->pose.size() != n || msg->sees_hider.size() != n || msg->hider_position.size() != n ||
+      msg->step.size() != n || msg->episode.size() != n || msg->seed.size() != n || msg->maps.size() != n) {
+    ++malformed_;
+    ROS_WARN_THROTTLE(2.0, "seeker: ignored an observation batch whose arrays do not all hold %zu arenas (%lu so far)",
+                      n, static_cast<unsigned long>(malformed_));
+    return;
+  }
+  if (policies_.size() != n) {
+    policies_.clear();
+    for (size_t i = 0; i < n; ++i) policies_.emplace_back(options_);
+    episodes_.assign(n, -1);
+  }
+  hideseek_msgs::ActionBatch out;
+  out.header.stamp = msg->header.stamp;
+  out.step = msg->step;
+  out.actions.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    if (episodes_[i] != msg->episode[i]) {
+      policies_[i].reset(toLayout(msg->maps[i]), msg->seed[i]);
+      episodes_[i] = msg->episode[i];
+    }
+    out.actions[i] = static_cast<uint8_t>(policies_[i].act(toPerception(*msg, i)));
+  }
+  actions_pub_.publish(out);
+}
+
+}  // namespace hideseek_seeker

@@ -1,0 +1,97 @@
+#include "hideseek_seeker/seeker_policy.h"
+
+#include <cmath>
+
+namespace hideseek_seeker {
+
+using hideseek_world::distance;
+using hideseek_world::kPi;
+using hideseek_world::wrapAngle;
+
+const char* modeName(SeekerMode mode) {
+  switch (mode) {
+    case SeekerMode::kChase:
+      return "chase";
+    case SeekerMode::kLastKnown:
+      return "last_known";
+    case SeekerMode::kWander:
+      return "wander";
+    default:
+      return "patrol";
+  }
+}
+
+void SeekerPolicy::reset(const Layout& layout, uint32_t seed) {
+  planner_ = std::make_unique<GridPlanner>(layout, options_.radius, options_.grid_resolution);
+  waypoints_ = layout.waypoints;
+  next_waypoint_ = 0;
+  last_known_.reset();
+  goal_.reset();
+  path_.clear();
+  mode_ = options_.type == SeekerPolicyType::kDeterministic ? SeekerMode::kPatrol : SeekerMode::kWander;
+  rng_.seed(seed ^ 0x5eed5eedu);
+}
+
+void SeekerPolicy::setGoal(const AgentState& pose, Vec2 goal) {
+  // Replan only when the goal moved: a chase re-targets every step, but a straight line needs no search.
+  if (goal_ && distance(*goal_, goal) < options_.grid_resolution && !path_.empty()) return;
+  goal_ = goal;
+  if (planner_->lineOfSight(pose.position, goal)) {
+    path_ = {goal};
+  } else {
+    path_ = planner_->plan(pose.position, goal);
+  }
+}
+
+Action SeekerPolicy::steerTowards(const AgentState& pose, Vec2 target) const {
+  const double bearing = std::atan2(target.y - pose.position.y, target.x - pose.position.x);
+  const double error = wrapAngle(bearing - pose.yaw);
+  // Turn while more than half a turn step off, so the heading error stays within a half step.
+  if (std::abs(error) > 0.5 * options_.turn_per_step) return error > 0 ? Action::kTurnLeft : Action::kTurnRight;
+  return Action::kForward;
+}
+
+Action SeekerPolicy::act(const SeekerPerception& p) {
+  if (!planner_) return Action::kStay;
+  const Vec2 here = p.pose.position;
+  if (p.hider_position) {
+    mode_ = SeekerMode::kChase;
+    last_known_ = *p.hider_position;
+    setGoal(p.pose, *p.hider_position);
+  } else if (last_known_ && distance(here, *last_known_) > options_.goal_tolerance) {
+    mode_ = SeekerMode::kLastKnown;
+    setGoal(p.pose, *last_known_);
+  } else {
+    last_known_.reset();
+    if (options_.type == SeekerPolicyType::kDeterministic && !waypoints_.empty()) {
+      if (mode_ != SeekerMode::kPatrol) {
+        // Resume the round from the nearest waypoint rather than walking back to the old one.
+        size_t best = 0;
+        for (size_t i = 1; i < waypoints_.size(); ++i) {
+          if (distance(here, waypoints_[i]) < distance(here, waypoints_[best])) best = i;
+        }
+        next_waypoint_ = best;
+        goal_.reset();
+      }
+      mode_ = SeekerMode::kPatrol;
+      if (distance(here, waypoints_[next_waypoint_]) <= options_.goal_tolerance) {
+        next_waypoint_ = (next_waypoint_ + 1) % waypoints_.size();
+      }
+      setGoal(p.pose, waypoints_[next_waypoint_]);
+    } else {
+      if (mode_ != SeekerMode::kWander || !goal_ || distance(here, *goal_) <= options_.goal_tolerance || path_.empty()) {
+        goal_.reset();
+        setGoal(p.pose, planner_->randomReachablePoint(here, rng_));
+      }
+      mode_ = SeekerMode::kWander;
+    }
+  }
+  // Follow the path: drop reached points, then head for the farthest one in straight sight.
+  while (path_.size() > 1 && distance(here, path_.front()) <= 0.5 * options_.goal_tolerance) path_.erase(path_.begin());
+  if (path_.empty()) return Action::kStay;
+  size_t target = 0;
+  while (target + 1 < path_.size() && planner_->lineOfSight(here, path_[target + 1])) ++target;
+  return steerTowards(p.pose, path_[target]);
+}
+
+}  // namespace hideseek_seeker

@@ -1,0 +1,140 @@
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+
+#include "hideseek_seeker/seeker_node.h"
+#include "hideseek_seeker/seeker_policy.h"
+#include "hideseek_world/arena.h"
+#include "hideseek_world/visibility.h"
+
+namespace hideseek_seeker {
+
+namespace {
+
+using hideseek_world::GameOptions;
+
+const std::string kConfig = HIDESEEK_CONFIG_DIR;
+
+Layout deterministicLayout() {
+  const auto spec = hideseek_world::loadMapFile(kConfig + "/maps/deterministic.yaml");
+  std::mt19937 unused;
+  return hideseek_world::makeLayout(spec, unused);
+}
+
+// Moves the seeker by its own action for one decision step, as the world would.
+void advance(AgentState& s, Action a, const Layout& layout) {
+  hideseek_world::MotionOptions m;
+  m.speed = 1.5;
+  for (int i = 0; i < 6; ++i) hideseek_world::advanceAgent(s, a, m, 0.02, layout, 0.4);
+}
+
+}  // namespace
+
+TEST(SeekerPolicy, ReachesAGoalBehindTheCrossFromLastKnownPosition) {
+  const Layout layout = deterministicLayout();
+  SeekerPolicy seeker({});
+  seeker.reset(layout, 1);
+  // South of the cross's east arm; the hider was glimpsed once north of it, then never again.
+  AgentState s{{1.5, -1.5}, hideseek_world::kPi / 2, 0.0};
+  const Vec2 behind{1.5, 1.5};
+  seeker.act({s, behind});
+  for (int step = 0; step < 200 && hideseek_world::distance(s.position, behind) > 0.5; ++step) {
+    const Action a = seeker.act({s, std::nullopt});
+    if (hideseek_world::distance(s.position, behind) > 0.5) EXPECT_EQ(seeker.mode(), SeekerMode::kLastKnown);
+    advance(s, a, layout);
+  }
+  EXPECT_LE(hideseek_world::distance(s.position, behind), 0.5);
+  // Once there and still seeing nothing, it goes back to its patrol.
+  seeker.act({s, std::nullopt});
+  EXPECT_EQ(seeker.mode(), SeekerMode::kPatrol);
+}
+
+TEST(SeekerPolicy, ChasesOnSightAndTurnsTowardsTheHider) {
+  const Layout layout = deterministicLayout();
+  SeekerPolicy seeker({});
+  seeker.reset(layout, 1);
+  const AgentState s{{-5.0, -2.5}, 0.0, 0.0};
+  EXPECT_EQ(seeker.act({s, Vec2{-5.0, 2.5}}), Action::kTurnLeft);  // hider to its left
+  EXPECT_EQ(seeker.mode(), SeekerMode::kChase);
+  EXPECT_EQ(seeker.act({s, Vec2{-2.0, -2.5}}), Action::kForward);  // hider straight ahead
+  EXPECT_EQ(seeker.act({s, Vec2{-5.0, -5.5}}), Action::kTurnRight);
+}
+
+TEST(SeekerPolicy, DeterministicSeekerPatrolsWaypointsInOrder) {
+  const Layout layout = deterministicLayout();
+  SeekerPolicy seeker({});
+  seeker.reset(layout, 1);
+  AgentState s{layout.waypoints[0], 0.0, 0.0};
+  std::vector<size_t> visited;
+  for (int step = 0; step < 3000 && visited.size() < 4; ++step) {
+    advance(s, seeker.act({s, std::nullopt}), layout);
+    for (size_t w = 0; w < layout.waypoints.size(); ++w) {
+      if (hideseek_world::distance(s.position, layout.waypoints[w]) < 0.5 && (visited.empty() || visited.back() != w)) {
+        visited.push_back(w);
+      }
+    }
+  }
+  ASSERT_GE(visited.size(), 4u) << "patrol stalled";
+  for (size_t k = 1; k < visited.size(); ++k) EXPECT_EQ(visited[k], (visited[k - 1] + 1) % layout.waypoints.size());
+}
+
+TEST(SeekerPolicy, StochasticSeekerWandersToVariedPointsAndChasesOnSight) {
+  const Layout layout = deterministicLayout();
+  SeekerOptions o;
+  o.type = SeekerPolicyType::kStochastic;
+  SeekerPolicy seeker(o);
+  seeker.reset(layout, 42);
+  AgentState s{{-6.0, -6.0}, 0.0, 0.0};
+  std::set<std::pair<int, int>> goals;
+  for (int step = 0; step < 1500; ++step) {
+    advance(s, seeker.act({s, std::nullopt}), layout);
+    EXPECT_EQ(seeker.mode(), SeekerMode::kWander);
+    if (seeker.goal()) goals.insert({static_cast<int>(std::floor(seeker.goal()->x)), static_cast<int>(std::floor(seeker.goal()->y))});
+  }
+  EXPECT_GE(goals.size(), 5u) << "goals should spread over the map";
+  seeker.act({s, Vec2{s.position.x + 2.0, s.position.y}});
+  EXPECT_EQ(seeker.mode(), SeekerMode::kChase);
+  // Two seekers with different episode seeds wander differently.
+  SeekerPolicy other(o);
+  other.reset(layout, 43);
+  AgentState t{{-6.0, -6.0}, 0.0, 0.0};
+  other.act({t, std::nullopt});
+  SeekerPolicy again(o);
+  again.reset(layout, 42);
+  again.act({AgentState{{-6.0, -6.0}, 0.0, 0.0}, std::nullopt});
+  EXPECT_NE(other.goal()->x, again.goal()->x);
+}
+
+TEST(SeekerPerception, HiderPositionOnlyWhileSeen) {
+  hideseek_msgs::SeekerObservationBatch batch;
+  batch.num_arenas = 2;
+  batch.pose.resize(2);
+  batch.sees_hider = {0, 1};
+  batch.hider_position.resize(2);
+  batch.hider_position[0].x = 3.0;  // a world that leaked ground truth: must be ignored
+  batch.hider_position[1].x = 4.0;
+  EXPECT_FALSE(toPerception(batch, 0).hider_position.has_value());
+  ASSERT_TRUE(toPerception(batch, 1).hider_position.has_value());
+  EXPECT_EQ(toPerception(batch, 1).hider_position->x, 4.0);
+}
+
+TEST(SeekerPolicy, DeterministicSeekerCatchesAStandingHiderItCanSee) {
+  // In the open, the chase must end in capture.
+  Layout open;
+  open.half_extent = 7.0;
+  open.waypoints = {{0.0, 0.0}};
+  GameOptions g;
+  SeekerPolicy seeker({});
+  seeker.reset(open, 0);
+  AgentState s{{-5.0, -5.0}, 2.0, 0.0};
+  const AgentState hider{{4.0, 3.0}, 0.0, 0.0};
+  int step = 0;
+  for (; step < 400 && hideseek_world::distance(s.position, hider.position) > g.capture_distance; ++step) {
+    const bool sees = hideseek_world::agentSeesAgent(s, hider, open, g);
+    advance(s, seeker.act({s, sees ? std::optional<Vec2>(hider.position) : std::nullopt}), open);
+  }
+  EXPECT_LE(hideseek_world::distance(s.position, hider.position), g.capture_distance) << "after " << step << " steps";
+}
+
+}  // namespace hideseek_seeker
