@@ -12,3 +12,6 @@ echo "# world node in lockstep with two minimal agents as separate processes, $A
 export ROS_MASTER_URI=http://localhost:11433
 roslaunch -p 11433 hideseek_world bench_world.launch num_arenas:="$ARENAS" duration:="$SECONDS_PER_RUN" 2>/dev/null | \
   grep -E "^world_ros_steps_per_s"
+echo "# full game graph in lockstep: world, seeker node, random hider node, $ARENAS arenas"
+roslaunch -p 11433 hideseek_world bench_game.launch num_arenas:="$ARENAS" duration:="$SECONDS_PER_RUN" 2>/dev/null | \
+  grep -E "^game_ros_steps_per_s"

@@ -1,0 +1,50 @@
+// Collects the outcomes of the episodes with seeds 0..N-1 from a stream of observation batches.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace hideseek_hider {
+
+struct EpisodeRecord {
+  uint32_t seed = 0;
+  uint32_t living_steps = 0;
+  bool survived = false;
+};
+
+struct EvaluationSummary {
+  int episodes = 0;
+  double avg_living_steps = 0.0;
+  double success_rate = 0.0;  // fraction of episodes that reached the step limit
+};
+
+// Feed it each batch's per-arena (done, outcome, step, seed); it remembers each arena's
+// previous step and seed, so a done flag tells which seeded episode ended after how many steps.
+class EpisodeTally {
+ public:
+  explicit EpisodeTally(uint32_t episodes) : wanted_(episodes) {}
+
+  void observe(size_t arena, bool done, bool survived, uint32_t step, uint32_t seed);
+  bool complete() const { return records_.size() >= wanted_; }
+  size_t collected() const { return records_.size(); }
+  const std::map<uint32_t, EpisodeRecord>& records() const { return records_; }
+  EvaluationSummary summary() const;
+
+ private:
+  struct ArenaState {
+    bool seen = false;
+    uint32_t step = 0;
+    uint32_t seed = 0;
+  };
+  uint32_t wanted_;
+  std::vector<ArenaState> arenas_;
+  std::map<uint32_t, EpisodeRecord> records_;
+};
+
+// evaluation.md and evaluation.csv (columns variant,policy,episodes,avg_living_steps,success_rate).
+std::string evaluationCsv(const std::string& variant, const std::string& policy, const EvaluationSummary& s);
+std::string evaluationMarkdown(const std::string& variant, const std::string& policy, const EvaluationSummary& s);
+
+}  // namespace hideseek_hider

@@ -1,0 +1,49 @@
+#include "hideseek_hider/episode_tally.h"
+
+#include <cstdio>
+
+namespace hideseek_hider {
+
+void EpisodeTally::observe(size_t arena, bool done, bool survived, uint32_t step, uint32_t seed) {
+  if (arenas_.size() <= arena) arenas_.resize(arena + 1);
+  ArenaState& a = arenas_[arena];
+  // An episode already under way when we started listening is not counted: its start is unknown.
+  if (done && a.seen && a.seed < wanted_ && !records_.count(a.seed)) {
+    records_[a.seed] = {a.seed, a.step + 1, survived};
+  }
+  if (!a.seen && step != 0) return;  // wait for a fresh episode
+  a.seen = true;
+  a.step = step;
+  a.seed = seed;
+}
+
+EvaluationSummary EpisodeTally::summary() const {
+  EvaluationSummary s;
+  s.episodes = static_cast<int>(records_.size());
+  if (records_.empty()) return s;
+  double steps = 0.0, wins = 0.0;
+  for (const auto& [seed, r] : records_) {
+    steps += r.living_steps;
+    wins += r.survived;
+  }
+  s.avg_living_steps = steps / s.episodes;
+  s.success_rate = wins / s.episodes;
+  return s;
+}
+
+std::string evaluationCsv(const std::string& variant, const std::string& policy, const EvaluationSummary& s) {
+  char line[512];
+  std::snprintf(line, sizeof(line), "%s,%s,%d,%.2f,%.4f\n", variant.c_str(), policy.c_str(), s.episodes,
+                s.avg_living_steps, s.success_rate);
+  return "variant,policy,episodes,avg_living_steps,success_rate\n" + std::string(line);
+}
+
+std::string evaluationMarkdown(const std::string& variant, const std::string& policy, const EvaluationSummary& s) {
+  char line[512];
+  std::snprintf(line, sizeof(line), "| %s | %s | %d | %.1f | %.2f %% |\n", variant.c_str(), policy.c_str(), s.episodes,
+                s.avg_living_steps, 100.0 * s.success_rate);
+  return "| variant | policy | episodes | average living steps | success rate |\n| --- | --- | --- | --- | --- |\n" +
+         std::string(line);
+}
+
+}  // namespace hideseek_hider

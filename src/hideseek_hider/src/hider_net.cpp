@@ -1,0 +1,142 @@
+#include "hideseek_hider/hider_net.h"
+
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace hideseek_hider {
+
+namespace {
+
+int convOut(int size, int kernel, int stride) { return (size - kernel) / stride + 1; }
+
+torch::Tensor leaky(const torch::Tensor& x) { return torch::leaky_relu(x, 0.01); }
+
+}  // namespace
+
+HiderNetImpl::HiderNetImpl(int image_height, int image_width) : image_height_(image_height), image_width_(image_width) {
+  const int h = convOut(convOut(convOut(image_height, 8, 4), 4, 2), 3, 1);
+  const int w = convOut(convOut(convOut(image_width, 8, 4), 4, 2), 3, 1);
+  if (h < 1 || w < 1) {
+    throw std::invalid_argument("hider network: images of " + std::to_string(image_height) + "x" +
+                                std::to_string(image_width) + " are too small for the encoder (at least 36x36)");
+  }
+  conv1_ = register_module("conv1", torch::nn::Conv2d(torch::nn::Conv2dOptions(3, 32, 8).stride(4)));
+  conv2_ = register_module("conv2", torch::nn::Conv2d(torch::nn::Conv2dOptions(32, 64, 4).stride(2)));
+  conv3_ = register_module("conv3", torch::nn::Conv2d(torch::nn::Conv2dOptions(64, 64, 3).stride(1)));
+  features_ = register_module("features", torch::nn::Linear(64 * h * w, kFeatures));
+  actor_hidden_ = register_module("actor_hidden", torch::nn::Linear(kFeatures, 512));
+  actor_out_ = register_module("actor_out", torch::nn::Linear(512, kActions));
+  critic_hidden_ = register_module("critic_hidden", torch::nn::Linear(kFeatures, 512));
+  critic_out_ = register_module("critic_out", torch::nn::Linear(512, 1));
+}
+
+HiderOutput HiderNetImpl::forward(const torch::Tensor& images) {
+  TORCH_CHECK(images.dim() == 4 && images.size(1) == image_height_ && images.size(2) == image_width_ &&
+                  images.size(3) == 3,
+              "hider network expects [B, ", image_height_, ", ", image_width_, ", 3] images, got ", images.sizes());
+  torch::Tensor x = images.permute({0, 3, 1, 2}).to(torch::kFloat32).div(255.0);
+  x = leaky(conv1_->forward(x));
+  x = leaky(conv2_->forward(x));
+  x = leaky(conv3_->forward(x));
+  const torch::Tensor features = leaky(features_->forward(x.flatten(1)));
+  HiderOutput out;
+  out.features = features;
+  out.logits = actor_out_->forward(leaky(actor_hidden_->forward(features)));
+  out.value = critic_out_->forward(leaky(critic_hidden_->forward(features))).squeeze(1);
+  return out;
+}
+
+void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo& info) {
+  torch::serialize::OutputArchive archive;
+  archive.write("architecture", c10::IValue(info.architecture));
+  archive.write("image_height", c10::IValue(static_cast<int64_t>(info.image_height)));
+  archive.write("image_width", c10::IValue(static_cast<int64_t>(info.image_width)));
+  archive.write("variant", c10::IValue(info.variant));
+  archive.write("steps", c10::IValue(info.steps));
+  torch::serialize::OutputArchive weights;
+  net->save(weights);
+  archive.write("model", weights);
+  const std::string tmp = path + ".tmp";
+  archive.save_to(tmp);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot move " + tmp + " to " + path);
+}
+
+namespace {
+
+torch::serialize::InputArchive openArchive(const std::string& path) {
+  torch::serialize::InputArchive archive;
+  try {
+    archive.load_from(path);
+  } catch (const c10::Error& e) {
+    throw std::runtime_error("checkpoint " + path + " cannot be read (missing, truncated or not a checkpoint): " +
+                             e.what_without_backtrace());
+  }
+  return archive;
+}
+
+CheckpointInfo infoOf(torch::serialize::InputArchive& archive, const std::string& path) {
+  CheckpointInfo info;
+  c10::IValue v;
+  auto read = [&](const char* key) {
+    if (!archive.try_read(key, v)) throw std::runtime_error("checkpoint " + path + " has no '" + key + "' entry");
+    return v;
+  };
+  info.architecture = read("architecture").toStringRef();
+  info.image_height = static_cast<int>(read("image_height").toInt());
+  info.image_width = static_cast<int>(read("image_width").toInt());
+  info.variant = read("variant").toStringRef();
+  info.steps = read("steps").toInt();
+  return info;
+}
+
+}  // namespace
+
+CheckpointInfo readCheckpointInfo(const std::string& path) {
+  auto archive = openArchive(path);
+  return infoOf(archive, path);
+}
+
+HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width, CheckpointInfo* info_out) {
+  auto archive = openArchive(path);
+  const CheckpointInfo info = infoOf(archive, path);
+  if (info.architecture != kArchitecture) {
+    throw std::runtime_error("checkpoint " + path + " holds architecture '" + info.architecture + "', this build runs '" +
+                             kArchitecture + "'");
+  }
+  if (info.image_height != expected_height || info.image_width != expected_width) {
+    throw std::runtime_error("checkpoint " + path + " was trained on " + std::to_string(info.image_height) + "x" +
+                             std::to_string(info.image_width) + " images, the world renders " +
+                             std::to_string(expected_height) + "x" + std::to_string(expected_width));
+  }
+  HiderNet net(info.image_height, info.image_width);
+  torch::serialize::InputArchive weights;
+  if (!archive.try_read("model", weights)) throw std::runtime_error("checkpoint " + path + " has no weights");
+  // libtorch's load replaces tensors whatever their shape, so compare against the built network.
+  // The network is local: a load that fails part way never escapes half-loaded.
+  std::map<std::string, std::vector<int64_t>> expected;
+  for (const auto& p : net->named_parameters()) expected[p.key()] = p.value().sizes().vec();
+  try {
+    net->load(weights);
+  } catch (const c10::Error& e) {
+    throw std::runtime_error("checkpoint " + path + " does not match the network: " + e.what_without_backtrace());
+  }
+  for (const auto& p : net->named_parameters()) {
+    if (p.value().sizes().vec() != expected[p.key()]) {
+      std::ostringstream s;
+      s << "checkpoint " << path << " does not match the network: " << p.key() << " has shape " << p.value().sizes()
+        << ", the network needs " << c10::IntArrayRef(expected[p.key()]);
+      throw std::runtime_error(s.str());
+    }
+  }
+  for (const auto& p : net->named_parameters()) {
+    if (!p.value().isfinite().all().item<bool>()) {
+      throw std::runtime_error("checkpoint " + path + " holds non-finite values in " + p.key());
+    }
+  }
+  if (info_out) *info_out = info;
+  return net;
+}
+
+}  // namespace hideseek_hider

@@ -1,0 +1,62 @@
+#include "hideseek_hider/hider_policy.h"
+
+#include <cstring>
+
+namespace hideseek_hider {
+
+double reproducibleUniform(uint32_t seed, uint32_t step, uint32_t arena, uint32_t salt) {
+  // splitmix64 finaliser over the packed inputs.
+  uint64_t z = (static_cast<uint64_t>(seed) << 32 | step) ^ (static_cast<uint64_t>(arena) << 17 | salt) * 0x632be59bd9b4e019ULL;
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
+}
+
+std::vector<uint8_t> RandomHiderPolicy::act(const std::vector<ArenaObservation>& batch) {
+  std::vector<uint8_t> actions(batch.size());
+  for (size_t i = 0; i < batch.size(); ++i) {
+    actions[i] = static_cast<uint8_t>(reproducibleUniform(batch[i].seed, batch[i].step, batch[i].arena, 1) * kActions);
+  }
+  return actions;
+}
+
+NetworkHiderPolicy::NetworkHiderPolicy(HiderNet net, torch::Device device, bool greedy)
+    : net_(std::move(net)), device_(device), greedy_(greedy) {
+  net_->to(device_);
+  net_->eval();
+}
+
+std::vector<uint8_t> NetworkHiderPolicy::act(const std::vector<ArenaObservation>& batch) {
+  const torch::NoGradGuard no_grad;
+  const int64_t n = static_cast<int64_t>(batch.size());
+  const int64_t h = net_->imageHeight(), w = net_->imageWidth();
+  torch::Tensor images = torch::empty({n, h, w, 3}, torch::kUInt8);
+  const size_t bytes = static_cast<size_t>(h * w * 3);
+  for (int64_t i = 0; i < n; ++i) std::memcpy(images.data_ptr<uint8_t>() + i * bytes, batch[i].image, bytes);
+  const torch::Tensor probs = torch::softmax(net_->forward(images.to(device_)).logits, 1).to(torch::kCPU).contiguous();
+  const float* p = probs.data_ptr<float>();
+  std::vector<uint8_t> actions(n);
+  for (int64_t i = 0; i < n; ++i) {
+    const float* row = p + i * kActions;
+    if (greedy_) {
+      actions[i] = static_cast<uint8_t>(std::max_element(row, row + kActions) - row);
+      continue;
+    }
+    // Inverse-CDF sampling with a reproducible draw.
+    const double u = reproducibleUniform(batch[i].seed, batch[i].step, batch[i].arena, 2);
+    double cumulative = 0.0;
+    actions[i] = kActions - 1;
+    for (int a = 0; a < kActions; ++a) {
+      cumulative += row[a];
+      if (u < cumulative) {
+        actions[i] = static_cast<uint8_t>(a);
+        break;
+      }
+    }
+  }
+  return actions;
+}
+
+}  // namespace hideseek_hider

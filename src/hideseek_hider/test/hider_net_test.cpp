@@ -1,0 +1,124 @@
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <functional>
+
+#include "hideseek_hider/hider_net.h"
+#include "hideseek_hider/hider_policy.h"
+
+namespace hideseek_hider {
+
+namespace {
+
+torch::Tensor randomImages(int64_t n, int64_t h, int64_t w) {
+  torch::manual_seed(3);
+  return torch::randint(0, 256, {n, h, w, 3}, torch::kUInt8);
+}
+
+std::string tempPath(const std::string& name) { return testing::TempDir() + name; }
+
+CheckpointInfo infoFor(int h, int w) { return {kArchitecture, h, w, "basic", 1234}; }
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(HiderNet, OutputsHaveNamedShapesAndFeaturesOf512) {
+  HiderNet net(84, 84);
+  const HiderOutput out = net->forward(randomImages(6, 84, 84));
+  EXPECT_EQ(out.logits.sizes(), (std::vector<int64_t>{6, 5}));
+  EXPECT_EQ(out.value.sizes(), (std::vector<int64_t>{6}));
+  EXPECT_EQ(out.features.sizes(), (std::vector<int64_t>{6, 512}));
+  EXPECT_TRUE(torch::isfinite(out.logits).all().item<bool>());
+}
+
+TEST(HiderNet, OtherImageSizesWorkAndTinyOnesAreRefused) {
+  HiderNet net(64, 96);
+  EXPECT_EQ(net->forward(randomImages(2, 64, 96)).features.size(1), 512);
+  EXPECT_THROW(HiderNet(20, 20), std::invalid_argument);
+  EXPECT_THROW(net->forward(randomImages(2, 84, 84)), c10::Error);
+}
+
+TEST(Checkpoint, RoundTripGivesIdenticalOutputs) {
+  HiderNet net(84, 84);
+  const std::string path = tempPath("roundtrip.pt");
+  saveCheckpoint(path, net, infoFor(84, 84));
+  CheckpointInfo info;
+  HiderNet loaded = loadCheckpoint(path, 84, 84, &info);
+  EXPECT_EQ(info.variant, "basic");
+  EXPECT_EQ(info.steps, 1234);
+  const torch::Tensor images = randomImages(4, 84, 84);
+  const HiderOutput a = net->forward(images), b = loaded->forward(images);
+  EXPECT_TRUE(torch::equal(a.logits, b.logits));
+  EXPECT_TRUE(torch::equal(a.value, b.value));
+  EXPECT_TRUE(torch::equal(a.features, b.features));
+}
+
+TEST(Checkpoint, WrongImageSizeIsRefusedSayingWhy) {
+  HiderNet net(64, 64);
+  const std::string path = tempPath("small.pt");
+  saveCheckpoint(path, net, infoFor(64, 64));
+  const std::string e = errorOf([&] { loadCheckpoint(path, 84, 84); });
+  EXPECT_NE(e.find("trained on 64x64 images, the world renders 84x84"), std::string::npos) << e;
+}
+
+TEST(Checkpoint, MismatchedTensorShapesAreRefused) {
+  // Metadata claims 84x84 but the weights come from a 96x96 encoder.
+  HiderNet net(96, 96);
+  const std::string path = tempPath("lying.pt");
+  saveCheckpoint(path, net, infoFor(84, 84));
+  const std::string e = errorOf([&] { loadCheckpoint(path, 84, 84); });
+  EXPECT_NE(e.find("does not match the network"), std::string::npos) << e;
+}
+
+TEST(Checkpoint, OtherArchitectureIsRefused) {
+  HiderNet net(84, 84);
+  const std::string path = tempPath("other.pt");
+  CheckpointInfo info = infoFor(84, 84);
+  info.architecture = "something else";
+  saveCheckpoint(path, net, info);
+  EXPECT_NE(errorOf([&] { loadCheckpoint(path, 84, 84); }).find("holds architecture 'something else'"), std::string::npos);
+}
+
+TEST(Checkpoint, TruncatedFileIsRefused) {
+  HiderNet net(84, 84);
+  const std::string path = tempPath("whole.pt"), cut = tempPath("cut.pt");
+  saveCheckpoint(path, net, infoFor(84, 84));
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  const std::string e = errorOf([&] { loadCheckpoint(cut, 84, 84); });
+  EXPECT_NE(e.find("cut.pt"), std::string::npos) << e;
+  EXPECT_FALSE(e.empty());
+  EXPECT_NE(errorOf([&] { loadCheckpoint(tempPath("missing.pt"), 84, 84); }).find("cannot be read"), std::string::npos);
+}
+
+TEST(HiderPolicy, RandomPolicyIsReproducibleAndUsesAllActions) {
+  RandomHiderPolicy policy;
+  std::vector<ArenaObservation> batch;
+  for (uint32_t s = 0; s < 500; ++s) batch.push_back({nullptr, s, s % 7, s % 3});
+  const auto a = policy.act(batch), b = policy.act(batch);
+  EXPECT_EQ(a, b);
+  std::vector<int> counts(kActions);
+  for (uint8_t x : a) counts.at(x)++;
+  for (int c : counts) EXPECT_GT(c, 60);
+}
+
+TEST(HiderPolicy, NetworkPolicySamplesReproduciblyFromItsLogits) {
+  HiderNet net(84, 84);
+  NetworkHiderPolicy policy(net, torch::kCPU, false);
+  const torch::Tensor images = randomImages(8, 84, 84);
+  std::vector<ArenaObservation> batch;
+  for (uint32_t i = 0; i < 8; ++i) batch.push_back({images.data_ptr<uint8_t>() + i * 84 * 84 * 3, 9, 4, i});
+  EXPECT_EQ(policy.act(batch), policy.act(batch));
+}
+
+}  // namespace hideseek_hider
