@@ -13,16 +13,29 @@ echo
 catkin_test_results build/test_results --all > build/test_summary.txt 2>&1
 status=$?
 grep -vE "^Skipping" build/test_summary.txt | tail -40
-summary=$(tail -n 1 build/test_summary.txt)
-# "Summary: 42 tests, 0 errors, 1 failures, 0 skipped"
-tests=$(sed -n 's/^Summary: \([0-9]*\) tests.*/\1/p' <<<"$summary")
-errors=$(sed -n 's/.* \([0-9]*\) errors.*/\1/p' <<<"$summary")
-failures=$(sed -n 's/.* \([0-9]*\) failures.*/\1/p' <<<"$summary")
-tests=${tests:-0}; errors=${errors:-0}; failures=${failures:-0}
-failed=$((errors + failures))
-if [ "$tests" -eq 0 ]; then
+# catkin_test_results adds suite totals to case counts; count the test cases themselves.
+read -r passed failed < <(/usr/bin/python3 - build/test_results <<'PY'
+import glob, os, sys
+import xml.etree.ElementTree as ET
+passed = failed = 0
+for path in glob.glob(os.path.join(sys.argv[1], "**", "*.xml"), recursive=True):
+    try:
+        cases = ET.parse(path).getroot().iter("testcase")
+    except ET.ParseError:
+        failed += 1
+        continue
+    for case in cases:
+        if case.find("failure") is not None or case.find("error") is not None:
+            failed += 1
+        elif case.find("skipped") is None:
+            passed += 1
+print(passed, failed)
+PY
+)
+if [ "$((passed + failed))" -eq 0 ]; then
   echo "0 passed, 1 failed"
   exit 1
 fi
-echo "$((tests - failed)) passed, ${failed} failed"
+[ "$status" -ne 0 ] && [ "$failed" -eq 0 ] && failed=1
+echo "${passed} passed, ${failed} failed"
 [ "$status" -eq 0 ] && [ "$failed" -eq 0 ]

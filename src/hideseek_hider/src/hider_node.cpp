@@ -4,8 +4,8 @@
 
 #include <stdexcept>
 
-#include "hideseek_world/game_options.h"
 #include "hideseek_world/topic_names.h"
+#include "hideseek_world/world_node_options.h"
 
 namespace hideseek_hider {
 
@@ -25,12 +25,7 @@ torch::Device deviceFrom(const std::string& name, const std::string& param) {
 }  // namespace
 
 HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
-  std::string game, variant;
-  if (!pnh.getParam("game_config", game) || !pnh.getParam("variant_config", variant)) {
-    throw std::runtime_error("parameters " + pnh.resolveName("game_config") + " and " +
-                             pnh.resolveName("variant_config") + " are required (file paths)");
-  }
-  const hideseek_world::VariantConfig v = hideseek_world::loadVariantConfig(game, variant);
+  const hideseek_world::VariantConfig v = hideseek_world::loadVariantParams(pnh);
   image_height_ = v.game.camera.height;
   image_width_ = v.game.camera.width;
   const std::string policy = pnh.param<std::string>("policy", "random");

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "hideseek_world/topic_names.h"
+#include "hideseek_world/world_node_options.h"
 
 namespace hideseek_seeker {
 
@@ -27,12 +28,7 @@ SeekerPerception toPerception(const hideseek_msgs::SeekerObservationBatch& batch
 }
 
 SeekerNode::SeekerNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
-  std::string game, variant;
-  if (!pnh.getParam("game_config", game) || !pnh.getParam("variant_config", variant)) {
-    throw std::runtime_error("parameters " + pnh.resolveName("game_config") + " and " +
-                             pnh.resolveName("variant_config") + " are required (file paths)");
-  }
-  const hideseek_world::VariantConfig v = hideseek_world::loadVariantConfig(game, variant);
+  const hideseek_world::VariantConfig v = hideseek_world::loadVariantParams(pnh);
   options_.type = v.seeker_policy == "stochastic" ? SeekerPolicyType::kStochastic : SeekerPolicyType::kDeterministic;
   options_.radius = v.game.agent_radius;
   options_.turn_per_step = v.game.seeker.turn_rate * v.game.stepDuration();

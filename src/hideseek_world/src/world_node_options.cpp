@@ -40,9 +40,13 @@ int readInt(const ros::NodeHandle& nh, const std::string& name, int fallback, in
 
 }  // namespace
 
+VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
+  return loadVariantConfig(requireString(nh, "game_config"), requireString(nh, "variant_config"));
+}
+
 WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& nh) {
   WorldNodeOptions o;
-  o.variant = loadVariantConfig(requireString(nh, "game_config"), requireString(nh, "variant_config"));
+  o.variant = loadVariantParams(nh);
   o.map = loadMapFile(o.variant.map_file);
   const std::string mode = nh.param<std::string>("mode", "realtime");
   if (mode == "realtime") {

@@ -13,6 +13,8 @@
 #include <map>
 #include <sstream>
 
+#include "test_helpers.h"
+
 namespace {
 
 std::string findBag(const std::string& dir, bool finished) {
@@ -31,13 +33,10 @@ std::string findBag(const std::string& dir, bool finished) {
 }
 
 bool shutdownNode(const std::string& node) {
-  XmlRpc::XmlRpcValue args, result, payload;
-  args[0] = ros::this_node::getName();
-  args[1] = node;
-  if (!ros::master::execute("lookupNode", args, result, payload, false)) return false;
-  std::string host, path;
+  const std::string uri = hideseek_test::nodeUri(node);
+  std::string host;
   uint32_t port = 0;
-  if (!ros::network::splitURI(static_cast<std::string>(payload), host, port)) return false;
+  if (uri.empty() || !ros::network::splitURI(uri, host, port)) return false;
   XmlRpc::XmlRpcClient client(host.c_str(), port, "/");
   XmlRpc::XmlRpcValue request, response;
   request[0] = ros::this_node::getName();

@@ -4,19 +4,14 @@
 #include <hideseek_msgs/GameState.h>
 #include <hideseek_msgs/ObservationBatch.h>
 #include <ros/ros.h>
-#include <xmlrpcpp/XmlRpc.h>
 
 #include <set>
 
+#include "test_helpers.h"
+
 namespace {
 
-std::string nodeUri(const std::string& node) {
-  XmlRpc::XmlRpcValue args, result, payload;
-  args[0] = ros::this_node::getName();
-  args[1] = node;
-  if (!ros::master::execute("lookupNode", args, result, payload, false)) return "";
-  return static_cast<std::string>(payload);
-}
+using hideseek_test::nodeUri;
 
 TEST(Variant, WorldSeekerAndHiderAreSeparateProcesses) {
   std::set<std::string> uris;

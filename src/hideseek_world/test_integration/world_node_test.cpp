@@ -15,20 +15,13 @@
 #include <functional>
 #include <map>
 
+#include "test_helpers.h"
+
 namespace {
 
-constexpr int kArenas = 2;
+using hideseek_test::waitFor;
 
-// Spins until pred() holds or the wall-clock timeout passes.
-bool waitFor(const std::function<bool()>& pred, double seconds) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-  while (ros::ok() && ros::WallTime::now() < end) {
-    ros::spinOnce();
-    if (pred()) return true;
-    ros::WallDuration(0.002).sleep();
-  }
-  return pred();
-}
+constexpr int kArenas = 2;
 
 class WorldNodeTest : public testing::Test {
  protected:

@@ -27,6 +27,10 @@ struct WorldNodeOptions {
 
 constexpr int kMaxArenas = 64;
 
+// Reads the files named by ~game_config and ~variant_config: every node of the game needs them.
+// Throws naming the missing parameter, or the file and field at fault.
+VariantConfig loadVariantParams(const ros::NodeHandle& private_nh);
+
 // Reads ~game_config, ~variant_config, ~mode, ~num_arenas, ~seed, ... Throws std::runtime_error
 // (or ConfigError for files) naming the parameter or file field at fault.
 WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& private_nh);

@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""Loads every launch file of a folder with roslaunch's own loader (arguments, includes,
+substitutions) and checks that each node's package and executable exist. Writes an xunit
+result. The agents' packages cannot be declared as dependencies of hideseek_world (they depend
+on it), so roslaunch-check's dependency test does not apply; this checks what it would run.
+
+usage: check_launch_files.py LAUNCH_DIR XUNIT_OUTPUT
+"""
+import glob
+import os
+import sys
+from xml.sax.saxutils import escape
+
+import roslaunch.config
+import roslaunch.xmlloader
+import rospkg
+from roslib.packages import find_node
+
+
+def check(path):
+    problems = []
+    config = roslaunch.config.ROSLaunchConfig()
+    loader = roslaunch.xmlloader.XmlLoader()
+    try:
+        loader.load(path, config, verbose=False)
+    except Exception as e:  # roslaunch raises several unrelated exception types
+        return ["does not load: %s" % e]
+    for node in config.nodes + config.tests:
+        try:
+            if not find_node(node.package, node.type):
+                problems.append("node %s: no executable '%s' in package '%s'" % (node.name, node.type, node.package))
+        except rospkg.ResourceNotFound:
+            problems.append("node %s: package '%s' not found" % (node.name, node.package))
+    return problems
+
+
+def main():
+    launch_dir, output = sys.argv[1], sys.argv[2]
+    files = sorted(glob.glob(os.path.join(launch_dir, "*.launch")))
+    cases = []
+    failures = 0
+    for path in files:
+        problems = check(path)
+        name = os.path.basename(path)
+        if problems:
+            failures += 1
+            print("%s:\n  %s" % (name, "\n  ".join(problems)))
+            cases.append('<testcase classname="launch" name="%s"><failure message="%s"/></testcase>'
+                         % (escape(name), escape("; ".join(problems), {'"': "&quot;"})))
+        else:
+            print("%s: ok" % name)
+            cases.append('<testcase classname="launch" name="%s"/>' % escape(name))
+    if not files:
+        failures += 1
+        cases.append('<testcase classname="launch" name="none"><failure message="no launch files in %s"/></testcase>'
+                     % escape(launch_dir))
+    os.makedirs(os.path.dirname(os.path.abspath(output)), exist_ok=True)
+    with open(output, "w") as f:
+        f.write('<?xml version="1.0"?>\n<testsuite name="launch_files" tests="%d" failures="%d" errors="0">%s</testsuite>\n'
+                % (len(cases), failures, "".join(cases)))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
