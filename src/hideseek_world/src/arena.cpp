@@ -70,20 +70,26 @@ void Arena::reset(uint32_t seed) {
                              " m apart, connected) found for seed " + std::to_string(seed));
   }
   step_ = 0;
+  frame_ = 0;
   return_ = 0.0;
   captured_ = false;
   updateLabels();
 }
 
 StepResult Arena::step(Action hider, Action seeker) {
-  if (captured_ || step_ >= options_.max_steps) throw std::logic_error("Arena::step called on a finished episode");
-  const double capture2 = options_.capture_distance * options_.capture_distance;
-  for (int frame = 0; frame < options_.action_repeat && !captured_; ++frame) {
-    advanceAgent(hider_, hider, options_.hider, options_.physics_dt, layout_, options_.agent_radius);
-    advanceAgent(seeker_, seeker, options_.seeker, options_.physics_dt, layout_, options_.agent_radius);
-    const Vec2 d = hider_.position - seeker_.position;
-    captured_ = dot(d, d) <= capture2;
-  }
+  std::optional<StepResult> result;
+  while (!result) result = advanceFrame(hider, seeker);
+  return *result;
+}
+
+std::optional<StepResult> Arena::advanceFrame(Action hider, Action seeker) {
+  if (captured_ || step_ >= options_.max_steps) throw std::logic_error("Arena: stepped a finished episode");
+  advanceAgent(hider_, hider, options_.hider, options_.physics_dt, layout_, options_.agent_radius);
+  advanceAgent(seeker_, seeker, options_.seeker, options_.physics_dt, layout_, options_.agent_radius);
+  const Vec2 d = hider_.position - seeker_.position;
+  captured_ = dot(d, d) <= options_.capture_distance * options_.capture_distance;
+  if (++frame_ < options_.action_repeat && !captured_) return std::nullopt;
+  frame_ = 0;
   ++step_;
   updateLabels();
   StepResult result;

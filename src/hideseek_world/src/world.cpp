@@ -36,13 +36,21 @@ void World::resetArena(int i, std::optional<uint32_t> seed) {
   ++episodes_[i];
 }
 
-ArenaStep World::stepArena(int i, Action hider, Action seeker) {
-  Arena& a = arenas_[i];
+ArenaStep World::stepArena(int i, Action hider, Action seeker) { return conclude(i, arenas_[i].step(hider, seeker)); }
+
+std::optional<ArenaStep> World::advanceArenaFrame(int i, Action hider, Action seeker) {
+  const std::optional<StepResult> result = arenas_[i].advanceFrame(hider, seeker);
+  if (!result) return std::nullopt;
+  return conclude(i, *result);
+}
+
+ArenaStep World::conclude(int i, const StepResult& result) {
+  const Arena& a = arenas_[i];
   ArenaStep out;
-  out.result = a.step(hider, seeker);
-  if (out.result.done()) {
-    out.finished = EpisodeSummary{episodes_[i], a.seed(),    a.stepCount(), a.episodeReturn(),
-                                  out.result.outcome, a.hider(), a.seeker(), a.labels()};
+  out.result = result;
+  if (result.done()) {
+    out.finished = EpisodeSummary{episodes_[i], a.seed(),        a.stepCount(), a.episodeReturn(),
+                                  result.outcome, a.hider(), a.seeker(),    a.labels()};
     resetArena(i, std::nullopt);
   }
   return out;

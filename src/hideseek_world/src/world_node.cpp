@@ -111,7 +111,9 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   if (lockstep) {
     watchdog_timer_ = nh_.createWallTimer(ros::WallDuration(0.05), &WorldNode::onWatchdog, this);
   } else {
-    tick_timer_ = nh_.createWallTimer(ros::WallDuration(game.stepDuration()), &WorldNode::onRealtimeTick, this);
+    realtime_hider_.assign(n, Action::kStay);
+    realtime_seeker_.assign(n, Action::kStay);
+    tick_timer_ = nh_.createWallTimer(ros::WallDuration(game.physics_dt), &WorldNode::onRealtimeTick, this);
     publishObservations();
     publishArenaZero(true);
   }
@@ -195,21 +197,40 @@ void WorldNode::tryAdvanceLockstep() {
     hider_.pending[i].reset();
     seeker_.pending[i].reset();
   }
-  stepAll(h, s);
+  std::vector<ArenaStep> results;
+  results.reserve(n);
+  for (int i = 0; i < n; ++i) results.push_back(world_->stepArena(i, h[i], s[i]));
+  concludeDecision(results, h, s);
   publishObservations();
   publishArenaZero(false);
 }
 
 void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
   const int n = options_.num_arenas;
-  const ros::WallTime now = ros::WallTime::now();
-  std::vector<Action> h(n), s(n);
-  // Like turtlesim: an agent whose commands went stale stands still.
-  for (int i = 0; i < n; ++i) {
-    h[i] = (now - hider_.received[i]).toSec() <= options_.stale_action_timeout ? hider_.latest[i] : Action::kStay;
-    s[i] = (now - seeker_.received[i]).toSec() <= options_.stale_action_timeout ? seeker_.latest[i] : Action::kStay;
+  if (frame_ == 0) {
+    // A decision step starts: take each agent's latest action for its 6 frames. Like turtlesim,
+    // an agent whose commands went stale stands still.
+    const ros::WallTime now = ros::WallTime::now();
+    for (int i = 0; i < n; ++i) {
+      realtime_hider_[i] = (now - hider_.received[i]).toSec() <= options_.stale_action_timeout ? hider_.latest[i] : Action::kStay;
+      realtime_seeker_[i] = (now - seeker_.received[i]).toSec() <= options_.stale_action_timeout ? seeker_.latest[i] : Action::kStay;
+    }
+    frame_results_.assign(n, std::nullopt);
   }
-  stepAll(h, s);
+  // One physics frame per tick. An arena whose step ended early (capture) waits for the others,
+  // so every arena's decisions stay on the same 0.12 s clock.
+  for (int i = 0; i < n; ++i) {
+    if (!frame_results_[i]) frame_results_[i] = world_->advanceArenaFrame(i, realtime_hider_[i], realtime_seeker_[i]);
+  }
+  if (++frame_ < options_.variant.game.action_repeat) {
+    publishAgentTransforms(ros::Time::now());
+    return;
+  }
+  frame_ = 0;
+  std::vector<ArenaStep> results;
+  results.reserve(n);
+  for (const auto& r : frame_results_) results.push_back(*r);
+  concludeDecision(results, realtime_hider_, realtime_seeker_);
   publishObservations();
   publishArenaZero(true);
 }
@@ -233,10 +254,11 @@ void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
   }
 }
 
-void WorldNode::stepAll(const std::vector<Action>& hider, const std::vector<Action>& seeker) {
+void WorldNode::concludeDecision(const std::vector<ArenaStep>& results, const std::vector<Action>& hider,
+                                 const std::vector<Action>& seeker) {
   last_finished_.reset();
   for (int i = 0; i < options_.num_arenas; ++i) {
-    const ArenaStep s = world_->stepArena(i, hider[i], seeker[i]);
+    const ArenaStep& s = results[i];
     rewards_[i] = static_cast<float>(s.result.reward);
     done_[i] = s.result.done();
     outcome_[i] = static_cast<uint8_t>(s.result.outcome);
@@ -252,6 +274,12 @@ void WorldNode::stepAll(const std::vector<Action>& hider, const std::vector<Acti
   last_seeker_actions_ = seeker;
   ++world_steps_;
   world_->renderHiderViews(images_.data());
+}
+
+void WorldNode::publishAgentTransforms(const ros::Time& stamp) {
+  const Arena& a = world_->arena(0);
+  tf_.sendTransform({agentTransform(a.hider(), options_.frame_id, "hider/base_link", stamp),
+                     agentTransform(a.seeker(), options_.frame_id, "seeker/base_link", stamp)});
 }
 
 void WorldNode::publishObservations() {
@@ -346,8 +374,7 @@ void WorldNode::publishArenaZero(bool force_visuals) {
   state.outcome = outcome_[0];
   state_pub_.publish(state);
 
-  tf_.sendTransform({agentTransform(a.hider(), options_.frame_id, "hider/base_link", stamp),
-                     agentTransform(a.seeker(), options_.frame_id, "seeker/base_link", stamp)});
+  publishAgentTransforms(stamp);
 
   if (last_finished_) startEpisodeVisuals();
   geometry_msgs::PoseStamped hp, sp;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include <optional>
 #include <set>
 
 #include "hideseek_world/world.h"
@@ -111,6 +112,35 @@ TEST(Arena, VisibilityRewardFollowsWhetherTheSeekerSeesTheHider) {
   }
   EXPECT_GT(seen, 0);
   EXPECT_GT(unseen, 0);
+}
+
+TEST(Arena, FrameByFrameStepsMatchWholeDecisionSteps) {
+  // Realtime mode advances single physics frames; lockstep whole steps. Both must agree.
+  const VariantConfig v = loadVariant("fasterhider");
+  auto map = loadMap("deterministic");
+  Arena whole(v.game, map), frames(v.game, map);
+  whole.reset(21);
+  frames.reset(21);
+  std::mt19937 rng(4);
+  for (int step = 0; step < 200; ++step) {
+    const Action h = Action(rng() % 5), s = Action(rng() % 5);
+    const StepResult a = whole.step(h, s);
+    std::optional<StepResult> b;
+    int n = 0;
+    while (!b) {
+      b = frames.advanceFrame(h, s);
+      ++n;
+    }
+    ASSERT_LE(n, v.game.action_repeat);
+    ASSERT_EQ(a.reward, b->reward);
+    ASSERT_EQ(a.outcome, b->outcome);
+    ASSERT_EQ(whole.hider().position.x, frames.hider().position.x);
+    ASSERT_EQ(whole.seeker().position.y, frames.seeker().position.y);
+    if (a.done()) {
+      EXPECT_TRUE(a.outcome == Outcome::kCaptured || step + 1 == v.game.max_steps);
+      return;
+    }
+  }
 }
 
 TEST(World, SameSeedAndActionsGiveBitIdenticalEpisodes) {

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <random>
 
 #include "hideseek_world/agent.h"
@@ -34,8 +35,11 @@ class Arena {
 
   // Starts an episode: draws the layout (stochastic maps) and the spawns from `seed` alone.
   void reset(uint32_t seed);
-  // Advances one decision step (action_repeat physics frames).
+  // Advances one decision step (action_repeat physics frames, fewer when a capture ends it).
   StepResult step(Action hider, Action seeker);
+  // Advances one physics frame of the current decision step; returns the step's result when this
+  // frame completes it (its last frame, or a capture), else nothing.
+  std::optional<StepResult> advanceFrame(Action hider, Action seeker);
 
   const AgentState& hider() const { return hider_; }
   const AgentState& seeker() const { return seeker_; }
@@ -62,6 +66,7 @@ class Arena {
   AgentState seeker_;
   Labels labels_;
   int step_ = 0;
+  int frame_ = 0;  // physics frames done in the current decision step
   uint32_t seed_ = 0;
   double return_ = 0.0;
   bool captured_ = false;

@@ -44,6 +44,8 @@ class World {
   void resetArena(int i, std::optional<uint32_t> seed);
   // Advances arena i one decision step; a finished episode is replaced by the next one.
   ArenaStep stepArena(int i, Action hider, Action seeker);
+  // Advances arena i one physics frame; returns the decision step's outcome when it completes.
+  std::optional<ArenaStep> advanceArenaFrame(int i, Action hider, Action seeker);
 
   // Renders every arena's hider camera into out (numArenas() images, rgb8, rows top down).
   void renderHiderViews(uint8_t* out, RenderMode mode = RenderMode::kColor);
@@ -53,6 +55,7 @@ class World {
 
  private:
   void startEpisode(int i, uint32_t seed);
+  ArenaStep conclude(int i, const StepResult& result);
   void syncScenes();
 
   GameOptions options_;

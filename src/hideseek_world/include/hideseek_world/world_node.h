@@ -52,7 +52,10 @@ class WorldNode {
   void onRealtimeTick(const ros::WallTimerEvent&);
   void onWatchdog(const ros::WallTimerEvent&);
   bool onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset::Response& res);
-  void stepAll(const std::vector<Action>& hider, const std::vector<Action>& seeker);
+  // Records a finished decision step of every arena and renders the new hider views.
+  void concludeDecision(const std::vector<ArenaStep>& results, const std::vector<Action>& hider,
+                        const std::vector<Action>& seeker);
+  void publishAgentTransforms(const ros::Time& stamp);
   void publishObservations();
   void publishArenaZero(bool force_visuals);
   void startEpisodeVisuals();
@@ -87,6 +90,10 @@ class WorldNode {
   nav_msgs::Path hider_path_, seeker_path_;
   sensor_msgs::CameraInfo camera_info_;
   std::vector<Action> last_hider_actions_, last_seeker_actions_;
+  // Realtime mode: physics frame within the decision step, its actions and finished results.
+  int frame_ = 0;
+  std::vector<Action> realtime_hider_, realtime_seeker_;
+  std::vector<std::optional<ArenaStep>> frame_results_;
 };
 
 }  // namespace hideseek_world
