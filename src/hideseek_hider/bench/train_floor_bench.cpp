@@ -1,0 +1,35 @@
+// The floor of training speed: the hider network and PPO update in one process on synthetic
+// 84 x 84 observations (no ROS, no rendering). Prints `train_floor_samples_per_s N`.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+#include "hideseek_hider/ppo.h"
+
+int main(int argc, char** argv) {
+  const std::string config = argc > 1 ? argv[1] : "config/ppo.yaml";
+  const int arenas = argc > 2 ? std::atoi(argv[2]) : 16;
+  const int updates = argc > 3 ? std::atoi(argv[3]) : 3;
+  const int threads = argc > 4 ? std::atoi(argv[4]) : 2;
+  torch::set_num_threads(threads);
+  torch::manual_seed(0);
+  const hideseek_hider::PpoOptions options = hideseek_hider::loadPpoOptions(config);
+  hideseek_hider::PpoTrainer trainer(hideseek_hider::HiderNet(84, 84), options, arenas, torch::kCPU);
+  auto run = [&](int n) {
+    for (int u = 0; u < n; ++u) {
+      bool full = false;
+      while (!full) {
+        trainer.act(torch::randint(0, 256, {arenas, 84, 84, 3}, torch::kUInt8));
+        full = trainer.record(torch::rand({arenas}) * 0.002, (torch::rand({arenas}) < 0.005).to(torch::kFloat32));
+      }
+      trainer.update(torch::randint(0, 256, {arenas, 84, 84, 3}, torch::kUInt8));
+    }
+  };
+  run(1);  // warm-up
+  const int64_t before = trainer.samplesSeen();
+  const auto start = std::chrono::steady_clock::now();
+  run(updates);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("train_floor_samples_per_s %.0f\n", (trainer.samplesSeen() - before) / seconds);
+  return 0;
+}

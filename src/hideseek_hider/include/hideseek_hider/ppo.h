@@ -1,0 +1,90 @@
+// Proximal Policy Optimisation for the hider, readable top to bottom (after CleanRL's ppo_atari):
+// a rollout buffer over arenas, GAE, the clipped policy objective, a clipped value loss, an
+// entropy bonus, advantage normalisation, gradient clipping and Adam.
+#pragma once
+
+#include <torch/torch.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hideseek_hider/hider_net.h"
+
+namespace hideseek_hider {
+
+// Every hyperparameter, documented in config/ppo.yaml. SPEC fixes the learning rate and a buffer
+// of about 1000 steps per update (16 arenas x 64 steps = 1024); the rest are CleanRL's Atari values.
+struct PpoOptions {
+  int rollout_steps = 64;       // decision steps per arena between updates
+  int epochs = 4;               // passes over the buffer per update
+  int minibatches = 4;          // the buffer is split into this many minibatches per pass
+  double learning_rate = 3e-4;  // Adam
+  double adam_epsilon = 1e-5;
+  double gamma = 0.99;          // discount per decision step
+  double gae_lambda = 0.95;
+  double clip = 0.1;            // policy ratio clip
+  bool clip_value_loss = true;  // clip the value update to the same range
+  double value_coef = 0.5;
+  double entropy_coef = 0.01;
+  double max_grad_norm = 0.5;   // global gradient norm clip
+  bool normalize_advantages = true;  // per minibatch
+};
+
+// Reads config/ppo.yaml; throws hideseek_world::ConfigError naming the file and field.
+PpoOptions loadPpoOptions(const std::string& path);
+
+struct Gae {
+  torch::Tensor advantages;  // [T, N]
+  torch::Tensor returns;     // advantages + values: the value targets
+};
+
+// Generalised advantage estimation. dones[t] marks that step t ended its episode, so nothing
+// after it is bootstrapped into it; next_value is V of the observation after the last step.
+Gae computeGae(const torch::Tensor& rewards, const torch::Tensor& values, const torch::Tensor& dones,
+               const torch::Tensor& next_value, double gamma, double lambda);
+
+// The clipped surrogate objective, as a loss to minimise (mean over the batch).
+torch::Tensor clippedPolicyLoss(const torch::Tensor& new_log_prob, const torch::Tensor& old_log_prob,
+                                const torch::Tensor& advantages, double clip);
+
+// What one update did, for logs.
+struct UpdateStats {
+  double policy_loss = 0.0;
+  double value_loss = 0.0;
+  double entropy = 0.0;
+  double approx_kl = 0.0;     // mean of (ratio - 1) - log ratio
+  double clip_fraction = 0.0;  // share of samples whose ratio was clipped
+};
+
+// Collects rollout_steps decision steps of every arena, then updates the network in place.
+// act() and record() alternate: act on the observations of step t, record the rewards and done
+// flags that step t produced. All tensors stay on the trainer's device; observations are uint8.
+class PpoTrainer {
+ public:
+  PpoTrainer(HiderNet net, const PpoOptions& options, int num_arenas, torch::Device device);
+
+  // Samples actions for [N, H, W, 3] uint8 observations and stores what the update needs.
+  torch::Tensor act(const torch::Tensor& observations);
+  // Stores the rewards [N] and done flags [N] of the last act(); true when the buffer is full.
+  bool record(const torch::Tensor& rewards, const torch::Tensor& dones);
+  // Runs the PPO update on the full buffer; next_observations follow its last step.
+  UpdateStats update(const torch::Tensor& next_observations);
+
+  HiderNet& net() { return net_; }
+  torch::optim::Adam& optimizer() { return optimizer_; }
+  int64_t samplesSeen() const { return samples_; }
+  void setSamplesSeen(int64_t samples) { samples_ = samples; }
+
+ private:
+  HiderNet net_;
+  PpoOptions options_;
+  int num_arenas_;
+  torch::Device device_;
+  torch::optim::Adam optimizer_;
+  int step_ = 0;  // next buffer row
+  int64_t samples_ = 0;
+  torch::Tensor observations_, actions_, log_probs_, values_, rewards_, dones_;
+};
+
+}  // namespace hideseek_hider
