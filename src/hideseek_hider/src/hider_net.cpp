@@ -1,5 +1,7 @@
 #include "hideseek_hider/hider_net.h"
 
+#include <ATen/CPUGeneratorImpl.h>
+
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -48,7 +50,8 @@ HiderOutput HiderNetImpl::forward(const torch::Tensor& images) {
   return out;
 }
 
-void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo& info) {
+void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo& info,
+                    torch::optim::Optimizer* optimizer) {
   torch::serialize::OutputArchive archive;
   archive.write("architecture", c10::IValue(info.architecture));
   archive.write("image_height", c10::IValue(static_cast<int64_t>(info.image_height)));
@@ -58,6 +61,12 @@ void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo
   torch::serialize::OutputArchive weights;
   net->save(weights);
   archive.write("model", weights);
+  if (optimizer) {
+    torch::serialize::OutputArchive state;
+    optimizer->save(state);
+    archive.write("optimizer", state);
+    archive.write("rng", at::globalContext().defaultGenerator(at::kCPU).get_state());
+  }
   const std::string tmp = path + ".tmp";
   archive.save_to(tmp);
   if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot move " + tmp + " to " + path);
@@ -137,6 +146,22 @@ HiderNet loadCheckpoint(const std::string& path, int expected_height, int expect
   }
   if (info_out) *info_out = info;
   return net;
+}
+
+void loadTrainingState(const std::string& path, torch::optim::Optimizer& optimizer) {
+  auto archive = openArchive(path);
+  torch::serialize::InputArchive state;
+  torch::Tensor rng;
+  if (!archive.try_read("optimizer", state) || !archive.try_read("rng", rng)) {
+    throw std::runtime_error("checkpoint " + path + " holds no training state (optimiser, random generator)");
+  }
+  try {
+    optimizer.load(state);
+  } catch (const c10::Error& e) {
+    throw std::runtime_error("checkpoint " + path + ": optimiser state does not match: " + e.what_without_backtrace());
+  }
+  at::Generator generator = at::detail::getDefaultCPUGenerator();
+  generator.set_state(rng);
 }
 
 }  // namespace hideseek_hider

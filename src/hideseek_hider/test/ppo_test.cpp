@@ -85,4 +85,48 @@ TEST(PpoTrainer, LearnsATinyColourTaskWithinSeconds) {
   EXPECT_EQ(trainer.samplesSeen(), 25 * 16 * kArenas);
 }
 
+TEST(PpoTrainer, CheckpointRestoresNetworkOptimiserAndRandomState) {
+  torch::manual_seed(1);
+  PpoOptions o;
+  o.rollout_steps = 4;
+  o.minibatches = 2;
+  PpoTrainer trainer(HiderNet(36, 36), o, 2, torch::kCPU);
+  auto images = [] { return torch::randint(0, 256, {2, 36, 36, 3}, torch::kUInt8); };
+  for (int s = 0; s < 4; ++s) {
+    trainer.act(images());
+    trainer.record(torch::ones({2}), torch::zeros({2}));
+  }
+  trainer.update(images());
+  const std::string path = testing::TempDir() + "training.pt";
+  saveCheckpoint(path, trainer.net(), {kArchitecture, 36, 36, "basic", trainer.samplesSeen()}, &trainer.optimizer());
+  const torch::Tensor after_save = torch::rand({3});
+
+  CheckpointInfo info;
+  PpoTrainer resumed(loadCheckpoint(path, 36, 36, &info), o, 2, torch::kCPU);
+  loadTrainingState(path, resumed.optimizer());
+  EXPECT_EQ(info.steps, 8);
+  EXPECT_TRUE(torch::equal(torch::rand({3}), after_save)) << "random generator restored to the saved point";
+  const torch::Tensor probe = images();
+  EXPECT_TRUE(torch::equal(trainer.net()->forward(probe).logits, resumed.net()->forward(probe).logits));
+  // Adam's moment estimates came back too.
+  const auto& a = trainer.optimizer().state();
+  const auto& b = resumed.optimizer().state();
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_FALSE(a.empty());
+  for (const auto& [key, state] : a) {
+    const auto& sa = static_cast<const torch::optim::AdamParamState&>(*state);
+    bool found = false;
+    for (const auto& [key_b, state_b] : b) {
+      const auto& sb = static_cast<const torch::optim::AdamParamState&>(*state_b);
+      found = found || (sa.exp_avg().sizes() == sb.exp_avg().sizes() && torch::equal(sa.exp_avg(), sb.exp_avg()) &&
+                        torch::equal(sa.exp_avg_sq(), sb.exp_avg_sq()) && sa.step() == sb.step());
+    }
+    EXPECT_TRUE(found) << "optimiser state of a parameter was not restored";
+  }
+  // A checkpoint written without training state cannot resume training.
+  const std::string plain = testing::TempDir() + "plain.pt";
+  saveCheckpoint(plain, trainer.net(), {kArchitecture, 36, 36, "basic", 8});
+  EXPECT_THROW(loadTrainingState(plain, resumed.optimizer()), std::runtime_error);
+}
+
 }  // namespace hideseek_hider

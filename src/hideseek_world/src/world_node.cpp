@@ -238,8 +238,12 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
 void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
   const ros::WallTime now = ros::WallTime::now();
   if (!started_) {
-    // Start once both agents listen, so the first batch is not lost.
-    if (hider_obs_pub_.getNumSubscribers() == 0 || seeker_obs_pub_.getNumSubscribers() == 0) return;
+    // Start once both agents listen and both can answer, so neither the first batch nor the
+    // first answer is lost.
+    if (hider_obs_pub_.getNumSubscribers() == 0 || seeker_obs_pub_.getNumSubscribers() == 0 ||
+        hider_sub_.getNumPublishers() == 0 || seeker_sub_.getNumPublishers() == 0) {
+      return;
+    }
     started_ = true;
     ROS_INFO("world: both agents connected, starting lockstep");
     publishObservations();

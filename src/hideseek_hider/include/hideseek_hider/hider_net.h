@@ -50,7 +50,13 @@ struct CheckpointInfo {
 };
 
 // Writes the network and its description to `path` atomically (temporary file, then rename).
-void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo& info);
+// With an optimiser it also writes the optimiser state and the CPU random generator's state,
+// so that training resumes where it stopped.
+void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo& info,
+                    torch::optim::Optimizer* optimizer = nullptr);
+// Restores what saveCheckpoint wrote for training into `optimizer` and the CPU generator.
+// Throws std::runtime_error naming the file when the checkpoint holds no training state.
+void loadTrainingState(const std::string& path, torch::optim::Optimizer& optimizer);
 // Reads only the description; throws std::runtime_error naming the file when unreadable.
 CheckpointInfo readCheckpointInfo(const std::string& path);
 // Builds the network a checkpoint describes and loads its weights. Throws std::runtime_error

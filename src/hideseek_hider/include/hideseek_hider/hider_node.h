@@ -1,12 +1,14 @@
 // Wires a HiderPolicy to the world: answers every observation batch with one action batch.
 #pragma once
 
+#include <hideseek_msgs/ActionBatch.h>
 #include <hideseek_msgs/ObservationBatch.h>
 #include <ros/ros.h>
 
 #include <memory>
 
 #include "hideseek_hider/hider_policy.h"
+#include "hideseek_hider/training_run.h"
 
 namespace hideseek_hider {
 
@@ -17,8 +19,13 @@ class HiderNode {
  private:
   void onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& msg);
 
+  void startTraining(const ros::NodeHandle& pnh, const std::string& variant, torch::Device device);
+
   ros::NodeHandle nh_;
-  std::unique_ptr<HiderPolicy> policy_;
+  std::unique_ptr<HiderPolicy> policy_;  // random and policy modes
+  std::unique_ptr<TrainingRun> training_;  // train mode
+  ros::Time last_stamp_;                   // a batch the world re-sent gets the same answer again
+  hideseek_msgs::ActionBatch last_answer_;
   int image_height_ = 0;
   int image_width_ = 0;
   ros::Publisher actions_pub_;

@@ -1,0 +1,112 @@
+#include "hideseek_hider/training_run.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+namespace hideseek_hider {
+
+namespace {
+
+constexpr size_t kRecentEpisodes = 100;
+
+bool exists(const std::string& path) {
+  struct stat s;
+  return stat(path.c_str(), &s) == 0;
+}
+
+HiderNet startingNet(const TrainingOptions& o, bool* resumed) {
+  const std::string path = o.output_dir + "/checkpoint.pt";
+  *resumed = exists(path);
+  if (*resumed) return loadCheckpoint(path, o.image_height, o.image_width);
+  return HiderNet(o.image_height, o.image_width);
+}
+
+}  // namespace
+
+TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, int num_arenas, torch::Device device)
+    : options_(options),
+      num_arenas_(num_arenas),
+      trainer_(startingNet(options, &resumed_), ppo, num_arenas, device),
+      start_(std::chrono::steady_clock::now()),
+      last_checkpoint_(start_),
+      running_return_(num_arenas, 0.0),
+      running_length_(num_arenas, 0) {
+  if (mkdir(options.output_dir.c_str(), 0755) != 0 && errno != EEXIST) {
+    throw std::runtime_error("cannot create output folder " + options.output_dir + ": " + std::strerror(errno));
+  }
+  if (resumed_) {
+    loadTrainingState(checkpointPath(), trainer_.optimizer());
+    trainer_.setSamplesSeen(readCheckpointInfo(checkpointPath()).steps);
+  }
+  start_steps_ = trainer_.samplesSeen();
+  updates_ = start_steps_ / (static_cast<int64_t>(ppo.rollout_steps) * num_arenas);  // the log continues across resumes
+  const bool new_log = !exists(logPath());
+  log_.open(logPath(), std::ios::app);
+  if (!log_) throw std::runtime_error("cannot write " + logPath());
+  if (new_log) {
+    log_ << "update,steps,wall_s,steps_per_s,episodes,mean_length,mean_return,policy_loss,value_loss,entropy,"
+            "approx_kl,clip_fraction\n";
+  }
+}
+
+std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<float>& rewards,
+                                       const std::vector<uint8_t>& dones, std::optional<UpdateReport>* report) {
+  report->reset();
+  const int64_t n = num_arenas_;
+  const torch::Tensor obs =
+      torch::from_blob(const_cast<uint8_t*>(images), {n, options_.image_height, options_.image_width, 3}, torch::kUInt8)
+          .clone();
+  if (acted_) {
+    for (int64_t i = 0; i < n; ++i) {
+      running_return_[i] += rewards[i];
+      ++running_length_[i];
+      if (dones[i]) {
+        recent_.emplace_back(running_length_[i], running_return_[i]);
+        if (recent_.size() > kRecentEpisodes) recent_.pop_front();
+        ++episodes_;
+        running_return_[i] = 0.0;
+        running_length_[i] = 0;
+      }
+    }
+    const torch::Tensor r = torch::tensor(rewards);
+    const torch::Tensor d = torch::from_blob(const_cast<uint8_t*>(dones.data()), {n}, torch::kUInt8).to(torch::kFloat32);
+    if (trainer_.record(r, d)) {
+      UpdateReport rep;
+      rep.ppo = trainer_.update(obs);
+      rep.update = ++updates_;
+      rep.steps = trainer_.samplesSeen();
+      const auto now = std::chrono::steady_clock::now();
+      rep.wall_s = std::chrono::duration<double>(now - start_).count();
+      rep.steps_per_s = (rep.steps - start_steps_) / std::max(rep.wall_s, 1e-9);
+      rep.eta_s = std::max<int64_t>(0, options_.total_steps - rep.steps) / std::max(rep.steps_per_s, 1e-9);
+      rep.episodes = episodes_;
+      for (const auto& [length, ret] : recent_) {
+        rep.mean_length += static_cast<double>(length) / recent_.size();
+        rep.mean_return += ret / recent_.size();
+      }
+      log_ << rep.update << ',' << rep.steps << ',' << rep.wall_s << ',' << rep.steps_per_s << ',' << rep.episodes << ','
+           << rep.mean_length << ',' << rep.mean_return << ',' << rep.ppo.policy_loss << ',' << rep.ppo.value_loss << ','
+           << rep.ppo.entropy << ',' << rep.ppo.approx_kl << ',' << rep.ppo.clip_fraction << '\n';
+      log_.flush();
+      *report = rep;
+      if (std::chrono::duration<double>(now - last_checkpoint_).count() >= options_.checkpoint_interval_s || finished()) {
+        saveCheckpoint();
+      }
+    }
+  }
+  acted_ = true;
+  const torch::Tensor actions = trainer_.act(obs).to(torch::kUInt8).contiguous();
+  return std::vector<uint8_t>(actions.data_ptr<uint8_t>(), actions.data_ptr<uint8_t>() + n);
+}
+
+void TrainingRun::saveCheckpoint() {
+  const CheckpointInfo info{kArchitecture, options_.image_height, options_.image_width, options_.variant,
+                            trainer_.samplesSeen()};
+  hideseek_hider::saveCheckpoint(checkpointPath(), trainer_.net(), info, &trainer_.optimizer());
+  last_checkpoint_ = std::chrono::steady_clock::now();
+}
+
+}  // namespace hideseek_hider
