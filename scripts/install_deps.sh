@@ -14,6 +14,7 @@ PACKAGES=(
   libtorch-dev libopenblas0-pthread
   libgtest-dev googletest
   xvfb xauth imagemagick
+  python3-matplotlib
 )
 
 missing=()

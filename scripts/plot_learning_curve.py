@@ -1,0 +1,39 @@
+#!/usr/bin/python3
+"""Plots a training run's learning curve from its training_log.csv.
+
+usage: scripts/plot_learning_curve.py RUN_DIR/training_log.csv [OUTPUT.png]
+"""
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main():
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    path = sys.argv[1]
+    output = sys.argv[2] if len(sys.argv) > 2 else path.rsplit(".", 1)[0] + ".png"
+    with open(path) as f:
+        rows = [r for r in csv.DictReader(f)]
+    if not rows:
+        sys.exit("%s: no updates logged yet" % path)
+    steps = [int(r["steps"]) for r in rows]
+    fig, axes = plt.subplots(1, 3, figsize=(13, 3.6))
+    for ax, key, label in zip(axes, ["mean_length", "mean_return", "entropy"],
+                              ["episode length (steps, last 100)", "episode return (last 100)", "policy entropy"]):
+        ax.plot(steps, [float(r[key]) for r in rows], lw=1.2)
+        ax.set_xlabel("environment steps")
+        ax.set_title(label)
+        ax.grid(alpha=0.3)
+    fig.suptitle(path)
+    fig.tight_layout()
+    fig.savefig(output, dpi=110)
+    print("wrote", output)
+
+
+if __name__ == "__main__":
+    main()
