@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Integration test of training (issue 4): a short train.launch run with small images writes a
+# checkpoint and a log; the whole graph is then killed with SIGKILL and started again with the
+# same output folder, and training resumes from the checkpoint's step instead of starting over.
+# Writes an xunit result. usage: train_resume_test.sh XUNIT_OUTPUT
+set -uo pipefail
+out=$1
+here=$(cd "$(dirname "$0")" && pwd)
+run=$(mktemp -d /tmp/hideseek_train_test.XXXXXX)
+port=$((11600 + RANDOM % 200))
+export ROS_MASTER_URI=http://localhost:$port
+failures=()
+launch() {
+  setsid roslaunch -p "$port" hideseek_world train.launch variant:=tiny_basic num_arenas:=4 \
+    variant_config:="$here/data/tiny_basic.yaml" output_dir:="$run" checkpoint_interval:=0.01 steps:="$1" \
+    > "$run/launch_$1.log" 2>&1 &
+  echo $!
+}
+wait_for() {  # wait_for SECONDS COMMAND...
+  local end=$((SECONDS + $1)); shift
+  until "$@"; do [ $SECONDS -ge $end ] && return 1; sleep 0.5; done
+}
+log_lines() { grep -c . "$run/training_log.csv" 2>/dev/null || echo 0; }
+
+pid=$(launch 100000)
+if ! wait_for 120 test -s "$run/checkpoint.pt"; then failures+=("no checkpoint after the first updates"); fi
+wait_for 60 bash -c "[ \$(grep -c . '$run/training_log.csv' 2>/dev/null || echo 0) -ge 4 ]"
+kill -KILL -- -"$pid" 2>/dev/null
+sleep 1
+rows_before=$(($(log_lines) - 1))
+steps_before=$(tail -n 1 "$run/training_log.csv" | cut -d, -f2)
+[ "$rows_before" -ge 1 ] || failures+=("no training log rows before the kill")
+
+target=$((steps_before + 512))
+pid=$(launch "$target")
+wait_for 180 bash -c "! kill -0 $pid 2>/dev/null" || { kill -KILL -- -"$pid" 2>/dev/null; failures+=("the resumed run did not finish"); }
+grep -q "resumed at step" "$run/launch_$target.log" || failures+=("the second run did not resume")
+resumed_at=$(sed -n 's/.*resumed at step \([0-9]*\).*/\1/p' "$run/launch_$target.log" | head -n 1)
+[ -n "$resumed_at" ] && [ "$resumed_at" -ge "$((steps_before - 4 * 64))" ] && [ "$resumed_at" -le "$steps_before" ] ||
+  failures+=("resumed at step '${resumed_at}', the killed run had logged ${steps_before}")
+final_steps=$(tail -n 1 "$run/training_log.csv" | cut -d, -f2)
+[ "$final_steps" -ge "$target" ] || failures+=("final log row at ${final_steps} steps, wanted ${target}")
+
+name="KilledTrainingResumesFromItsCheckpoint"
+{
+  echo '<?xml version="1.0"?>'
+  echo "<testsuite name=\"train_resume\" tests=\"1\" failures=\"$([ ${#failures[@]} -eq 0 ] && echo 0 || echo 1)\" errors=\"0\">"
+  if [ ${#failures[@]} -eq 0 ]; then
+    echo "<testcase classname=\"train\" name=\"$name\"/>"
+  else
+    msg=$(printf '%s; ' "${failures[@]}" | sed 's/&/\&amp;/g; s/"/\&quot;/g; s/</\&lt;/g')
+    echo "<testcase classname=\"train\" name=\"$name\"><failure message=\"$msg\"/></testcase>"
+  fi
+  echo "</testsuite>"
+} > "$out"
+echo "steps before kill: $steps_before, resumed at: ${resumed_at:-none}, final: $final_steps"
+printf 'failure: %s\n' "${failures[@]}"
+rm -rf "$run"
+[ ${#failures[@]} -eq 0 ]
