@@ -59,6 +59,8 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   done_.assign(n, 0);
   outcome_.assign(n, 0);
   last_hider_actions_.assign(n, Action::kStay);
+  arena_maps_.resize(n);
+  arena_map_versions_.assign(n, 0);
   last_seeker_actions_.assign(n, Action::kStay);
   for (AgentChannel* c : {&hider_, &seeker_}) {
     c->pending.assign(n, std::nullopt);
@@ -328,7 +330,11 @@ void WorldNode::publishObservations() {
     seen.step.push_back(a.stepCount());
     seen.episode.push_back(world_->episode(i));
     seen.seed.push_back(a.seed());
-    seen.maps.push_back(toArenaMap(a.layout()));
+    if (arena_map_versions_[i] != a.layoutVersion() || arena_maps_[i].half_extent == 0.f) {
+      arena_maps_[i] = toArenaMap(a.layout());
+      arena_map_versions_[i] = a.layoutVersion();
+    }
+    seen.maps.push_back(arena_maps_[i]);
   }
   hider_obs_pub_.publish(obs);
   seeker_obs_pub_.publish(seen);

@@ -3,6 +3,7 @@
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <hideseek_msgs/ActionBatch.h>
+#include <hideseek_msgs/ArenaMap.h>
 #include <hideseek_msgs/Reset.h>
 #include <nav_msgs/Path.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -90,6 +91,9 @@ class WorldNode {
   nav_msgs::Path hider_path_, seeker_path_;
   sensor_msgs::CameraInfo camera_info_;
   std::vector<Action> last_hider_actions_, last_seeker_actions_;
+  // Each arena's map as the seeker receives it, rebuilt only when the arena's layout changes.
+  std::vector<hideseek_msgs::ArenaMap> arena_maps_;
+  std::vector<uint64_t> arena_map_versions_;
   // Realtime mode: physics frame within the decision step, its actions and finished results.
   int frame_ = 0;
   std::vector<Action> realtime_hider_, realtime_seeker_;
