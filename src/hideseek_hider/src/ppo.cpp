@@ -1,5 +1,6 @@
 #include "hideseek_hider/ppo.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "hideseek_world/yaml_fields.h"
@@ -14,6 +15,7 @@ PpoOptions loadPpoOptions(const std::string& path) {
   o.epochs = f.integer("epochs", o.epochs, 1, 1000);
   o.minibatches = f.integer("minibatches", o.minibatches, 1, 100000);
   o.learning_rate = f.number("learning_rate", o.learning_rate, 1e-8, 1.0);
+  o.anneal_learning_rate = f.boolean("anneal_learning_rate", o.anneal_learning_rate);
   o.adam_epsilon = f.number("adam_epsilon", o.adam_epsilon, 1e-12, 1.0);
   o.gamma = f.number("gamma", o.gamma, 0.0, 1.0);
   o.gae_lambda = f.number("gae_lambda", o.gae_lambda, 0.0, 1.0);
@@ -101,8 +103,20 @@ bool PpoTrainer::record(const torch::Tensor& rewards, const torch::Tensor& dones
   return ++step_ == options_.rollout_steps;
 }
 
+double PpoTrainer::currentLearningRate() const {
+  if (!options_.anneal_learning_rate || total_samples_ <= 0) return options_.learning_rate;
+  // samples_ already counts the rows recorded in the buffer; the rate is set when it began.
+  const int64_t rollout_start = samples_ - static_cast<int64_t>(step_) * num_arenas_;
+  const double left = 1.0 - static_cast<double>(rollout_start) / static_cast<double>(total_samples_);
+  return options_.learning_rate * std::clamp(left, 0.0, 1.0);
+}
+
 UpdateStats PpoTrainer::update(const torch::Tensor& next_observations) {
   if (step_ != options_.rollout_steps) throw std::logic_error("PPO: update before the buffer is full");
+  const double learning_rate = currentLearningRate();
+  for (auto& group : optimizer_.param_groups()) {
+    static_cast<torch::optim::AdamOptions&>(group.options()).lr(learning_rate);
+  }
   step_ = 0;
   torch::Tensor next_value;
   {
@@ -168,6 +182,7 @@ UpdateStats PpoTrainer::update(const torch::Tensor& next_observations) {
   stats.entropy /= count;
   stats.approx_kl /= count;
   stats.clip_fraction /= count;
+  stats.learning_rate = learning_rate;
   return stats;
 }
 

@@ -41,6 +41,7 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
     loadTrainingState(checkpointPath(), trainer_.optimizer());
     trainer_.setSamplesSeen(readCheckpointInfo(checkpointPath()).steps);
   }
+  trainer_.setTotalSamples(options.total_steps);
   start_steps_ = trainer_.samplesSeen();
   updates_ = start_steps_ / (static_cast<int64_t>(ppo.rollout_steps) * num_arenas);  // the log continues across resumes
   const bool new_log = !exists(logPath());
@@ -48,7 +49,7 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
   if (!log_) throw std::runtime_error("cannot write " + logPath());
   if (new_log) {
     log_ << "update,steps,wall_s,steps_per_s,episodes,mean_length,mean_return,policy_loss,value_loss,entropy,"
-            "approx_kl,clip_fraction\n";
+            "approx_kl,clip_fraction,learning_rate\n";
   }
 }
 
@@ -89,7 +90,8 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
       }
       log_ << rep.update << ',' << rep.steps << ',' << rep.wall_s << ',' << rep.steps_per_s << ',' << rep.episodes << ','
            << rep.mean_length << ',' << rep.mean_return << ',' << rep.ppo.policy_loss << ',' << rep.ppo.value_loss << ','
-           << rep.ppo.entropy << ',' << rep.ppo.approx_kl << ',' << rep.ppo.clip_fraction << '\n';
+           << rep.ppo.entropy << ',' << rep.ppo.approx_kl << ',' << rep.ppo.clip_fraction << ','
+           << rep.ppo.learning_rate << '\n';
       log_.flush();
       *report = rep;
       if (std::chrono::duration<double>(now - last_checkpoint_).count() >= options_.checkpoint_interval_s || finished()) {

@@ -19,7 +19,8 @@ struct PpoOptions {
   int rollout_steps = 64;       // decision steps per arena between updates
   int epochs = 4;               // passes over the buffer per update
   int minibatches = 4;          // the buffer is split into this many minibatches per pass
-  double learning_rate = 3e-4;  // Adam
+  double learning_rate = 3e-4;  // Adam; the initial rate when annealed
+  bool anneal_learning_rate = true;  // decay linearly to 0 over the run's total steps
   double adam_epsilon = 1e-5;
   double gamma = 0.99;          // discount per decision step
   double gae_lambda = 0.95;
@@ -55,6 +56,7 @@ struct UpdateStats {
   double entropy = 0.0;
   double approx_kl = 0.0;     // mean of (ratio - 1) - log ratio
   double clip_fraction = 0.0;  // share of samples whose ratio was clipped
+  double learning_rate = 0.0;  // the rate this update used
 };
 
 // Collects rollout_steps decision steps of every arena, then updates the network in place.
@@ -75,6 +77,10 @@ class PpoTrainer {
   torch::optim::Adam& optimizer() { return optimizer_; }
   int64_t samplesSeen() const { return samples_; }
   void setSamplesSeen(int64_t samples) { samples_ = samples; }
+  // The run's length in samples, which the annealed learning rate decays over (0: no annealing).
+  void setTotalSamples(int64_t total) { total_samples_ = total; }
+  // The rate the next update uses: learning_rate x the share of the run left when its rollout began.
+  double currentLearningRate() const;
 
  private:
   HiderNet net_;
@@ -84,6 +90,7 @@ class PpoTrainer {
   torch::optim::Adam optimizer_;
   int step_ = 0;  // next buffer row
   int64_t samples_ = 0;
+  int64_t total_samples_ = 0;
   torch::Tensor observations_, actions_, log_probs_, values_, rewards_, dones_;
 };
 
