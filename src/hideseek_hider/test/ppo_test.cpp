@@ -129,4 +129,43 @@ TEST(PpoTrainer, CheckpointRestoresNetworkOptimiserAndRandomState) {
   EXPECT_THROW(loadTrainingState(plain, resumed.optimizer()), std::runtime_error);
 }
 
+
+// The annealed rate falls linearly with the share of the run done when each rollout began, and a
+// resumed run (samples restored from its checkpoint) continues on the same schedule.
+TEST(PpoTrainer, LearningRateAnnealsLinearlyOverTheRunAndAcrossResumes) {
+  torch::manual_seed(3);
+  PpoOptions o;
+  o.rollout_steps = 4;
+  o.minibatches = 2;
+  o.epochs = 1;
+  o.learning_rate = 1e-3;
+  auto images = [] { return torch::randint(0, 256, {2, 36, 36, 3}, torch::kUInt8); };
+  auto runUpdate = [&](PpoTrainer& trainer) {
+    for (int s = 0; s < 4; ++s) {
+      trainer.act(images());
+      trainer.record(torch::zeros({2}), torch::zeros({2}));
+    }
+    return trainer.update(images()).learning_rate;
+  };
+  PpoTrainer trainer(HiderNet(36, 36), o, 2, torch::kCPU);
+  trainer.setTotalSamples(32);  // four updates of 8 samples
+  EXPECT_DOUBLE_EQ(runUpdate(trainer), 1e-3);
+  EXPECT_DOUBLE_EQ(runUpdate(trainer), 0.75e-3);
+  EXPECT_DOUBLE_EQ(runUpdate(trainer), 0.5e-3);
+  EXPECT_DOUBLE_EQ(static_cast<torch::optim::AdamOptions&>(trainer.optimizer().param_groups()[0].options()).lr(),
+                   0.5e-3)
+      << "the optimiser steps with the annealed rate";
+
+  PpoTrainer resumed(HiderNet(36, 36), o, 2, torch::kCPU);
+  resumed.setTotalSamples(32);
+  resumed.setSamplesSeen(trainer.samplesSeen());
+  EXPECT_DOUBLE_EQ(runUpdate(resumed), 0.25e-3);
+
+  o.anneal_learning_rate = false;
+  PpoTrainer constant(HiderNet(36, 36), o, 2, torch::kCPU);
+  constant.setTotalSamples(32);
+  runUpdate(constant);
+  EXPECT_DOUBLE_EQ(runUpdate(constant), 1e-3);
+}
+
 }  // namespace hideseek_hider
