@@ -16,7 +16,9 @@ int main(int argc, char** argv) {
   const int episodes = pnh.param("episodes", 100);
   const std::string output_dir = pnh.param<std::string>("output_dir", ".");
   const std::string variant = pnh.param<std::string>("variant", "unknown");
-  const std::string policy = pnh.param<std::string>("policy", "random");
+  // A greedy evaluation is reported as a policy of its own.
+  const std::string policy =
+      pnh.param<std::string>("policy", "random") + (pnh.param("greedy", false) ? " (greedy)" : "");
   if (episodes < 1) {
     ROS_FATAL("evaluator: parameter %s must be at least 1", pnh.resolveName("episodes").c_str());
     return 1;
