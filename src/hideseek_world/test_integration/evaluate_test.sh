@@ -2,6 +2,7 @@
 # Integration test of evaluate.launch (issue 4) on the shipped basic policy: both files appear,
 # the CSV has the documented columns and 100 episodes. usage: evaluate_test.sh XUNIT_OUTPUT
 set -uo pipefail
+source "$(dirname "$0")/xunit.sh"
 out=$1
 policy="$(cd "$(dirname "$0")/.." && pwd)/policies/basic.pt"
 dir=$(mktemp -d /tmp/hideseek_eval_test.XXXXXX)
@@ -18,17 +19,7 @@ else
     failures+=("evaluation.csv header differs")
   [ "$(tail -n 1 "$dir/evaluation.csv" 2>/dev/null | cut -d, -f3)" = "100" ] || failures+=("not 100 episodes")
 fi
-name="EvaluateLaunchWritesBothFilesFor100Episodes"
-{
-  echo '<?xml version="1.0"?>'
-  echo "<testsuite name=\"evaluate\" tests=\"1\" failures=\"$([ ${#failures[@]} -eq 0 ] && echo 0 || echo 1)\" errors=\"0\">"
-  if [ ${#failures[@]} -eq 0 ]; then
-    echo "<testcase classname=\"evaluate\" name=\"$name\"/>"
-  else
-    echo "<testcase classname=\"evaluate\" name=\"$name\"><failure message=\"$(printf '%s; ' "${failures[@]}")\"/></testcase>"
-  fi
-  echo "</testsuite>"
-} > "$out"
+write_xunit "$out" evaluate EvaluateLaunchWritesBothFilesFor100Episodes "${failures[@]}"
 cat "$dir/evaluation.md" 2>/dev/null
 printf 'failure: %s\n' "${failures[@]}"
 rm -rf "$dir"

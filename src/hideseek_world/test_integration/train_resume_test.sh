@@ -4,6 +4,7 @@
 # same output folder, and training resumes from the checkpoint's step instead of starting over.
 # Writes an xunit result. usage: train_resume_test.sh XUNIT_OUTPUT
 set -uo pipefail
+source "$(dirname "$0")/xunit.sh"
 out=$1
 here=$(cd "$(dirname "$0")" && pwd)
 run=$(mktemp -d /tmp/hideseek_train_test.XXXXXX)
@@ -41,18 +42,7 @@ resumed_at=$(sed -n 's/.*resumed at step \([0-9]*\).*/\1/p' "$run/launch_$target
 final_steps=$(tail -n 1 "$run/training_log.csv" | cut -d, -f2)
 [ "$final_steps" -ge "$target" ] || failures+=("final log row at ${final_steps} steps, wanted ${target}")
 
-name="KilledTrainingResumesFromItsCheckpoint"
-{
-  echo '<?xml version="1.0"?>'
-  echo "<testsuite name=\"train_resume\" tests=\"1\" failures=\"$([ ${#failures[@]} -eq 0 ] && echo 0 || echo 1)\" errors=\"0\">"
-  if [ ${#failures[@]} -eq 0 ]; then
-    echo "<testcase classname=\"train\" name=\"$name\"/>"
-  else
-    msg=$(printf '%s; ' "${failures[@]}" | sed 's/&/\&amp;/g; s/"/\&quot;/g; s/</\&lt;/g')
-    echo "<testcase classname=\"train\" name=\"$name\"><failure message=\"$msg\"/></testcase>"
-  fi
-  echo "</testsuite>"
-} > "$out"
+write_xunit "$out" train_resume KilledTrainingResumesFromItsCheckpoint "${failures[@]}"
 echo "steps before kill: $steps_before, resumed at: ${resumed_at:-none}, final: $final_steps"
 printf 'failure: %s\n' "${failures[@]}"
 rm -rf "$run"
