@@ -2,22 +2,16 @@
 
 #include <cstring>
 
+#include "hideseek_world/hash_uniform.h"
+
 namespace hideseek_hider {
 
-double reproducibleUniform(uint32_t seed, uint32_t step, uint32_t arena, uint32_t salt) {
-  // splitmix64 finaliser over the packed inputs.
-  uint64_t z = (static_cast<uint64_t>(seed) << 32 | step) ^ (static_cast<uint64_t>(arena) << 17 | salt) * 0x632be59bd9b4e019ULL;
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  z ^= z >> 31;
-  return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
-}
+using hideseek_world::hashUniform;
 
 std::vector<uint8_t> RandomHiderPolicy::act(const std::vector<ArenaObservation>& batch) {
   std::vector<uint8_t> actions(batch.size());
   for (size_t i = 0; i < batch.size(); ++i) {
-    actions[i] = static_cast<uint8_t>(reproducibleUniform(batch[i].seed, batch[i].step, batch[i].arena, 1) * kActions);
+    actions[i] = static_cast<uint8_t>(hashUniform(batch[i].seed, batch[i].step, batch[i].arena, 1) * kActions);
   }
   return actions;
 }
@@ -45,7 +39,7 @@ std::vector<uint8_t> NetworkHiderPolicy::act(const std::vector<ArenaObservation>
       continue;
     }
     // Inverse-CDF sampling with a reproducible draw.
-    const double u = reproducibleUniform(batch[i].seed, batch[i].step, batch[i].arena, 2);
+    const double u = hashUniform(batch[i].seed, batch[i].step, batch[i].arena, 2);
     double cumulative = 0.0;
     actions[i] = kActions - 1;
     for (int a = 0; a < kActions; ++a) {

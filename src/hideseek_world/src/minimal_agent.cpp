@@ -9,17 +9,13 @@
 #include <cstdint>
 
 #include "hideseek_world/agent.h"
+#include "hideseek_world/hash_uniform.h"
 #include "hideseek_world/topic_names.h"
 
 namespace {
 
 uint8_t randomAction(uint32_t seed, uint32_t step, uint32_t arena, uint32_t salt) {
-  // splitmix64 finaliser: cheap, well mixed.
-  uint64_t z = (static_cast<uint64_t>(seed) << 32 | step) ^ (static_cast<uint64_t>(arena) << 17) ^ salt;
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return static_cast<uint8_t>((z ^ (z >> 31)) % hideseek_world::kNumActions);
+  return static_cast<uint8_t>(hideseek_world::hashUniform(seed, step, arena, salt) * hideseek_world::kNumActions);
 }
 
 template <typename Batch>

@@ -18,10 +18,6 @@ struct ArenaObservation {
   uint32_t arena = 0;
 };
 
-// A uniform draw in [0, 1) that depends only on (seed, step, arena, salt): re-sent steps and
-// re-run evaluations draw the same actions.
-double reproducibleUniform(uint32_t seed, uint32_t step, uint32_t arena, uint32_t salt);
-
 class HiderPolicy {
  public:
   virtual ~HiderPolicy() = default;
