@@ -50,6 +50,32 @@ TEST(SeekerPolicy, ReachesAGoalBehindTheCrossFromLastKnownPosition) {
   EXPECT_EQ(seeker.mode(), SeekerMode::kPatrol);
 }
 
+// The planner is kept across episodes on the same map; a seeker reset onto another layout
+// must plan around that layout's obstacles, and back again.
+TEST(SeekerPolicy, PlansOnTheLayoutOfTheCurrentEpisode) {
+  Layout open;
+  open.waypoints = {{0.0, 0.0}};
+  const Layout cross = deterministicLayout();
+  const AgentState s{{1.5, -1.5}, hideseek_world::kPi / 2, 0.0};
+  const Vec2 behind{1.5, 1.5};
+  auto pathLength = [&](SeekerPolicy& seeker) {
+    seeker.act({s, behind});
+    double length = 0.0;
+    Vec2 from = s.position;
+    for (const Vec2& p : seeker.path()) length += hideseek_world::distance(from, p), from = p;
+    return length;
+  };
+  SeekerPolicy seeker({});
+  seeker.reset(open, 1);
+  EXPECT_NEAR(pathLength(seeker), 3.0, 0.2) << "straight across open ground";
+  seeker.reset(cross, 2);
+  EXPECT_GT(pathLength(seeker), 4.0) << "around the cross's east arm";
+  seeker.reset(cross, 3);
+  EXPECT_GT(pathLength(seeker), 4.0);
+  seeker.reset(open, 4);
+  EXPECT_NEAR(pathLength(seeker), 3.0, 0.2);
+}
+
 TEST(SeekerPolicy, ChasesOnSightAndTurnsTowardsTheHider) {
   const Layout layout = deterministicLayout();
   SeekerPolicy seeker({});

@@ -55,6 +55,7 @@ class SeekerPolicy {
 
   SeekerOptions options_;
   std::unique_ptr<GridPlanner> planner_;
+  Layout planned_layout_;  // the layout planner_ was built for
   std::vector<Vec2> waypoints_;
   size_t next_waypoint_ = 0;
   std::optional<Vec2> last_known_;
