@@ -2,7 +2,6 @@
 
 #include <ATen/CPUGeneratorImpl.h>
 
-#include <cmath>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -33,23 +32,6 @@ HiderNetImpl::HiderNetImpl(int image_height, int image_width) : image_height_(im
   actor_out_ = register_module("actor_out", torch::nn::Linear(512, kActions));
   critic_hidden_ = register_module("critic_hidden", torch::nn::Linear(kFeatures, 512));
   critic_out_ = register_module("critic_out", torch::nn::Linear(512, 1));
-
-  // Orthogonal initialisation as in the PPO baselines: gain sqrt(2) for hidden layers, a tiny
-  // actor head so the first policy is nearly uniform, and a unit-gain critic head; zero biases.
-  const torch::NoGradGuard no_grad;
-  const auto init = [](torch::Tensor& weight, torch::Tensor& bias, double gain) {
-    torch::nn::init::orthogonal_(weight, gain);
-    torch::nn::init::zeros_(bias);
-  };
-  const double hidden = std::sqrt(2.0);
-  init(conv1_->weight, conv1_->bias, hidden);
-  init(conv2_->weight, conv2_->bias, hidden);
-  init(conv3_->weight, conv3_->bias, hidden);
-  init(features_->weight, features_->bias, hidden);
-  init(actor_hidden_->weight, actor_hidden_->bias, hidden);
-  init(critic_hidden_->weight, critic_hidden_->bias, hidden);
-  init(actor_out_->weight, actor_out_->bias, 0.01);
-  init(critic_out_->weight, critic_out_->bias, 1.0);
 }
 
 HiderOutput HiderNetImpl::forward(const torch::Tensor& images) {
