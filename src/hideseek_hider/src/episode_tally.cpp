@@ -8,7 +8,7 @@ void EpisodeTally::observe(size_t arena, bool done, bool survived, uint32_t step
   if (arenas_.size() <= arena) arenas_.resize(arena + 1);
   ArenaState& a = arenas_[arena];
   // An episode already under way when we started listening is not counted: its start is unknown.
-  if (done && a.seen && a.seed < wanted_ && !records_.count(a.seed)) {
+  if (done && a.seen && a.seed >= first_seed_ && a.seed - first_seed_ < wanted_ && !records_.count(a.seed)) {
     records_[a.seed] = {a.seed, a.step + 1, survived};
   }
   if (!a.seen && step != 0) return;  // wait for a fresh episode

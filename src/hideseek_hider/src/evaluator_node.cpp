@@ -1,5 +1,6 @@
-// Watches the hider's observation stream until the episodes with seeds 0..N-1 have ended, then
-// writes evaluation.md and evaluation.csv to ~output_dir, prints the table and exits.
+// Watches the hider's observation stream until the episodes with seeds first_seed..first_seed+N-1
+// have ended, then writes evaluation.md and evaluation.csv to ~output_dir, prints the table and
+// exits.
 #include <hideseek_msgs/GameState.h>
 #include <hideseek_msgs/ObservationBatch.h>
 #include <ros/ros.h>
@@ -14,16 +15,21 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "evaluator");
   ros::NodeHandle nh, pnh("~");
   const int episodes = pnh.param("episodes", 100);
+  const int first_seed = pnh.param("first_seed", 0);
   const std::string output_dir = pnh.param<std::string>("output_dir", ".");
   const std::string variant = pnh.param<std::string>("variant", "unknown");
-  // A greedy evaluation is reported as a policy of its own.
-  const std::string policy =
-      pnh.param<std::string>("policy", "random") + (pnh.param("greedy", false) ? " (greedy)" : "");
+  // A network policy is evaluated either greedily or sampling its actions: the table says which.
+  std::string policy = pnh.param<std::string>("policy", "random");
+  if (policy != "random") policy += pnh.param("greedy", true) ? " (greedy)" : " (sampled)";
   if (episodes < 1) {
     ROS_FATAL("evaluator: parameter %s must be at least 1", pnh.resolveName("episodes").c_str());
     return 1;
   }
-  hideseek_hider::EpisodeTally tally(static_cast<uint32_t>(episodes));
+  if (first_seed < 0) {
+    ROS_FATAL("evaluator: parameter %s must not be negative", pnh.resolveName("first_seed").c_str());
+    return 1;
+  }
+  hideseek_hider::EpisodeTally tally(static_cast<uint32_t>(episodes), static_cast<uint32_t>(first_seed));
   size_t reported = 0;
   auto sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
       hideseek_world::kHiderObservationsTopic, 10, [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) {

@@ -41,7 +41,7 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
     const torch::Device device = deviceFrom(pnh.param<std::string>("device", "cpu"), pnh.resolveName("device"));
     CheckpointInfo info;
     HiderNet net = loadCheckpoint(policy, image_height_, image_width_, &info);
-    policy_ = std::make_unique<NetworkHiderPolicy>(net, device, pnh.param("greedy", false));
+    policy_ = std::make_unique<NetworkHiderPolicy>(net, device, pnh.param("greedy", true));
     ROS_INFO("hider: policy %s (variant '%s', %ld training steps) on %s", policy.c_str(), info.variant.c_str(),
              static_cast<long>(info.steps), device.str().c_str());
   } else if (mode == "train") {

@@ -33,6 +33,21 @@ TEST(EpisodeTally, IgnoresTheEpisodeUnderWayWhenListeningStarts) {
   EXPECT_EQ(tally.collected(), 0u);
 }
 
+// A validation set of other seeds (first_seed 1000) counts only its own episodes.
+TEST(EpisodeTally, CountsOnlyTheSeedsFromFirstSeedOn) {
+  EpisodeTally tally(2, 1000);
+  for (uint32_t seed : {3u, 999u, 1000u, 1002u, 1001u}) {
+    tally.observe(0, false, false, 0, seed);
+    tally.observe(0, false, false, 1, seed);
+    tally.observe(0, true, false, 0, seed + 5000);
+  }
+  ASSERT_TRUE(tally.complete());
+  EXPECT_EQ(tally.collected(), 2u);
+  EXPECT_EQ(tally.records().count(1000), 1u);
+  EXPECT_EQ(tally.records().count(1001), 1u);
+  EXPECT_EQ(tally.records().at(1000).living_steps, 2u);
+}
+
 TEST(EpisodeTally, WritesTheCsvColumnsTheIssueNames) {
   const std::string csv = evaluationCsv("basic", "random", {100, 123.456, 0.05});
   EXPECT_EQ(csv, "variant,policy,episodes,avg_living_steps,success_rate\nbasic,random,100,123.46,0.0500\n");

@@ -1,4 +1,5 @@
-// Collects the outcomes of the episodes with seeds 0..N-1 from a stream of observation batches.
+// Collects the outcomes of the episodes with seeds first_seed..first_seed+N-1 from a stream of
+// observation batches.
 #pragma once
 
 #include <cstdint>
@@ -24,7 +25,7 @@ struct EvaluationSummary {
 // previous step and seed, so a done flag tells which seeded episode ended after how many steps.
 class EpisodeTally {
  public:
-  explicit EpisodeTally(uint32_t episodes) : wanted_(episodes) {}
+  explicit EpisodeTally(uint32_t episodes, uint32_t first_seed = 0) : wanted_(episodes), first_seed_(first_seed) {}
 
   void observe(size_t arena, bool done, bool survived, uint32_t step, uint32_t seed);
   bool complete() const { return records_.size() >= wanted_; }
@@ -39,6 +40,7 @@ class EpisodeTally {
     uint32_t seed = 0;
   };
   uint32_t wanted_;
+  uint32_t first_seed_;
   std::vector<ArenaState> arenas_;
   std::map<uint32_t, EpisodeRecord> records_;
 };
