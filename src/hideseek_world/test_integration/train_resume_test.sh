@@ -22,19 +22,27 @@ wait_for() {  # wait_for SECONDS COMMAND...
   until "$@"; do [ $SECONDS -ge $end ] && return 1; sleep 0.5; done
 }
 log_lines() { grep -c . "$run/training_log.csv" 2>/dev/null || echo 0; }
+# roslaunch starts every node in a session of its own, so killing roslaunch's process group
+# leaves the nodes running: collect the whole tree first, then SIGKILL all of it at once.
+tree() { local p; for p in $(pgrep -P "$1"); do tree "$p"; done; echo "$1"; }
+kill_graph() {
+  local pids
+  pids=$(tree "$1")
+  kill -KILL $pids 2>/dev/null
+  wait_for 10 bash -c "! kill -0 $(echo $pids) 2>/dev/null"
+}
 
 pid=$(launch 100000)
 if ! wait_for 120 test -s "$run/checkpoint.pt"; then failures+=("no checkpoint after the first updates"); fi
 wait_for 60 bash -c "[ \$(grep -c . '$run/training_log.csv' 2>/dev/null || echo 0) -ge 4 ]"
-kill -KILL -- -"$pid" 2>/dev/null
-sleep 1
+kill_graph "$pid"
 rows_before=$(($(log_lines) - 1))
 steps_before=$(tail -n 1 "$run/training_log.csv" | cut -d, -f2)
 [ "$rows_before" -ge 1 ] || failures+=("no training log rows before the kill")
 
 target=$((steps_before + 512))
 pid=$(launch "$target")
-wait_for 180 bash -c "! kill -0 $pid 2>/dev/null" || { kill -KILL -- -"$pid" 2>/dev/null; failures+=("the resumed run did not finish"); }
+wait_for 180 bash -c "! kill -0 $pid 2>/dev/null" || { kill_graph "$pid"; failures+=("the resumed run did not finish"); }
 grep -q "resumed at step" "$run/launch_$target.log" || failures+=("the second run did not resume")
 resumed_at=$(sed -n 's/.*resumed at step \([0-9]*\).*/\1/p' "$run/launch_$target.log" | head -n 1)
 [ -n "$resumed_at" ] && [ "$resumed_at" -ge "$((steps_before - 4 * 64))" ] && [ "$resumed_at" -le "$steps_before" ] ||
