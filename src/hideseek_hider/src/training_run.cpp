@@ -94,7 +94,8 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
            << rep.ppo.learning_rate << '\n';
       log_.flush();
       *report = rep;
-      if (std::chrono::duration<double>(now - last_checkpoint_).count() >= options_.checkpoint_interval_s || finished()) {
+      // The final checkpoint is the node's to write once finished().
+      if (std::chrono::duration<double>(now - last_checkpoint_).count() >= options_.checkpoint_interval_s) {
         saveCheckpoint();
       }
     }
