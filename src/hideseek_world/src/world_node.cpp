@@ -60,7 +60,7 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   outcome_.assign(n, 0);
   last_hider_actions_.assign(n, Action::kStay);
   arena_maps_.resize(n);
-  arena_map_versions_.assign(n, 0);
+  arena_map_versions_.assign(n, ~uint64_t{0});  // no map built yet
   last_seeker_actions_.assign(n, Action::kStay);
   for (AgentChannel* c : {&hider_, &seeker_}) {
     c->pending.assign(n, std::nullopt);
@@ -330,7 +330,7 @@ void WorldNode::publishObservations() {
     seen.step.push_back(a.stepCount());
     seen.episode.push_back(world_->episode(i));
     seen.seed.push_back(a.seed());
-    if (arena_map_versions_[i] != a.layoutVersion() || arena_maps_[i].half_extent == 0.f) {
+    if (arena_map_versions_[i] != a.layoutVersion()) {
       arena_maps_[i] = toArenaMap(a.layout());
       arena_map_versions_[i] = a.layoutVersion();
     }
