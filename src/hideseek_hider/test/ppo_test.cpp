@@ -129,7 +129,6 @@ TEST(PpoTrainer, CheckpointRestoresNetworkOptimiserAndRandomState) {
   EXPECT_THROW(loadTrainingState(plain, resumed.optimizer()), std::runtime_error);
 }
 
-
 // The annealed rate falls linearly with the share of the run done when each rollout began, and a
 // resumed run (samples restored from its checkpoint) continues on the same schedule.
 TEST(PpoTrainer, LearningRateAnnealsLinearlyOverTheRunAndAcrossResumes) {
