@@ -11,7 +11,7 @@ using hideseek_world::hashUniform;
 std::vector<uint8_t> RandomHiderPolicy::act(const std::vector<ArenaObservation>& batch) {
   std::vector<uint8_t> actions(batch.size());
   for (size_t i = 0; i < batch.size(); ++i) {
-    actions[i] = static_cast<uint8_t>(hashUniform(batch[i].seed, batch[i].step, batch[i].arena, 1) * kActions);
+    actions[i] = hideseek_world::hashAction(batch[i].seed, batch[i].step, hideseek_world::kSaltRandomHider);
   }
   return actions;
 }
@@ -39,7 +39,7 @@ std::vector<uint8_t> NetworkHiderPolicy::act(const std::vector<ArenaObservation>
       continue;
     }
     // Inverse-CDF sampling with a reproducible draw.
-    const double u = hashUniform(batch[i].seed, batch[i].step, batch[i].arena, 2);
+    const double u = hashUniform(batch[i].seed, batch[i].step, hideseek_world::kSaltSampledPolicy);
     double cumulative = 0.0;
     actions[i] = kActions - 1;
     for (int a = 0; a < kActions; ++a) {

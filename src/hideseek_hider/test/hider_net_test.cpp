@@ -104,7 +104,7 @@ TEST(Checkpoint, TruncatedFileIsRefused) {
 TEST(HiderPolicy, RandomPolicyIsReproducibleAndUsesAllActions) {
   RandomHiderPolicy policy;
   std::vector<ArenaObservation> batch;
-  for (uint32_t s = 0; s < 500; ++s) batch.push_back({nullptr, s, s % 7, s % 3});
+  for (uint32_t s = 0; s < 500; ++s) batch.push_back({nullptr, s, s % 7});
   const auto a = policy.act(batch), b = policy.act(batch);
   EXPECT_EQ(a, b);
   std::vector<int> counts(kActions);
@@ -117,8 +117,28 @@ TEST(HiderPolicy, NetworkPolicySamplesReproduciblyFromItsLogits) {
   NetworkHiderPolicy policy(net, torch::kCPU, false);
   const torch::Tensor images = randomImages(8, 84, 84);
   std::vector<ArenaObservation> batch;
-  for (uint32_t i = 0; i < 8; ++i) batch.push_back({images.data_ptr<uint8_t>() + i * 84 * 84 * 3, 9, 4, i});
+  for (uint32_t i = 0; i < 8; ++i) batch.push_back({images.data_ptr<uint8_t>() + i * 84 * 84 * 3, 9, 4});
   EXPECT_EQ(policy.act(batch), policy.act(batch));
+}
+
+// Seed s must give the same episode with 1, 4 or 16 arenas: an arena's draw depends on its
+// episode seed and step only, not on where the arena sits in the batch.
+TEST(HiderPolicy, DrawsDependOnSeedAndStepNotOnTheArenaIndex) {
+  HiderNet net(84, 84);
+  NetworkHiderPolicy sampled(net, torch::kCPU, false);
+  RandomHiderPolicy random;
+  const torch::Tensor images = randomImages(16, 84, 84);
+  std::vector<ArenaObservation> batch;
+  for (uint32_t i = 0; i < 16; ++i) batch.push_back({images.data_ptr<uint8_t>() + i * 84 * 84 * 3, 100 + i, 7 * i});
+  const auto all_random = random.act(batch), all_sampled = sampled.act(batch);
+  for (uint32_t i = 0; i < 16; ++i) {
+    EXPECT_EQ(random.act({batch[i]})[0], all_random[i]) << "arena " << i;
+    EXPECT_EQ(sampled.act({batch[i]})[0], all_sampled[i]) << "arena " << i;
+  }
+  // Reordering the batch moves the answers with their episodes.
+  std::vector<ArenaObservation> reversed(batch.rbegin(), batch.rend());
+  const auto r = random.act(reversed);
+  for (uint32_t i = 0; i < 16; ++i) EXPECT_EQ(r[15 - i], all_random[i]);
 }
 
 }  // namespace hideseek_hider

@@ -112,4 +112,11 @@ void Arena::updateLabels() {
   labels_.obstacle_in_view = obstacleInView(hider_, layout_, options_);
 }
 
+SeekerPerception seekerPerception(const Arena& arena) {
+  SeekerPerception p;
+  p.pose = arena.seeker();
+  if (arena.labels().seeker_sees_hider) p.hider_position = arena.hider().position;
+  return p;
+}
+
 }  // namespace hideseek_world

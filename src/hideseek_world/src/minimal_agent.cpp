@@ -1,5 +1,5 @@
 // A minimal agent for tests and benchmarks: answers every observation batch at once with
-// uniformly random actions. Each action is a hash of (episode seed, step, arena), so an
+// uniformly random actions. Each action is a hash of (episode seed, step), so an
 // answer re-sent for the same step is the same answer and runs are reproducible.
 #include <hideseek_msgs/ActionBatch.h>
 #include <hideseek_msgs/ObservationBatch.h>
@@ -14,16 +14,12 @@
 
 namespace {
 
-uint8_t randomAction(uint32_t seed, uint32_t step, uint32_t arena, uint32_t salt) {
-  return static_cast<uint8_t>(hideseek_world::hashUniform(seed, step, arena, salt) * hideseek_world::kNumActions);
-}
-
 template <typename Batch>
 hideseek_msgs::ActionBatch answer(const Batch& obs, uint32_t salt) {
   hideseek_msgs::ActionBatch out;
   out.header.stamp = obs.header.stamp;
   out.step = obs.step;
-  for (uint32_t i = 0; i < obs.num_arenas; ++i) out.actions.push_back(randomAction(obs.seed[i], obs.step[i], i, salt));
+  for (uint32_t i = 0; i < obs.num_arenas; ++i) out.actions.push_back(hideseek_world::hashAction(obs.seed[i], obs.step[i], salt));
   return out;
 }
 

@@ -318,13 +318,13 @@ void WorldNode::publishObservations() {
     obs.hider_sees_seeker.push_back(a.labels().hider_sees_seeker);
     obs.seeker_sees_hider.push_back(a.labels().seeker_sees_hider);
     obs.obstacle_in_view.push_back(a.labels().obstacle_in_view);
-    seen.pose.push_back(toPose2D(a.seeker()));
-    seen.sees_hider.push_back(a.labels().seeker_sees_hider);
+    const SeekerPerception perception = seekerPerception(a);
+    seen.pose.push_back(toPose2D(perception.pose));
+    seen.sees_hider.push_back(perception.hider_position.has_value());
     geometry_msgs::Point hider;
-    // The seeker learns where the hider is only while it sees it.
-    if (a.labels().seeker_sees_hider) {
-      hider.x = a.hider().position.x;
-      hider.y = a.hider().position.y;
+    if (perception.hider_position) {
+      hider.x = perception.hider_position->x;
+      hider.y = perception.hider_position->y;
     }
     seen.hider_position.push_back(hider);
     seen.step.push_back(a.stepCount());

@@ -15,7 +15,6 @@ struct ArenaObservation {
   const uint8_t* image = nullptr;  // H x W x 3, rgb8
   uint32_t seed = 0;               // episode seed
   uint32_t step = 0;
-  uint32_t arena = 0;
 };
 
 class HiderPolicy {

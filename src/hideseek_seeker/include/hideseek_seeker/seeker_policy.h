@@ -10,6 +10,7 @@
 
 #include "hideseek_seeker/grid_planner.h"
 #include "hideseek_world/agent.h"
+#include "hideseek_world/arena.h"
 
 namespace hideseek_seeker {
 
@@ -18,11 +19,7 @@ using hideseek_world::AgentState;
 
 enum class SeekerPolicyType { kDeterministic, kStochastic };
 
-// What the seeker perceives at one step. hider_position is set only while it sees the hider.
-struct SeekerPerception {
-  AgentState pose;
-  std::optional<Vec2> hider_position;
-};
+using hideseek_world::SeekerPerception;
 
 struct SeekerOptions {
   SeekerPolicyType type = SeekerPolicyType::kDeterministic;

@@ -73,4 +73,12 @@ class Arena {
   uint64_t layout_version_ = 0;
 };
 
+// What the seeker may act on (SPEC section 3): its own pose, and the hider's position only while
+// it sees the hider. Every seeker, in process or behind the world node, gets exactly this.
+struct SeekerPerception {
+  AgentState pose;
+  std::optional<Vec2> hider_position;
+};
+SeekerPerception seekerPerception(const Arena& arena);
+
 }  // namespace hideseek_world
