@@ -31,6 +31,14 @@ EvaluationSummary EpisodeTally::summary() const {
   return s;
 }
 
+std::string episodesCsv(const std::map<uint32_t, EpisodeRecord>& records) {
+  std::string out = "seed,living_steps,outcome\n";
+  for (const auto& [seed, r] : records) {
+    out += std::to_string(seed) + ',' + std::to_string(r.living_steps) + ',' + (r.survived ? "survived" : "captured") + '\n';
+  }
+  return out;
+}
+
 std::string evaluationCsv(const std::string& variant, const std::string& policy, const EvaluationSummary& s) {
   char line[512];
   std::snprintf(line, sizeof(line), "%s,%s,%d,%.2f,%.4f\n", variant.c_str(), policy.c_str(), s.episodes,

@@ -1,6 +1,6 @@
 // Watches the hider's observation stream until the episodes with seeds first_seed..first_seed+N-1
-// have ended, then writes evaluation.md and evaluation.csv to ~output_dir, prints the table and
-// exits.
+// have ended, then writes evaluation.md, evaluation.csv and episodes.csv (one row per episode)
+// to ~output_dir, prints the table and exits.
 #include <hideseek_msgs/GameState.h>
 #include <hideseek_msgs/ObservationBatch.h>
 #include <ros/ros.h>
@@ -45,9 +45,10 @@ int main(int argc, char** argv) {
   if (!tally.complete()) return 1;
   const auto summary = tally.summary();
   std::ofstream(output_dir + "/evaluation.csv") << hideseek_hider::evaluationCsv(variant, policy, summary);
+  std::ofstream(output_dir + "/episodes.csv") << hideseek_hider::episodesCsv(tally.records());
   const std::string md = hideseek_hider::evaluationMarkdown(variant, policy, summary);
   std::ofstream(output_dir + "/evaluation.md") << md;
   std::cout << md << std::flush;
-  ROS_INFO("evaluator: wrote %s/evaluation.md and evaluation.csv", output_dir.c_str());
+  ROS_INFO("evaluator: wrote %s/evaluation.md, evaluation.csv and episodes.csv", output_dir.c_str());
   return 0;
 }

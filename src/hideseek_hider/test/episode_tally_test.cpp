@@ -53,4 +53,18 @@ TEST(EpisodeTally, WritesTheCsvColumnsTheIssueNames) {
   EXPECT_EQ(csv, "variant,policy,episodes,avg_living_steps,success_rate\nbasic,random,100,123.46,0.0500\n");
 }
 
+TEST(EpisodeTally, WritesOneRowPerEpisodeInSeedOrder) {
+  EpisodeTally tally(2, 10);
+  // Arena 1 ends seed 11 (captured at its third step) before arena 0 ends seed 10 (survives 2 steps).
+  tally.observe(0, false, false, 0, 10);
+  tally.observe(1, false, false, 0, 11);
+  tally.observe(0, false, false, 1, 10);
+  tally.observe(1, false, false, 1, 11);
+  tally.observe(1, false, false, 2, 11);
+  tally.observe(1, true, false, 0, 13);
+  tally.observe(0, true, true, 0, 12);
+  ASSERT_TRUE(tally.complete());
+  EXPECT_EQ(episodesCsv(tally.records()), "seed,living_steps,outcome\n10,2,survived\n11,3,captured\n");
+}
+
 }  // namespace hideseek_hider

@@ -1,10 +1,15 @@
 #!/usr/bin/env bash
-# Integration test of evaluate.launch (issue 4) on the shipped basic policy: both files appear,
-# the CSV has the documented columns and 100 episodes. usage: evaluate_test.sh XUNIT_OUTPUT
+# Integration tests of evaluate.launch. usage: evaluate_test.sh XUNIT_OUTPUT
+# 1. On the shipped basic policy: evaluation.md, evaluation.csv and episodes.csv appear, with the
+#    documented columns and 100 episodes.
+# 2. The random hider through the ROS graph (4 arenas) plays exactly the episodes that the
+#    in-process calibration table plays (random_hider_table): the calibration is the real game,
+#    and an episode's draws do not depend on the number of arenas.
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
 out=$1
-policy="$(cd "$(dirname "$0")/.." && pwd)/policies/basic.pt"
+root="$(cd "$(dirname "$0")/.." && pwd)"
+policy="$root/policies/basic.pt"
 dir=$(mktemp -d /tmp/hideseek_eval_test.XXXXXX)
 port=$((11800 + RANDOM % 100))
 failures=()
@@ -18,9 +23,26 @@ else
   [ "$(head -n 1 "$dir/evaluation.csv" 2>/dev/null)" = "variant,policy,episodes,avg_living_steps,success_rate" ] ||
     failures+=("evaluation.csv header differs")
   [ "$(tail -n 1 "$dir/evaluation.csv" 2>/dev/null | cut -d, -f3)" = "100" ] || failures+=("not 100 episodes")
+  [ "$(head -n 1 "$dir/episodes.csv" 2>/dev/null)" = "seed,living_steps,outcome" ] || failures+=("episodes.csv header differs")
+  [ "$(tail -n +2 "$dir/episodes.csv" 2>/dev/null | wc -l)" = "100" ] || failures+=("episodes.csv has not 100 rows")
 fi
-write_xunit "$out" evaluate EvaluateLaunchWritesBothFilesFor100Episodes "${failures[@]}"
+write_xunit "$out" evaluate EvaluateLaunchWritesItsFilesFor100Episodes "${failures[@]}"
 cat "$dir/evaluation.md" 2>/dev/null
 printf 'failure: %s\n' "${failures[@]}"
+shipped_failed=${#failures[@]}
+
+failures=()
+mkdir -p "$dir/random"
+timeout 300 roslaunch -p "$port" hideseek_world evaluate.launch variant:=stochasticseeker policy:=random episodes:=40 \
+  num_arenas:=4 output_dir:="$dir/random" > "$dir/random/launch.log" 2>&1
+"$(catkin_find hideseek_seeker random_hider_table --first-only 2>/dev/null || echo random_hider_table)" \
+  --episodes 40 --episodes-csv "$dir/in_process.csv" stochasticseeker > /dev/null
+if [ ! -s "$dir/random/episodes.csv" ]; then
+  failures+=("the graph's evaluation wrote no episodes.csv")
+elif ! diff "$dir/random/episodes.csv" "$dir/in_process.csv" > "$dir/diff.txt"; then
+  failures+=("graph and in-process random hider differ: $(head -c 300 "$dir/diff.txt" | tr '\n' ' ')")
+fi
+write_xunit "${out%.xml}-random_hider.xml" evaluate RandomHiderThroughTheGraphPlaysTheCalibratedEpisodes "${failures[@]}"
+printf 'failure: %s\n' "${failures[@]}"
 rm -rf "$dir"
-[ ${#failures[@]} -eq 0 ]
+[ "$shipped_failed" -eq 0 ] && [ ${#failures[@]} -eq 0 ]

@@ -45,6 +45,10 @@ class EpisodeTally {
   std::map<uint32_t, EpisodeRecord> records_;
 };
 
+// episodes.csv: one row per episode in seed order (columns seed,living_steps,outcome; outcome is
+// captured or survived), so that single episodes can be compared and replayed.
+std::string episodesCsv(const std::map<uint32_t, EpisodeRecord>& records);
+
 // evaluation.md and evaluation.csv (columns variant,policy,episodes,avg_living_steps,success_rate).
 std::string evaluationCsv(const std::string& variant, const std::string& policy, const EvaluationSummary& s);
 std::string evaluationMarkdown(const std::string& variant, const std::string& policy, const EvaluationSummary& s);

@@ -1,0 +1,41 @@
+// The uniformly random hider against the scripted seeker, played in process with the same cores,
+// draws and step order as the ROS graph in lockstep (no rendering: a random hider needs no
+// image). This is what calibrates a map against the paper's random-hider figures.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "hideseek_seeker/seeker_policy.h"
+#include "hideseek_world/game_options.h"
+#include "hideseek_world/map.h"
+
+namespace hideseek_seeker {
+
+struct RandomHiderEpisode {
+  uint32_t seed = 0;
+  int living_steps = 0;      // decision steps until capture, or max_steps
+  bool survived = false;
+  bool seen_at_start = false;  // the seeker saw the hider at step 0
+};
+
+// The seeker of a variant, as the seeker node builds it.
+SeekerOptions seekerOptionsFor(const hideseek_world::VariantConfig& variant, double grid_resolution = 0.1);
+
+// Plays the episodes with seeds first_seed .. first_seed + episodes - 1, in seed order.
+std::vector<RandomHiderEpisode> playRandomHider(const hideseek_world::VariantConfig& variant,
+                                                std::shared_ptr<const hideseek_world::MapSpec> map,
+                                                uint32_t first_seed, int episodes);
+
+// Summary of a set of episodes.
+struct RandomHiderSummary {
+  int episodes = 0;
+  double avg_living_steps = 0.0;
+  double median_living_steps = 0.0;
+  double success_rate = 0.0;        // fraction that survived max_steps
+  double seen_at_start_rate = 0.0;  // fraction in which the seeker saw the hider at step 0
+};
+RandomHiderSummary summarize(const std::vector<RandomHiderEpisode>& episodes);
+
+}  // namespace hideseek_seeker

@@ -1,0 +1,73 @@
+#include "hideseek_seeker/random_hider_game.h"
+
+#include <algorithm>
+
+#include "hideseek_world/arena.h"
+#include "hideseek_world/hash_uniform.h"
+
+namespace hideseek_seeker {
+
+using hideseek_world::Action;
+using hideseek_world::Arena;
+
+SeekerOptions seekerOptionsFor(const hideseek_world::VariantConfig& variant, double grid_resolution) {
+  SeekerOptions o;
+  o.type = variant.seeker_policy == "stochastic" ? SeekerPolicyType::kStochastic : SeekerPolicyType::kDeterministic;
+  o.radius = variant.game.agent_radius;
+  o.turn_per_step = variant.game.seeker.turn_rate * variant.game.stepDuration();
+  o.grid_resolution = grid_resolution;
+  return o;
+}
+
+std::vector<RandomHiderEpisode> playRandomHider(const hideseek_world::VariantConfig& variant,
+                                                std::shared_ptr<const hideseek_world::MapSpec> map,
+                                                uint32_t first_seed, int episodes) {
+  Arena arena(variant.game, map);
+  SeekerPolicy seeker(seekerOptionsFor(variant));
+  std::vector<RandomHiderEpisode> out;
+  for (int e = 0; e < episodes; ++e) {
+    RandomHiderEpisode episode;
+    episode.seed = first_seed + static_cast<uint32_t>(e);
+    arena.reset(episode.seed);
+    seeker.reset(arena.layout(), episode.seed);
+    episode.seen_at_start = arena.labels().seeker_sees_hider;
+    // The world node's lockstep order: both agents answer the observation of step t, then the
+    // arena advances one decision step.
+    for (;;) {
+      const auto step = static_cast<uint32_t>(arena.stepCount());
+      const Action seeker_action = seeker.act(hideseek_world::seekerPerception(arena));
+      const auto hider_action =
+          static_cast<Action>(hideseek_world::hashAction(episode.seed, step, hideseek_world::kSaltRandomHider));
+      const hideseek_world::StepResult r = arena.step(hider_action, seeker_action);
+      if (r.done()) {
+        episode.living_steps = arena.stepCount();
+        episode.survived = r.outcome == hideseek_world::Outcome::kSurvived;
+        break;
+      }
+    }
+    out.push_back(episode);
+  }
+  return out;
+}
+
+RandomHiderSummary summarize(const std::vector<RandomHiderEpisode>& episodes) {
+  RandomHiderSummary s;
+  s.episodes = static_cast<int>(episodes.size());
+  if (episodes.empty()) return s;
+  std::vector<int> steps;
+  for (const auto& e : episodes) {
+    steps.push_back(e.living_steps);
+    s.avg_living_steps += e.living_steps;
+    s.success_rate += e.survived;
+    s.seen_at_start_rate += e.seen_at_start;
+  }
+  s.avg_living_steps /= s.episodes;
+  s.success_rate /= s.episodes;
+  s.seen_at_start_rate /= s.episodes;
+  std::sort(steps.begin(), steps.end());
+  const size_t n = steps.size();
+  s.median_living_steps = n % 2 ? steps[n / 2] : 0.5 * (steps[n / 2 - 1] + steps[n / 2]);
+  return s;
+}
+
+}  // namespace hideseek_seeker
