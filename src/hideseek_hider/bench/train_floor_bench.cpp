@@ -1,8 +1,11 @@
 // The floor of training speed: the hider network and PPO update in one process on synthetic
-// 84 x 84 observations (no ROS, no rendering). Prints `train_floor_samples_per_s N`.
+// 84 x 84 observations (no ROS, no rendering).
+// Usage: train_floor_bench CONFIG ARENAS UPDATES THREADS PRECISION(auto|fp32|bf16)
+// Prints `# precision: <reason>` and `train_floor_<fp32|bf16>_samples_per_s N`.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 #include "hideseek_hider/ppo.h"
 
@@ -11,10 +14,15 @@ int main(int argc, char** argv) {
   const int arenas = argc > 2 ? std::atoi(argv[2]) : 16;
   const int updates = argc > 3 ? std::atoi(argv[3]) : 3;
   const int threads = argc > 4 ? std::atoi(argv[4]) : 2;
+  const std::string precision = argc > 5 ? argv[5] : "auto";
   torch::set_num_threads(threads);
   torch::manual_seed(0);
+  const hideseek_hider::PrecisionChoice choice = hideseek_hider::choosePrecision(
+      hideseek_hider::parsePrecision(precision, "PRECISION"), torch::kCPU, hideseek_hider::detectCpuBf16());
   const hideseek_hider::PpoOptions options = hideseek_hider::loadPpoOptions(config);
-  hideseek_hider::PpoTrainer trainer(hideseek_hider::HiderNet(84, 84), options, arenas, torch::kCPU);
+  hideseek_hider::HiderNet net(84, 84);
+  net->setPrecision(choice.precision);
+  hideseek_hider::PpoTrainer trainer(net, options, arenas, torch::kCPU);
   auto run = [&](int n) {
     for (int u = 0; u < n; ++u) {
       bool full = false;
@@ -30,6 +38,8 @@ int main(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   run(updates);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("train_floor_samples_per_s %.0f\n", (trainer.samplesSeen() - before) / seconds);
+  std::printf("# precision: %s\n", choice.reason.c_str());
+  std::printf("train_floor_%s_samples_per_s %.0f\n", hideseek_hider::precisionName(choice.precision),
+              (trainer.samplesSeen() - before) / seconds);
   return 0;
 }

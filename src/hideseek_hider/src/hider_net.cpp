@@ -38,15 +38,17 @@ HiderOutput HiderNetImpl::forward(const torch::Tensor& images) {
   TORCH_CHECK(images.dim() == 4 && images.size(1) == image_height_ && images.size(2) == image_width_ &&
                   images.size(3) == 3,
               "hider network expects [B, ", image_height_, ", ", image_width_, ", 3] images, got ", images.sizes());
+  const AutocastScope autocast(precision_, conv1_->weight.device());
   torch::Tensor x = images.permute({0, 3, 1, 2}).to(torch::kFloat32).div(255.0);
   x = leaky(conv1_->forward(x));
   x = leaky(conv2_->forward(x));
   x = leaky(conv3_->forward(x));
   const torch::Tensor features = leaky(features_->forward(x.flatten(1)));
+  // Losses, softmax and probes work in fp32 whatever precision the layers ran in.
   HiderOutput out;
-  out.features = features;
-  out.logits = actor_out_->forward(leaky(actor_hidden_->forward(features)));
-  out.value = critic_out_->forward(leaky(critic_hidden_->forward(features))).squeeze(1);
+  out.features = features.to(torch::kFloat32);
+  out.logits = actor_out_->forward(leaky(actor_hidden_->forward(features))).to(torch::kFloat32);
+  out.value = critic_out_->forward(leaky(critic_hidden_->forward(features))).squeeze(1).to(torch::kFloat32);
   return out;
 }
 
@@ -58,6 +60,8 @@ void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo
   archive.write("image_width", c10::IValue(static_cast<int64_t>(info.image_width)));
   archive.write("variant", c10::IValue(info.variant));
   archive.write("steps", c10::IValue(info.steps));
+  archive.write("wall_s", c10::IValue(info.wall_s));
+  archive.write("episodes", c10::IValue(info.episodes));
   torch::serialize::OutputArchive weights;
   net->save(weights);
   archive.write("model", weights);
@@ -97,6 +101,9 @@ CheckpointInfo infoOf(torch::serialize::InputArchive& archive, const std::string
   info.image_width = static_cast<int>(read("image_width").toInt());
   info.variant = read("variant").toStringRef();
   info.steps = read("steps").toInt();
+  // Progress entries are younger than the format: a checkpoint without them starts from zero.
+  if (archive.try_read("wall_s", v)) info.wall_s = v.toDouble();
+  if (archive.try_read("episodes", v)) info.episodes = v.toInt();
   return info;
 }
 

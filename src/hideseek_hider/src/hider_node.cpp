@@ -22,6 +22,12 @@ torch::Device deviceFrom(const std::string& name, const std::string& param) {
   throw std::runtime_error("parameter " + param + " must be 'cpu' or 'cuda', got '" + name + "'");
 }
 
+PrecisionChoice precisionFor(const ros::NodeHandle& pnh, torch::Device device) {
+  const PrecisionRequest request =
+      parsePrecision(pnh.param<std::string>("precision", "auto"), pnh.resolveName("precision"));
+  return choosePrecision(request, device, detectCpuBf16());
+}
+
 }  // namespace
 
 HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
@@ -39,13 +45,16 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
     ROS_INFO("hider: uniformly random policy");
   } else if (mode == "policy") {
     const torch::Device device = deviceFrom(pnh.param<std::string>("device", "cpu"), pnh.resolveName("device"));
+    const PrecisionChoice precision = precisionFor(pnh, device);
     CheckpointInfo info;
     HiderNet net = loadCheckpoint(policy, image_height_, image_width_, &info);
+    net->setPrecision(precision.precision);
     policy_ = std::make_unique<NetworkHiderPolicy>(net, device, pnh.param("greedy", true));
-    ROS_INFO("hider: policy %s (variant '%s', %ld training steps) on %s", policy.c_str(), info.variant.c_str(),
-             static_cast<long>(info.steps), device.str().c_str());
+    ROS_INFO("hider: policy %s (variant '%s', %ld training steps) on %s in %s", policy.c_str(), info.variant.c_str(),
+             static_cast<long>(info.steps), device.str().c_str(), precision.reason.c_str());
   } else if (mode == "train") {
-    startTraining(pnh, v.name, deviceFrom(pnh.param<std::string>("device", "cpu"), pnh.resolveName("device")));
+    const torch::Device device = deviceFrom(pnh.param<std::string>("device", "cpu"), pnh.resolveName("device"));
+    startTraining(pnh, v.name, device, precisionFor(pnh, device));
   } else {
     throw std::runtime_error("parameter " + pnh.resolveName("mode") + " must be random, policy or train, got '" + mode + "'");
   }
@@ -54,9 +63,11 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
                                     ros::TransportHints().tcpNoDelay());
 }
 
-void HiderNode::startTraining(const ros::NodeHandle& pnh, const std::string& variant, torch::Device device) {
+void HiderNode::startTraining(const ros::NodeHandle& pnh, const std::string& variant, torch::Device device,
+                              const PrecisionChoice& precision) {
   TrainingOptions o;
   o.variant = variant;
+  o.precision = precision.precision;
   o.image_height = image_height_;
   o.image_width = image_width_;
   if (!pnh.getParam("output_dir", o.output_dir) || o.output_dir.empty()) {
@@ -78,9 +89,18 @@ void HiderNode::startTraining(const ros::NodeHandle& pnh, const std::string& var
   const int arenas = pnh.param("num_arenas", 16);
   torch::manual_seed(static_cast<uint64_t>(pnh.param("seed", 0)));  // a resumed run restores its own state
   training_ = std::make_unique<TrainingRun>(o, ppo, arenas, device);
-  ROS_INFO("hider: training %s PPO on %s for %ld steps into %s (%s at step %ld)", variant.c_str(),
-           device.str().c_str(), static_cast<long>(o.total_steps), o.output_dir.c_str(),
-           training_->resumed() ? "resumed" : "started", static_cast<long>(training_->steps()));
+  ROS_INFO("hider: training %s PPO on %s in %s", variant.c_str(), device.str().c_str(), precision.reason.c_str());
+  if (training_->totalSteps() != o.total_steps) {
+    ROS_INFO("hider: %ld steps asked, training %ld: whole rollouts of %d arenas x %d steps, so that every sample "
+             "collected is trained on", static_cast<long>(o.total_steps), static_cast<long>(training_->totalSteps()),
+             arenas, ppo.rollout_steps);
+  }
+  ROS_INFO("hider: %s at step %ld of %ld, into %s", training_->resumed() ? "resumed" : "started",
+           static_cast<long>(training_->steps()), static_cast<long>(training_->totalSteps()), o.output_dir.c_str());
+  if (training_->droppedLogRows() > 0) {
+    ROS_INFO("hider: dropped %d log rows of updates made after the checkpoint (lost with the stopped run)",
+             training_->droppedLogRows());
+  }
 }
 
 void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& msg) {
@@ -106,9 +126,9 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
     std::optional<UpdateReport> report;
     out.actions = training_->step(msg->images.data(), msg->rewards, msg->done, &report);
     if (report) {
-      ROS_INFO("train: %ld/%ld steps, %.0f steps/s, ETA %.0f min, %ld episodes, length %.1f, return %.3f, entropy %.3f",
-               static_cast<long>(report->steps), static_cast<long>(training_->totalSteps()),
-               report->steps_per_s, report->eta_s / 60.0, static_cast<long>(report->episodes), report->mean_length,
+      ROS_INFO("train: %ld/%ld steps, %.0f steps/s, ETA %s, %ld episodes, length %.1f, return %.3f, entropy %.3f",
+               static_cast<long>(report->steps), static_cast<long>(training_->totalSteps()), report->steps_per_s,
+               formatDuration(report->eta_s).c_str(), static_cast<long>(report->episodes), report->mean_length,
                report->mean_return, report->ppo.entropy);
     }
     if (training_->finished()) {
@@ -121,7 +141,7 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
   } else {
     std::vector<ArenaObservation> batch(n);
     for (size_t i = 0; i < n; ++i) {
-      batch[i] = {msg->images.data() + i * bytes, msg->seed[i], msg->step[i], static_cast<uint32_t>(i)};
+      batch[i] = {msg->images.data() + i * bytes, msg->seed[i], msg->step[i]};
     }
     out.actions = policy_->act(batch);
   }

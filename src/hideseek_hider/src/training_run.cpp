@@ -2,7 +2,11 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
@@ -20,28 +24,78 @@ bool exists(const std::string& path) {
 HiderNet startingNet(const TrainingOptions& o, bool* resumed) {
   const std::string path = o.output_dir + "/checkpoint.pt";
   *resumed = exists(path);
-  if (*resumed) return loadCheckpoint(path, o.image_height, o.image_width);
-  return HiderNet(o.image_height, o.image_width);
+  HiderNet net = *resumed ? loadCheckpoint(path, o.image_height, o.image_width) : HiderNet(o.image_height, o.image_width);
+  net->setPrecision(o.precision);
+  return net;
+}
+
+TrainingOptions roundedToRollouts(TrainingOptions o, const PpoOptions& ppo, int num_arenas) {
+  o.total_steps = wholeRollouts(o.total_steps, static_cast<int64_t>(ppo.rollout_steps) * num_arenas);
+  return o;
 }
 
 }  // namespace
 
+int64_t wholeRollouts(int64_t requested, int64_t rollout) { return (requested + rollout - 1) / rollout * rollout; }
+
+std::string formatDuration(double seconds) {
+  const auto total = static_cast<int64_t>(std::llround(std::max(0.0, seconds)));
+  char text[64];
+  if (total < 60) {
+    std::snprintf(text, sizeof(text), "%ld s", static_cast<long>(total));
+  } else if (total < 3600) {
+    std::snprintf(text, sizeof(text), "%ld min %02ld s", static_cast<long>(total / 60), static_cast<long>(total % 60));
+  } else {
+    const int64_t minutes = (total + 30) / 60;
+    std::snprintf(text, sizeof(text), "%ld h %02ld min", static_cast<long>(minutes / 60), static_cast<long>(minutes % 60));
+  }
+  return text;
+}
+
+int truncateLogAfter(const std::string& path, int64_t steps) {
+  std::ifstream in(path);
+  if (!in) return 0;
+  std::string header, line, kept;
+  std::getline(in, header);
+  int dropped = 0;
+  while (std::getline(in, line)) {
+    // Column 2 is the step count (update,steps,...).
+    const size_t comma = line.find(',');
+    const int64_t row_steps = comma == std::string::npos ? 0 : std::atoll(line.c_str() + comma + 1);
+    if (row_steps > steps) {
+      ++dropped;
+    } else {
+      kept += line + '\n';
+    }
+  }
+  in.close();
+  if (dropped == 0) return 0;
+  const std::string tmp = path + ".tmp";
+  std::ofstream(tmp) << header << '\n' << kept;
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot move " + tmp + " to " + path);
+  return dropped;
+}
+
 TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, int num_arenas, torch::Device device)
-    : options_(options),
+    : options_(roundedToRollouts(options, ppo, num_arenas)),
       num_arenas_(num_arenas),
-      trainer_(startingNet(options, &resumed_), ppo, num_arenas, device),
+      trainer_(startingNet(options_, &resumed_), ppo, num_arenas, device),
       start_(std::chrono::steady_clock::now()),
       last_checkpoint_(start_),
       running_return_(num_arenas, 0.0),
       running_length_(num_arenas, 0) {
-  if (mkdir(options.output_dir.c_str(), 0755) != 0 && errno != EEXIST) {
-    throw std::runtime_error("cannot create output folder " + options.output_dir + ": " + std::strerror(errno));
+  if (mkdir(options_.output_dir.c_str(), 0755) != 0 && errno != EEXIST) {
+    throw std::runtime_error("cannot create output folder " + options_.output_dir + ": " + std::strerror(errno));
   }
   if (resumed_) {
     loadTrainingState(checkpointPath(), trainer_.optimizer());
-    trainer_.setSamplesSeen(readCheckpointInfo(checkpointPath()).steps);
+    const CheckpointInfo info = readCheckpointInfo(checkpointPath());
+    trainer_.setSamplesSeen(info.steps);
+    start_wall_s_ = info.wall_s;
+    episodes_ = info.episodes;
+    dropped_log_rows_ = truncateLogAfter(logPath(), info.steps);
   }
-  trainer_.setTotalSamples(options.total_steps);
+  trainer_.setTotalSamples(options_.total_steps);
   start_steps_ = trainer_.samplesSeen();
   updates_ = start_steps_ / (static_cast<int64_t>(ppo.rollout_steps) * num_arenas);  // the log continues across resumes
   const bool new_log = !exists(logPath());
@@ -80,8 +134,9 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
       rep.update = ++updates_;
       rep.steps = trainer_.samplesSeen();
       const auto now = std::chrono::steady_clock::now();
-      rep.wall_s = std::chrono::duration<double>(now - start_).count();
-      rep.steps_per_s = (rep.steps - start_steps_) / std::max(rep.wall_s, 1e-9);
+      const double process_s = std::chrono::duration<double>(now - start_).count();
+      rep.wall_s = start_wall_s_ + process_s;
+      rep.steps_per_s = (rep.steps - start_steps_) / std::max(process_s, 1e-9);
       rep.eta_s = std::max<int64_t>(0, options_.total_steps - rep.steps) / std::max(rep.steps_per_s, 1e-9);
       rep.episodes = episodes_;
       for (const auto& [length, ret] : recent_) {
@@ -106,8 +161,11 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
 }
 
 void TrainingRun::saveCheckpoint() {
-  const CheckpointInfo info{kArchitecture, options_.image_height, options_.image_width, options_.variant,
-                            trainer_.samplesSeen()};
+  const auto now = std::chrono::steady_clock::now();
+  CheckpointInfo info{kArchitecture, options_.image_height, options_.image_width, options_.variant,
+                      trainer_.samplesSeen()};
+  info.wall_s = start_wall_s_ + std::chrono::duration<double>(now - start_).count();
+  info.episodes = episodes_;
   hideseek_hider::saveCheckpoint(checkpointPath(), trainer_.net(), info, &trainer_.optimizer());
   last_checkpoint_ = std::chrono::steady_clock::now();
 }

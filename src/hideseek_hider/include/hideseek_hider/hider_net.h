@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include "hideseek_hider/precision.h"
+
 namespace hideseek_hider {
 
 // Named outputs: index-free reading of what the network computed.
@@ -25,8 +27,13 @@ class HiderNetImpl : public torch::nn::Module {
  public:
   HiderNetImpl(int image_height, int image_width);
 
-  // images: [B, H, W, 3] uint8 (as the world sends them), scaled to [0, 1] here.
+  // images: [B, H, W, 3] uint8 (as the world sends them), scaled to [0, 1] here. Runs in the
+  // network's precision; the outputs are always fp32.
   HiderOutput forward(const torch::Tensor& images);
+
+  // bf16 autocasts every forward pass (and so its backward); the parameters stay fp32.
+  void setPrecision(Precision precision) { precision_ = precision; }
+  Precision precision() const { return precision_; }
 
   int imageHeight() const { return image_height_; }
   int imageWidth() const { return image_width_; }
@@ -34,6 +41,7 @@ class HiderNetImpl : public torch::nn::Module {
  private:
   int image_height_;
   int image_width_;
+  Precision precision_ = Precision::kFp32;
   torch::nn::Conv2d conv1_{nullptr}, conv2_{nullptr}, conv3_{nullptr};
   torch::nn::Linear features_{nullptr}, actor_hidden_{nullptr}, actor_out_{nullptr}, critic_hidden_{nullptr},
       critic_out_{nullptr};
@@ -47,6 +55,9 @@ struct CheckpointInfo {
   int image_width = 0;
   std::string variant;
   int64_t steps = 0;  // environment steps trained
+  // Training progress, so that a resumed run's log continues where the checkpoint left it.
+  double wall_s = 0.0;   // wall seconds of training up to this checkpoint, over all resumes
+  int64_t episodes = 0;  // episodes finished up to this checkpoint
 };
 
 // Writes the network and its description to `path` atomically (temporary file, then rename).

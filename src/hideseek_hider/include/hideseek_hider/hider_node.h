@@ -19,7 +19,8 @@ class HiderNode {
  private:
   void onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& msg);
 
-  void startTraining(const ros::NodeHandle& pnh, const std::string& variant, torch::Device device);
+  void startTraining(const ros::NodeHandle& pnh, const std::string& variant, torch::Device device,
+                     const PrecisionChoice& precision);
 
   ros::NodeHandle nh_;
   std::unique_ptr<HiderPolicy> policy_;  // random and policy modes

@@ -16,21 +16,35 @@ namespace hideseek_hider {
 
 struct TrainingOptions {
   std::string output_dir;               // checkpoint.pt and training_log.csv live here
-  int64_t total_steps = 1000000;        // environment steps (decisions of all arenas together)
+  // Environment steps (decisions of all arenas together), rounded up to whole rollouts so that
+  // every collected sample is trained on and the checkpoint's count is what was trained.
+  int64_t total_steps = 1000000;
   double checkpoint_interval_s = 300.0;  // wall seconds between checkpoints
   std::string variant;
   int image_height = 84;
   int image_width = 84;
+  Precision precision = Precision::kFp32;  // of the network's passes; weights stay fp32
 };
+
+// The run's length: `requested` steps rounded up to whole rollouts of `rollout` samples.
+int64_t wholeRollouts(int64_t requested, int64_t rollout);
+
+// "42 s", "12 min 05 s", "3 h 07 min": an ETA or a duration that reads at every scale.
+std::string formatDuration(double seconds);
+
+// Drops the rows of a training log whose step count is beyond `steps` (updates a killed run logged
+// after its last checkpoint), so that a resumed run continues the log without duplicates.
+// Returns the number of rows dropped; the header stays. The file is rewritten atomically.
+int truncateLogAfter(const std::string& path, int64_t steps);
 
 // What one PPO update reports: the console line and the CSV row come from it.
 struct UpdateReport {
   int64_t update = 0;
   int64_t steps = 0;
-  double wall_s = 0.0;
-  double steps_per_s = 0.0;  // over this run's wall time since start or resume
+  double wall_s = 0.0;       // over the whole run, resumes included
+  double steps_per_s = 0.0;  // over this process's wall time since start or resume
   double eta_s = 0.0;
-  int64_t episodes = 0;      // finished since the run started (this process)
+  int64_t episodes = 0;      // finished over the whole run, resumes included
   double mean_length = 0.0;  // over the last 100 finished episodes
   double mean_return = 0.0;
   UpdateStats ppo;
@@ -47,6 +61,8 @@ class TrainingRun {
                             const std::vector<uint8_t>& dones, std::optional<UpdateReport>* report);
   bool finished() const { return trainer_.samplesSeen() >= options_.total_steps; }
   bool resumed() const { return resumed_; }
+  // Log rows of updates lost with the killed process, dropped at resume.
+  int droppedLogRows() const { return dropped_log_rows_; }
   int64_t steps() const { return trainer_.samplesSeen(); }
   int64_t totalSteps() const { return options_.total_steps; }
   // Writes output_dir/checkpoint.pt atomically.
@@ -58,10 +74,12 @@ class TrainingRun {
   TrainingOptions options_;
   int num_arenas_;
   bool resumed_ = false;
+  int dropped_log_rows_ = 0;
   PpoTrainer trainer_;
   bool acted_ = false;
   int64_t updates_ = 0;
   int64_t start_steps_ = 0;
+  double start_wall_s_ = 0.0;  // wall seconds the run had trained before this process
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_checkpoint_;
   std::vector<double> running_return_;

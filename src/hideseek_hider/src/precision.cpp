@@ -1,0 +1,99 @@
+#include "hideseek_hider/precision.h"
+
+#include <ATen/autocast_mode.h>
+
+#include <stdexcept>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <cpuid.h>
+#endif
+
+namespace hideseek_hider {
+
+PrecisionRequest parsePrecision(const std::string& text, const std::string& param) {
+  if (text == "auto") return PrecisionRequest::kAuto;
+  if (text == "fp32") return PrecisionRequest::kFp32;
+  if (text == "bf16") return PrecisionRequest::kBf16;
+  throw std::invalid_argument("parameter " + param + " must be auto, fp32 or bf16, got '" + text + "'");
+}
+
+const char* precisionName(Precision precision) { return precision == Precision::kBf16 ? "bf16" : "fp32"; }
+
+CpuBf16Support detectCpuBf16() {
+  CpuBf16Support s;
+#if defined(__x86_64__) || defined(__i386__)
+  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+  if (__get_cpuid_max(0, nullptr) < 7) return s;
+  __cpuid_count(7, 0, eax, ebx, ecx, edx);
+  s.amx_bf16 = (edx >> 22) & 1u;  // CPUID.(EAX=7,ECX=0):EDX[22] AMX-BF16
+  const unsigned max_subleaf = eax;
+  if (max_subleaf >= 1) {
+    __cpuid_count(7, 1, eax, ebx, ecx, edx);
+    s.avx512_bf16 = (eax >> 5) & 1u;  // CPUID.(EAX=7,ECX=1):EAX[5] AVX512_BF16
+  }
+  // The instructions are usable only where the OS saves the AVX-512 (and AMX tile) state.
+  __cpuid(1, eax, ebx, ecx, edx);
+  const bool osxsave = (ecx >> 27) & 1u;
+  unsigned long long xcr0 = 0;
+  if (osxsave) {
+    unsigned lo = 0, hi = 0;
+    __asm__("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
+    xcr0 = (static_cast<unsigned long long>(hi) << 32) | lo;
+  }
+  const bool avx512_state = (xcr0 & 0xe6) == 0xe6;       // SSE, AVX, opmask, ZMM state
+  const bool amx_state = (xcr0 & 0x60000) == 0x60000;    // XTILECFG, XTILEDATA
+  s.avx512_bf16 = s.avx512_bf16 && avx512_state;
+  s.amx_bf16 = s.amx_bf16 && amx_state;
+#endif
+  return s;
+}
+
+PrecisionChoice choosePrecision(PrecisionRequest request, torch::Device device, const CpuBf16Support& cpu) {
+  const std::string where = device.is_cuda() ? "CUDA" : "CPU";
+  const std::string native = cpu.amx_bf16 ? "AMX-BF16" : "AVX512_BF16";
+  switch (request) {
+    case PrecisionRequest::kFp32:
+      return {Precision::kFp32, "fp32 as asked"};
+    case PrecisionRequest::kBf16:
+      if (device.is_cuda() || cpu.native()) return {Precision::kBf16, "bf16 as asked"};
+      return {Precision::kBf16, "bf16 as asked, although this CPU has no native bf16 (emulated: expect it slower than fp32)"};
+    case PrecisionRequest::kAuto:
+      break;
+  }
+  if (device.is_cuda()) return {Precision::kFp32, "auto: fp32 on CUDA (bf16 is chosen automatically on CPU only)"};
+  if (cpu.native()) return {Precision::kBf16, "auto: bf16, this CPU executes it natively (" + native + ")"};
+  return {Precision::kFp32, "auto: fp32, this CPU has neither AVX512_BF16 nor AMX-BF16 (bf16 would be emulated and slower)"};
+}
+
+AutocastScope::AutocastScope(Precision precision, torch::Device device) {
+  if (precision != Precision::kBf16) return;
+  active_ = true;
+  cuda_ = device.is_cuda();
+  if (cuda_) {
+    was_enabled_ = at::autocast::is_enabled();
+    previous_dtype_ = at::autocast::get_autocast_gpu_dtype();
+    at::autocast::set_autocast_gpu_dtype(at::kBFloat16);
+    at::autocast::set_enabled(true);
+  } else {
+    was_enabled_ = at::autocast::is_cpu_enabled();
+    previous_dtype_ = at::autocast::get_autocast_cpu_dtype();
+    at::autocast::set_autocast_cpu_dtype(at::kBFloat16);
+    at::autocast::set_cpu_enabled(true);
+  }
+  at::autocast::increment_nesting();
+}
+
+AutocastScope::~AutocastScope() {
+  if (!active_) return;
+  // The cache of bf16 weight copies lives as long as the outermost autocast region.
+  if (at::autocast::decrement_nesting() == 0) at::autocast::clear_cache();
+  if (cuda_) {
+    at::autocast::set_enabled(was_enabled_);
+    at::autocast::set_autocast_gpu_dtype(previous_dtype_);
+  } else {
+    at::autocast::set_cpu_enabled(was_enabled_);
+    at::autocast::set_autocast_cpu_dtype(previous_dtype_);
+  }
+}
+
+}  // namespace hideseek_hider

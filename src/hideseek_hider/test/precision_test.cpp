@@ -1,0 +1,86 @@
+#include <gtest/gtest.h>
+
+#include <ATen/autocast_mode.h>
+
+#include "hideseek_hider/hider_net.h"
+#include "hideseek_hider/precision.h"
+
+namespace hideseek_hider {
+
+TEST(Precision, ParsesTheThreeChoicesAndNamesTheParameterOtherwise) {
+  EXPECT_EQ(parsePrecision("auto", "~precision"), PrecisionRequest::kAuto);
+  EXPECT_EQ(parsePrecision("fp32", "~precision"), PrecisionRequest::kFp32);
+  EXPECT_EQ(parsePrecision("bf16", "~precision"), PrecisionRequest::kBf16);
+  try {
+    parsePrecision("fp16", "/hider/precision");
+    FAIL() << "fp16 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("/hider/precision"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("auto, fp32 or bf16"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Precision, AutoPicksBf16OnlyWhereTheCpuHasItNatively) {
+  const CpuBf16Support none{}, avx512{true, false}, amx{false, true};
+  EXPECT_EQ(choosePrecision(PrecisionRequest::kAuto, torch::kCPU, none).precision, Precision::kFp32);
+  EXPECT_EQ(choosePrecision(PrecisionRequest::kAuto, torch::kCPU, avx512).precision, Precision::kBf16);
+  EXPECT_EQ(choosePrecision(PrecisionRequest::kAuto, torch::kCPU, amx).precision, Precision::kBf16);
+  // The reason is what the node logs: it says which feature decided.
+  EXPECT_NE(choosePrecision(PrecisionRequest::kAuto, torch::kCPU, amx).reason.find("AMX-BF16"), std::string::npos);
+  EXPECT_NE(choosePrecision(PrecisionRequest::kAuto, torch::kCPU, none).reason.find("neither"), std::string::npos);
+  // An explicit choice is honoured either way; on an emulating CPU the reason warns.
+  EXPECT_EQ(choosePrecision(PrecisionRequest::kFp32, torch::kCPU, avx512).precision, Precision::kFp32);
+  const PrecisionChoice forced = choosePrecision(PrecisionRequest::kBf16, torch::kCPU, none);
+  EXPECT_EQ(forced.precision, Precision::kBf16);
+  EXPECT_NE(forced.reason.find("emulated"), std::string::npos);
+}
+
+TEST(Precision, AutocastScopeRestoresTheThreadsStateWhenItEnds) {
+  ASSERT_FALSE(at::autocast::is_cpu_enabled());
+  {
+    const AutocastScope scope(Precision::kBf16, torch::kCPU);
+    EXPECT_TRUE(at::autocast::is_cpu_enabled());
+    EXPECT_EQ(at::autocast::get_autocast_cpu_dtype(), at::kBFloat16);
+    const torch::Tensor y = torch::matmul(torch::ones({2, 3}), torch::ones({3, 2}));
+    EXPECT_EQ(y.scalar_type(), at::kBFloat16);
+  }
+  EXPECT_FALSE(at::autocast::is_cpu_enabled());
+  {
+    const AutocastScope scope(Precision::kFp32, torch::kCPU);
+    EXPECT_FALSE(at::autocast::is_cpu_enabled());
+  }
+}
+
+// bf16 changes the arithmetic, never what is stored: outputs are fp32, the weights stay fp32
+// through a backward pass and an Adam step, and the checkpoint loads into an fp32 network.
+TEST(Precision, Bf16NetworkKeepsFp32WeightsGradientsAndCheckpoints) {
+  torch::manual_seed(5);
+  HiderNet net(36, 36);
+  net->setPrecision(Precision::kBf16);
+  const torch::Tensor images = torch::randint(0, 256, {4, 36, 36, 3}, torch::kUInt8);
+  const HiderOutput out = net->forward(images);
+  EXPECT_EQ(out.logits.scalar_type(), torch::kFloat32);
+  EXPECT_EQ(out.value.scalar_type(), torch::kFloat32);
+  EXPECT_EQ(out.features.scalar_type(), torch::kFloat32);
+  torch::optim::Adam adam(net->parameters(), torch::optim::AdamOptions(1e-3));
+  (out.logits.pow(2).mean() + out.value.pow(2).mean()).backward();
+  adam.step();
+  for (const auto& p : net->named_parameters()) {
+    EXPECT_EQ(p.value().scalar_type(), torch::kFloat32) << p.key();
+    ASSERT_TRUE(p.value().grad().defined()) << p.key();
+    EXPECT_EQ(p.value().grad().scalar_type(), torch::kFloat32) << p.key();
+  }
+  const std::string path = testing::TempDir() + "bf16_trained.pt";
+  saveCheckpoint(path, net, {kArchitecture, 36, 36, "basic", 4}, &adam);
+  HiderNet fp32 = loadCheckpoint(path, 36, 36);
+  EXPECT_EQ(fp32->precision(), Precision::kFp32);
+  for (const auto& p : fp32->named_parameters()) {
+    EXPECT_TRUE(torch::equal(p.value(), net->named_parameters()[p.key()])) << p.key();
+  }
+  // The two precisions compute nearly the same function.
+  const torch::Tensor a = torch::softmax(net->forward(images).logits, 1);
+  const torch::Tensor b = torch::softmax(fp32->forward(images).logits, 1);
+  EXPECT_LT((a - b).abs().max().item<double>(), 0.02);
+}
+
+}  // namespace hideseek_hider

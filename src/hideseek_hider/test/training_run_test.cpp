@@ -1,0 +1,131 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hideseek_hider/training_run.h"
+
+namespace hideseek_hider {
+
+namespace {
+
+std::vector<std::string> lines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> out;
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+// Column `i` of a CSV row.
+std::string column(const std::string& row, int i) {
+  std::stringstream s(row);
+  std::string cell;
+  for (int c = 0; c <= i; ++c) std::getline(s, cell, ',');
+  return cell;
+}
+
+constexpr int kArenas = 2;
+constexpr int kSize = 36;
+
+PpoOptions tinyPpo() {
+  PpoOptions o;
+  o.rollout_steps = 4;  // a rollout is 2 arenas x 4 steps = 8 samples
+  o.minibatches = 2;
+  o.epochs = 1;
+  return o;
+}
+
+TrainingOptions tinyRun(const std::string& dir, int64_t steps) {
+  TrainingOptions o;
+  o.output_dir = dir;
+  o.total_steps = steps;
+  o.checkpoint_interval_s = 1e9;  // the test decides when to checkpoint
+  o.variant = "basic";
+  o.image_height = kSize;
+  o.image_width = kSize;
+  return o;
+}
+
+// Feeds batches until `updates` more updates have run; every third step ends both episodes.
+void feed(TrainingRun& run, int updates) {
+  const std::vector<uint8_t> images(kArenas * kSize * kSize * 3, 128);
+  int done_updates = 0;
+  for (int step = 0; done_updates < updates && !run.finished(); ++step) {
+    const uint8_t end = step % 3 == 2;
+    std::optional<UpdateReport> report;
+    run.step(images.data(), std::vector<float>(kArenas, 0.001f), std::vector<uint8_t>(kArenas, end), &report);
+    if (report) ++done_updates;
+  }
+}
+
+}  // namespace
+
+TEST(TrainingRun, StepCountIsRoundedUpToWholeRolloutsSoEverySampleIsTrained) {
+  EXPECT_EQ(wholeRollouts(3000, 256), 3072);
+  EXPECT_EQ(wholeRollouts(3072, 256), 3072);
+  EXPECT_EQ(wholeRollouts(1, 1024), 1024);
+  const std::string dir = testing::TempDir() + "run_rounding";
+  std::remove((dir + "/checkpoint.pt").c_str());
+  std::remove((dir + "/training_log.csv").c_str());
+  torch::manual_seed(0);
+  TrainingRun run(tinyRun(dir, 30), tinyPpo(), kArenas, torch::kCPU);
+  EXPECT_EQ(run.totalSteps(), 32);
+  feed(run, 100);
+  ASSERT_TRUE(run.finished());
+  run.saveCheckpoint();
+  // The last logged update, the checkpoint and the run all say 32: nothing collected went untrained.
+  const auto log = lines(run.logPath());
+  ASSERT_EQ(log.size(), 1u + 4u);
+  EXPECT_EQ(column(log.back(), 1), "32");
+  EXPECT_EQ(readCheckpointInfo(run.checkpointPath()).steps, 32);
+}
+
+TEST(TrainingRun, ResumedLogContinuesWithoutDuplicatesAndKeepsWallTimeAndEpisodes) {
+  const std::string dir = testing::TempDir() + "run_resume";
+  std::remove((dir + "/checkpoint.pt").c_str());
+  std::remove((dir + "/training_log.csv").c_str());
+  torch::manual_seed(0);
+  double wall_at_checkpoint = 0.0;
+  int64_t episodes_at_checkpoint = 0;
+  {
+    TrainingRun run(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
+    feed(run, 3);
+    run.saveCheckpoint();  // at step 24
+    const CheckpointInfo info = readCheckpointInfo(run.checkpointPath());
+    EXPECT_EQ(info.steps, 24);
+    wall_at_checkpoint = info.wall_s;
+    episodes_at_checkpoint = info.episodes;
+    EXPECT_GT(episodes_at_checkpoint, 0);
+    feed(run, 2);  // logged, then lost: the process "dies" before the next checkpoint
+    EXPECT_EQ(lines(run.logPath()).size(), 1u + 5u);
+  }
+  TrainingRun resumed(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
+  EXPECT_TRUE(resumed.resumed());
+  EXPECT_EQ(resumed.steps(), 24);
+  EXPECT_EQ(resumed.droppedLogRows(), 2);
+  feed(resumed, 2);
+  const auto log = lines(resumed.logPath());
+  ASSERT_EQ(log.size(), 1u + 5u);
+  EXPECT_EQ(log[0].substr(0, 12), "update,steps");
+  for (size_t i = 1; i < log.size(); ++i) {
+    EXPECT_EQ(column(log[i], 0), std::to_string(i)) << "update numbers run 1..5 once each";
+    EXPECT_EQ(column(log[i], 1), std::to_string(8 * i)) << "steps";
+  }
+  // Wall time and episodes continue from the checkpoint instead of restarting at 0.
+  EXPECT_GE(std::stod(column(log[4], 2)), wall_at_checkpoint);
+  EXPECT_GT(std::stoll(column(log[4], 4)), episodes_at_checkpoint);
+  EXPECT_GE(std::stod(column(log[5], 2)), std::stod(column(log[4], 2)));
+}
+
+TEST(FormatDuration, ReadsAtEveryScale) {
+  EXPECT_EQ(formatDuration(0.4), "0 s");
+  EXPECT_EQ(formatDuration(42.2), "42 s");
+  EXPECT_EQ(formatDuration(125), "2 min 05 s");
+  EXPECT_EQ(formatDuration(3599), "59 min 59 s");
+  EXPECT_EQ(formatDuration(3 * 3600 + 7 * 60 + 10), "3 h 07 min");
+  EXPECT_EQ(formatDuration(-5), "0 s");
+}
+
+}  // namespace hideseek_hider
