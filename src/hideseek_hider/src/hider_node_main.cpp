@@ -6,8 +6,11 @@
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "hider");
+  // The node handles outlive the try block: an error thrown while the node starts is logged
+  // while roscpp still runs, so roslaunch shows it instead of only "process has died".
+  ros::NodeHandle nh, pnh("~");
   try {
-    hideseek_hider::HiderNode node{ros::NodeHandle(), ros::NodeHandle("~")};
+    hideseek_hider::HiderNode node{nh, pnh};
     ros::spin();
   } catch (const std::exception& e) {
     ROS_FATAL("hider: %s", e.what());

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# A node that cannot start says why, where roslaunch shows it: a missing checkpoint, a bad
+# precision and a misspelt variant field each stop the game with a FATAL line naming the problem.
+# usage: startup_error_test.sh XUNIT_OUTPUT
+set -uo pipefail
+source "$(dirname "$0")/xunit.sh"
+out=$1
+dir=$(mktemp -d /tmp/hideseek_startup_test.XXXXXX)
+port=$((11900 + RANDOM % 100))
+export ROS_MASTER_URI=http://localhost:$port
+failures=()
+expect_fatal() {  # name, expected text, launch arguments...
+  local name=$1 expected=$2
+  shift 2
+  timeout 120 roslaunch -p "$port" hideseek_world "$@" > "$dir/$name.log" 2>&1
+  grep -F "[FATAL]" "$dir/$name.log" | grep -qF -- "$expected" ||
+    failures+=("$name: no FATAL line with '$expected' (got: $(grep -F '[FATAL]' "$dir/$name.log" | head -c 200))")
+}
+expect_fatal missing_policy "checkpoint /nonexistent/policy.pt cannot be read" basic.launch policy:=/nonexistent/policy.pt
+expect_fatal bad_precision "/hider/precision must be auto, fp32 or bf16, got 'fp16'" basic.launch precision:=fp16
+config="$(cd "$(dirname "$0")/../config" && pwd)"
+printf 'variant: basic\nmap: %s/maps/deterministic.yaml\nhider:\n  sped: 3.0\n' "$config" > "$dir/typo.yaml"
+expect_fatal bad_field "field 'hider.sped': unknown field" game.launch.xml variant:=basic variant_config:="$dir/typo.yaml"
+write_xunit "$out" startup StartupErrorsAreShownByRoslaunch "${failures[@]}"
+printf 'failure: %s\n' "${failures[@]}"
+rm -rf "$dir"
+[ ${#failures[@]} -eq 0 ]
