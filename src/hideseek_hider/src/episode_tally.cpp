@@ -4,17 +4,9 @@
 
 namespace hideseek_hider {
 
-void EpisodeTally::observe(size_t arena, bool done, bool survived, uint32_t step, uint32_t seed) {
-  if (arenas_.size() <= arena) arenas_.resize(arena + 1);
-  ArenaState& a = arenas_[arena];
-  // An episode already under way when we started listening is not counted: its start is unknown.
-  if (done && a.seen && a.seed >= first_seed_ && a.seed - first_seed_ < wanted_ && !records_.count(a.seed)) {
-    records_[a.seed] = {a.seed, a.step + 1, survived};
-  }
-  if (!a.seen && step != 0) return;  // wait for a fresh episode
-  a.seen = true;
-  a.step = step;
-  a.seed = seed;
+void EpisodeTally::record(uint32_t seed, uint32_t living_steps, bool survived) {
+  if (seed < first_seed_ || seed - first_seed_ >= wanted_ || records_.count(seed)) return;
+  records_[seed] = {seed, living_steps, survived};
 }
 
 EvaluationSummary EpisodeTally::summary() const {

@@ -1,12 +1,13 @@
-// Watches the hider's observation stream until the episodes with seeds first_seed..first_seed+N-1
+// Listens to the world's episode results until the episodes with seeds first_seed..first_seed+N-1
 // have ended, then writes evaluation.md, evaluation.csv and episodes.csv (one row per episode)
 // to ~output_dir, prints the table and exits.
-#include <hideseek_msgs/GameState.h>
-#include <hideseek_msgs/ObservationBatch.h>
+#include <hideseek_msgs/EpisodeResult.h>
 #include <ros/ros.h>
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <utility>
 
 #include "hideseek_hider/episode_tally.h"
 #include "hideseek_world/topic_names.h"
@@ -29,13 +30,20 @@ int main(int argc, char** argv) {
     ROS_FATAL("evaluator: parameter %s must not be negative", pnh.resolveName("first_seed").c_str());
     return 1;
   }
+  // A folder that cannot be written is found out now, not after the whole evaluation.
+  std::error_code error;
+  std::filesystem::create_directories(output_dir, error);
+  if (error || !std::ofstream(output_dir + "/evaluation.csv")) {
+    ROS_FATAL("evaluator: cannot write to %s (parameter %s)", output_dir.c_str(), pnh.resolveName("output_dir").c_str());
+    return 1;
+  }
   hideseek_hider::EpisodeTally tally(static_cast<uint32_t>(episodes), static_cast<uint32_t>(first_seed));
   size_t reported = 0;
-  auto sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
-      hideseek_world::kHiderObservationsTopic, 10, [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) {
-        for (size_t i = 0; i < m->num_arenas && i < m->done.size(); ++i) {
-          tally.observe(i, m->done[i], m->outcome[i] == hideseek_msgs::GameState::OUTCOME_SURVIVED, m->step[i], m->seed[i]);
-        }
+  // Every episode result, however far behind the world this node falls: the world publishes them
+  // with a deep queue, and evaluate.launch holds lockstep until this subscription is connected.
+  auto sub = nh.subscribe<hideseek_msgs::EpisodeResult>(
+      hideseek_world::kEpisodesTopic, 10000, [&](const hideseek_msgs::EpisodeResult::ConstPtr& m) {
+        tally.record(m->seed, m->steps, m->outcome == hideseek_msgs::EpisodeResult::OUTCOME_SURVIVED);
         if (tally.collected() >= reported + 10) {
           reported = tally.collected();
           ROS_INFO("evaluator: %zu / %d episodes", reported, episodes);
@@ -44,10 +52,18 @@ int main(int argc, char** argv) {
   while (ros::ok() && !tally.complete()) ros::spinOnce(), ros::WallDuration(0.001).sleep();
   if (!tally.complete()) return 1;
   const auto summary = tally.summary();
-  std::ofstream(output_dir + "/evaluation.csv") << hideseek_hider::evaluationCsv(variant, policy, summary);
-  std::ofstream(output_dir + "/episodes.csv") << hideseek_hider::episodesCsv(tally.records());
   const std::string md = hideseek_hider::evaluationMarkdown(variant, policy, summary);
-  std::ofstream(output_dir + "/evaluation.md") << md;
+  const std::pair<std::string, std::string> files[] = {
+      {"evaluation.csv", hideseek_hider::evaluationCsv(variant, policy, summary)},
+      {"episodes.csv", hideseek_hider::episodesCsv(tally.records())},
+      {"evaluation.md", md}};
+  for (const auto& [name, text] : files) {
+    std::ofstream file(output_dir + "/" + name);
+    if (!(file << text)) {
+      ROS_FATAL("evaluator: cannot write %s/%s", output_dir.c_str(), name.c_str());
+      return 1;
+    }
+  }
   std::cout << md << std::flush;
   ROS_INFO("evaluator: wrote %s/evaluation.md, evaluation.csv and episodes.csv", output_dir.c_str());
   return 0;

@@ -84,6 +84,8 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   hider_path_pub_ = nh_.advertise<nav_msgs::Path>(kHiderPathTopic, 2);
   seeker_path_pub_ = nh_.advertise<nav_msgs::Path>(kSeekerPathTopic, 2);
   state_pub_ = nh_.advertise<hideseek_msgs::GameState>(kGameStateTopic, 50);
+  // Small and rare: a deep queue loses no episode even behind a slow listener.
+  episodes_pub_ = nh_.advertise<hideseek_msgs::EpisodeResult>(kEpisodesTopic, 10000);
   diagnostics_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
 
   // The callback must take the MessageEvent itself: a lambda would be wrapped as a ConstPtr
@@ -241,9 +243,10 @@ void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
   const ros::WallTime now = ros::WallTime::now();
   if (!started_) {
     // Start once both agents listen and both can answer, so neither the first batch nor the
-    // first answer is lost.
+    // first answer is lost, and once every listener that must see the first episodes listens.
     if (hider_obs_pub_.getNumSubscribers() == 0 || seeker_obs_pub_.getNumSubscribers() == 0 ||
-        hider_sub_.getNumPublishers() == 0 || seeker_sub_.getNumPublishers() == 0) {
+        hider_sub_.getNumPublishers() == 0 || seeker_sub_.getNumPublishers() == 0 ||
+        episodes_pub_.getNumSubscribers() < static_cast<uint32_t>(options_.episode_listeners)) {
       return;
     }
     started_ = true;
@@ -271,6 +274,16 @@ void WorldNode::concludeDecision(const std::vector<ArenaStep>& results, const st
     if (s.finished) {
       const EpisodeSummary& e = *s.finished;
       if (i == 0) last_finished_ = e;
+      hideseek_msgs::EpisodeResult result;
+      result.header.stamp = simNow();
+      result.header.frame_id = options_.frame_id;
+      result.arena = static_cast<uint32_t>(i);
+      result.episode = e.episode;
+      result.seed = e.seed;
+      result.steps = static_cast<uint32_t>(e.steps);
+      result.outcome = static_cast<uint8_t>(e.outcome);
+      result.episode_return = static_cast<float>(e.episode_return);
+      episodes_pub_.publish(result);
       const auto level = i == 0 ? ros::console::levels::Info : ros::console::levels::Debug;
       ROS_LOG(level, ROSCONSOLE_DEFAULT_NAME, "arena %d episode %u (seed %u): %s after %d steps, return %.3f", i,
               e.episode, e.seed, outcomeName(e.outcome), e.steps, e.episode_return);

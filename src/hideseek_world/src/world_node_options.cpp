@@ -64,6 +64,7 @@ WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& nh) {
   o.resend_period = readDouble(nh, "resend_period", 1.0, 0.05, 60.0);
   o.publish_rate = readDouble(nh, "publish_rate", 30.0, 0.1, 1000.0);
   o.render_threads = readInt(nh, "render_threads", 2, 0, 64);
+  o.episode_listeners = readInt(nh, "episode_listeners", 0, 0, 64);
   return o;
 }
 

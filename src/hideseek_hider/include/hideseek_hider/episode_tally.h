@@ -1,11 +1,9 @@
-// Collects the outcomes of the episodes with seeds first_seed..first_seed+N-1 from a stream of
-// observation batches.
+// Collects the outcomes of the episodes with seeds first_seed..first_seed+N-1.
 #pragma once
 
 #include <cstdint>
 #include <map>
 #include <string>
-#include <vector>
 
 namespace hideseek_hider {
 
@@ -21,27 +19,21 @@ struct EvaluationSummary {
   double success_rate = 0.0;  // fraction of episodes that reached the step limit
 };
 
-// Feed it each batch's per-arena (done, outcome, step, seed); it remembers each arena's
-// previous step and seed, so a done flag tells which seeded episode ended after how many steps.
+// Feed it the world's episode results (world/episodes); it keeps the first result of each seed
+// in first_seed..first_seed+N-1 and ignores the rest.
 class EpisodeTally {
  public:
   explicit EpisodeTally(uint32_t episodes, uint32_t first_seed = 0) : wanted_(episodes), first_seed_(first_seed) {}
 
-  void observe(size_t arena, bool done, bool survived, uint32_t step, uint32_t seed);
+  void record(uint32_t seed, uint32_t living_steps, bool survived);
   bool complete() const { return records_.size() >= wanted_; }
   size_t collected() const { return records_.size(); }
   const std::map<uint32_t, EpisodeRecord>& records() const { return records_; }
   EvaluationSummary summary() const;
 
  private:
-  struct ArenaState {
-    bool seen = false;
-    uint32_t step = 0;
-    uint32_t seed = 0;
-  };
   uint32_t wanted_;
   uint32_t first_seed_;
-  std::vector<ArenaState> arenas_;
   std::map<uint32_t, EpisodeRecord> records_;
 };
 

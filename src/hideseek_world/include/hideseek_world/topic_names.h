@@ -16,6 +16,7 @@ constexpr char kMapTopic[] = "map";
 constexpr char kHiderPathTopic[] = "hider/path";
 constexpr char kSeekerPathTopic[] = "seeker/path";
 constexpr char kGameStateTopic[] = "game_state";
+constexpr char kEpisodesTopic[] = "world/episodes";
 constexpr char kResetService[] = "world/reset";
 
 }  // namespace hideseek_world

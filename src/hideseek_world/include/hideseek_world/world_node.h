@@ -4,6 +4,7 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <hideseek_msgs/ActionBatch.h>
 #include <hideseek_msgs/ArenaMap.h>
+#include <hideseek_msgs/EpisodeResult.h>
 #include <hideseek_msgs/Reset.h>
 #include <nav_msgs/Path.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -82,7 +83,7 @@ class WorldNode {
   std::optional<EpisodeSummary> last_finished_;  // arena 0's episode that ended in the last step
 
   ros::Publisher hider_obs_pub_, seeker_obs_pub_, clock_pub_, hider_image_pub_, hider_info_pub_, seeker_image_pub_,
-      seeker_info_pub_, markers_pub_, map_pub_, hider_path_pub_, seeker_path_pub_, state_pub_, diagnostics_pub_;
+      seeker_info_pub_, markers_pub_, map_pub_, hider_path_pub_, seeker_path_pub_, state_pub_, episodes_pub_, diagnostics_pub_;
   ros::Subscriber hider_sub_, seeker_sub_;
   ros::ServiceServer reset_srv_;
   ros::WallTimer tick_timer_, watchdog_timer_, diagnostics_timer_;

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The paper's Table 2 side by side with this project's: every shipped policy (policies/<variant>.pt,
+# greedy) and the uniformly random hider on all seven variants, seeds 0..99 through the ROS graph
+# (evaluate.launch), beside the paper's figures (config/paper_reference.yaml).
+# Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/). Writes table2.md, table2.csv
+# and, per evaluation, OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/env.sh
+out=$(realpath -m "${1:-docs}")
+port=${HIDESEEK_PORT:-11477}
+export ROS_MASTER_URI=http://localhost:$port
+variants=(basic fasterhider visibilityreward_faster stochasticseeker stochasticmaps visibilityreward slowerhider)
+mkdir -p "$out/evaluations"
+for v in "${variants[@]}"; do
+  for p in random trained; do
+    policy=random
+    if [ "$p" = trained ]; then
+      policy="$PWD/policies/$v.pt"
+      [ -f "$policy" ] || { echo "evaluate_all: $v: no shipped policy"; continue; }
+    fi
+    dir="$out/evaluations/${v}_$p"
+    mkdir -p "$dir"
+    start=$(date +%s)
+    roslaunch -p "$port" hideseek_world evaluate.launch variant:="$v" policy:="$policy" output_dir:="$dir" \
+      > "$dir/launch.log" 2>&1 || { echo "evaluate_all: $v $p failed, see $dir/launch.log"; exit 1; }
+    rm -f "$dir/launch.log"
+    echo "evaluate_all: $v $p: $(tail -n 1 "$dir/evaluation.csv" | cut -d, -f4,5 | tr , ' ') ($(($(date +%s) - start)) s)"
+  done
+done
+/usr/bin/python3 scripts/table2.py config/paper_reference.yaml "$out/evaluations" "$out/table2" policies
+cat "$out/table2.md"

@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""Table 2 of the paper beside this project's evaluations.
+
+usage: table2.py PAPER_REFERENCE.yaml EVALUATIONS_DIR OUTPUT_STEM POLICIES_DIR
+Reads EVALUATIONS_DIR/<variant>_{trained,random}/evaluation.csv, writes OUTPUT_STEM.md and .csv.
+"""
+import csv
+import os
+import sys
+
+import yaml
+
+VARIANTS = ["basic", "fasterhider", "visibilityreward_faster", "stochasticseeker", "stochasticmaps",
+            "visibilityreward", "slowerhider"]
+
+
+def evaluation(folder):
+    path = os.path.join(folder, "evaluation.csv")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        row = list(csv.DictReader(f))[-1]
+    return float(row["avg_living_steps"]), 100.0 * float(row["success_rate"]), int(row["episodes"])
+
+
+def main(paper_file, evaluations, stem, policies):
+    with open(paper_file) as f:
+        paper = yaml.safe_load(f)
+    rows = []
+    for v in VARIANTS:
+        p = paper["variants"][v]
+        trained = evaluation(os.path.join(evaluations, v + "_trained"))
+        random = evaluation(os.path.join(evaluations, v + "_random"))
+        rows.append({
+            "variant": v,
+            "living_trained": "%.1f" % trained[0] if trained else "",
+            "living_random": "%.1f" % random[0] if random else "",
+            "success_trained": "%.2f" % trained[1] if trained else "",
+            "success_random": "%.2f" % random[1] if random else "",
+            "paper_living_trained": p["living_trained"], "paper_living_random": p["living_random"],
+            "paper_success_trained": p["success_trained"], "paper_success_random": p["success_random"],
+            "trained_beats_random": ("yes" if trained[0] > random[0] else "no") if trained and random else "",
+        })
+    with open(stem + ".csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    lines = [
+        "Average living steps and success rate over the evaluation seeds 0..99 (at most 1000 steps), "
+        "trained policy (`%s/<variant>.pt`, greedy) / uniformly random hider, beside the paper's "
+        "(trained for %d steps). An empty cell: no policy shipped for that variant yet." % (policies, paper["training_steps"]),
+        "",
+        "| variant | living steps, trained / random | paper | success %, trained / random | paper |",
+        "| --- | --- | --- | --- | --- |",
+    ]
+    for r in rows:
+        lines.append("| %s | %s / %s | %s / %s | %s / %s | %s / %s |" % (
+            r["variant"], r["living_trained"] or "-", r["living_random"] or "-", r["paper_living_trained"],
+            r["paper_living_random"], r["success_trained"] or "-", r["success_random"] or "-",
+            r["paper_success_trained"], r["paper_success_random"]))
+    with open(stem + ".md", "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 5:
+        sys.exit(__doc__)
+    main(*sys.argv[1:])
