@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""Top-down trajectories and distance over time of played episodes (play_episodes' CSV).
+
+usage: plot_trajectories.py EPISODES.csv MAP.yaml OUTPUT.png TITLE
+One column per episode: above, the arena from above with its obstacles, the hider's path (blue)
+and the seeker's (red) from their start (circle) to the end (cross: capture); below, the distance
+between the agents against the step, shaded where the seeker sees the hider.
+"""
+import csv
+import math
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.patches import Polygon  # noqa: E402
+import yaml  # noqa: E402
+
+
+def box_corners(center, size, yaw):
+    c, s = math.cos(yaw), math.sin(yaw)
+    hx, hy = size[0] / 2.0, size[1] / 2.0
+    return [(center[0] + c * x - s * y, center[1] + s * x + c * y) for x, y in ((-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy))]
+
+
+def main(rows_file, map_file, out, title):
+    episodes = defaultdict(list)
+    with open(rows_file) as f:
+        for r in csv.DictReader(f):
+            episodes[int(r["seed"])].append(r)
+    with open(map_file) as f:
+        spec = yaml.safe_load(f)
+    half = float(spec.get("half_extent", 7.0))
+    seeds = sorted(episodes)
+    fig, axes = plt.subplots(2, len(seeds), figsize=(3.2 * len(seeds), 6.2), squeeze=False,
+                             gridspec_kw={"height_ratios": [3, 1.4]})
+    for col, seed in enumerate(seeds):
+        rows = episodes[seed]
+        ax = axes[0][col]
+        for ob in spec.get("obstacles", []):
+            ax.add_patch(Polygon(box_corners(ob["center"], ob["size"], float(ob.get("yaw", 0.0))), closed=True,
+                                 facecolor=(0.80, 0.62, 0.30), edgecolor="none"))
+        ax.plot([-half, half, half, -half, -half], [-half, -half, half, half, -half], color="0.3", lw=2)
+        for who, color in (("hider", "tab:blue"), ("seeker", "tab:red")):
+            xs = [float(r[who + "_x"]) for r in rows]
+            ys = [float(r[who + "_y"]) for r in rows]
+            ax.plot(xs, ys, color=color, lw=1.0, label=who)
+            ax.plot(xs[0], ys[0], "o", color=color, ms=6)
+        outcome = rows[-1]["outcome"] or "running"
+        if outcome == "captured":
+            ax.plot(float(rows[-1]["hider_x"]), float(rows[-1]["hider_y"]), "kx", ms=9, mew=2)
+        ax.set_xlim(-half, half)
+        ax.set_ylim(-half, half)
+        ax.set_aspect("equal")
+        ax.set_xticks([])
+        ax.set_yticks([])
+        ax.set_title("seed %d: %s after %d steps" % (seed, outcome, len(rows)), fontsize=9)
+        if col == 0:
+            ax.legend(loc="lower left", fontsize=7)
+        ax = axes[1][col]
+        steps = [int(r["step"]) for r in rows]
+        ax.plot(steps, [float(r["distance"]) for r in rows], color="k", lw=0.8)
+        seen = [r["H"] == "1" for r in rows]
+        ax.fill_between(steps, 0, 1, where=seen, color="tab:red", alpha=0.2, transform=ax.get_xaxis_transform(),
+                        label="seeker sees hider")
+        ax.set_xlabel("step")
+        ax.set_ylim(0, 2 * half * 1.05)
+        if col == 0:
+            ax.set_ylabel("distance (m)")
+            ax.legend(loc="upper right", fontsize=7)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out, dpi=80)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 5:
+        sys.exit(__doc__)
+    main(*sys.argv[1:])

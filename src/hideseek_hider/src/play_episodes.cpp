@@ -1,0 +1,93 @@
+// Plays seeded episodes of a variant in process (world and seeker cores, the hider's policy on
+// rendered images) and writes every step of them to a CSV: the trajectories and distances that
+// show a policy's strategy. The same cores, draws and step order as the ROS graph in lockstep.
+// usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled]
+//   POLICY: a checkpoint, or "random". Columns: seed,step,hider_x,hider_y,hider_yaw,seeker_x,
+//   seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome (outcome on the last step of an
+//   episode: captured or survived; empty before).
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <stdexcept>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hideseek_hider/hider_policy.h"
+#include "hideseek_seeker/random_hider_game.h"
+#include "hideseek_world/world.h"
+
+int main(int argc, char** argv) {
+  if (argc < 6 || argc > 7) {
+    std::fprintf(stderr, "usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled]\n");
+    return 2;
+  }
+  const std::string config = HIDESEEK_CONFIG_DIR, variant_name = argv[1], policy_path = argv[2];
+  const long first_seed = std::atol(argv[3]), count = std::atol(argv[4]);
+  const bool greedy = argc < 7 || std::string(argv[6]) != "sampled";
+  if (first_seed < 0 || count < 1 || count > 64) {
+    std::fprintf(stderr, "play_episodes: FIRST_SEED must be >= 0 and COUNT in [1, 64]\n");
+    return 2;
+  }
+  try {
+    namespace hw = hideseek_world;
+    const auto variant = hw::loadVariantConfig(config + "/game.yaml", config + "/variants/" + variant_name + ".yaml");
+    const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(variant.map_file));
+    const int n = static_cast<int>(count);
+    hw::World world(variant.game, map, n, static_cast<uint32_t>(first_seed), true, 2);
+    std::unique_ptr<hideseek_hider::HiderPolicy> hider;
+    if (policy_path == "random") {
+      hider = std::make_unique<hideseek_hider::RandomHiderPolicy>();
+    } else {
+      const int h = variant.game.camera.height, w = variant.game.camera.width;
+      hider = std::make_unique<hideseek_hider::NetworkHiderPolicy>(hideseek_hider::loadCheckpoint(policy_path, h, w),
+                                                                   torch::kCPU, greedy);
+    }
+    std::vector<hideseek_seeker::SeekerPolicy> seekers;
+    for (int i = 0; i < n; ++i) {
+      seekers.emplace_back(hideseek_seeker::seekerOptionsFor(variant));
+      seekers.back().reset(world.arena(i).layout(), world.arena(i).seed());
+    }
+    std::ofstream out(argv[5]);
+    if (!out) throw std::runtime_error(std::string("cannot write ") + argv[5]);
+    out << "seed,step,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome\n";
+    std::vector<uint8_t> images(world.imageBytes() * n);
+    std::vector<bool> playing(n, true);
+    for (int left = n; left > 0;) {
+      world.renderHiderViews(images.data());
+      std::vector<hideseek_hider::ArenaObservation> batch(n);
+      for (int i = 0; i < n; ++i) {
+        batch[i] = {images.data() + i * world.imageBytes(), world.arena(i).seed(),
+                    static_cast<uint32_t>(world.arena(i).stepCount())};
+      }
+      const std::vector<uint8_t> actions = hider->act(batch);
+      for (int i = 0; i < n; ++i) {
+        if (!playing[i]) continue;
+        const hw::Arena& a = world.arena(i);
+        const auto seeker_action = seekers[i].act(hw::seekerPerception(a));
+        const hw::AgentState hs = a.hider(), ss = a.seeker();
+        const hw::Labels l = a.labels();
+        const uint32_t seed = a.seed();
+        const int step = a.stepCount();
+        const hw::ArenaStep r = world.stepArena(i, static_cast<hw::Action>(actions[i]), seeker_action);
+        out << seed << ',' << step << ',' << hs.position.x << ',' << hs.position.y << ',' << hs.yaw << ','
+            << ss.position.x << ',' << ss.position.y << ',' << ss.yaw << ',' << l.hider_sees_seeker << ','
+            << l.seeker_sees_hider << ',' << l.obstacle_in_view << ',' << hw::distance(hs.position, ss.position) << ','
+            << static_cast<int>(actions[i]) << ',';
+        if (r.finished) {
+          out << (r.finished->outcome == hw::Outcome::kSurvived ? "survived" : "captured");
+          playing[i] = false;
+          --left;
+          std::printf("seed %u: %s after %d steps\n", seed,
+                      r.finished->outcome == hw::Outcome::kSurvived ? "survived" : "captured", r.finished->steps);
+        }
+        out << '\n';
+      }
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "play_episodes: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
