@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Plots a training run's learning curve from its training_log.csv.
 
-usage: scripts/plot_learning_curve.py RUN_DIR/training_log.csv [OUTPUT.png]
+usage: scripts/plot_learning_curve.py RUN_DIR/training_log.csv [OUTPUT.png] [TITLE]
 """
 import csv
 import sys
@@ -29,7 +29,7 @@ def main():
         ax.set_xlabel("environment steps")
         ax.set_title(label)
         ax.grid(alpha=0.3)
-    fig.suptitle(path)
+    fig.suptitle(sys.argv[3] if len(sys.argv) > 3 else path)
     fig.tight_layout()
     fig.savefig(output, dpi=110)
     print("wrote", output)

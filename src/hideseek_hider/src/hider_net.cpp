@@ -15,6 +15,21 @@ int convOut(int size, int kernel, int stride) { return (size - kernel) / stride 
 
 torch::Tensor leaky(const torch::Tensor& x) { return torch::leaky_relu(x, 0.01); }
 
+// FNV-1a over every parameter's name and bytes, in registration order: a flipped byte in the
+// weights, which the archive format itself does not notice, changes it.
+int64_t weightsChecksum(HiderNet& net) {
+  uint64_t h = 1469598103934665603ULL;
+  auto mix = [&h](const uint8_t* p, size_t n) {
+    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ULL;
+  };
+  for (const auto& p : net->named_parameters()) {
+    mix(reinterpret_cast<const uint8_t*>(p.key().data()), p.key().size());
+    const torch::Tensor t = p.value().detach().to(torch::kCPU, torch::kFloat32).contiguous();
+    mix(static_cast<const uint8_t*>(t.data_ptr()), static_cast<size_t>(t.numel()) * sizeof(float));
+  }
+  return static_cast<int64_t>(h);
+}
+
 }  // namespace
 
 HiderNetImpl::HiderNetImpl(int image_height, int image_width) : image_height_(image_height), image_width_(image_width) {
@@ -65,6 +80,7 @@ void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo
   torch::serialize::OutputArchive weights;
   net->save(weights);
   archive.write("model", weights);
+  archive.write("weights_checksum", c10::IValue(weightsChecksum(net)));
   if (optimizer) {
     torch::serialize::OutputArchive state;
     optimizer->save(state);
@@ -145,6 +161,11 @@ HiderNet loadCheckpoint(const std::string& path, int expected_height, int expect
         << ", the network needs " << c10::IntArrayRef(expected[p.key()]);
       throw std::runtime_error(s.str());
     }
+  }
+  // Checkpoints written before the checksum existed carry none and are taken as they are.
+  c10::IValue stored;
+  if (archive.try_read("weights_checksum", stored) && stored.toInt() != weightsChecksum(net)) {
+    throw std::runtime_error("checkpoint " + path + " is corrupt: its weights do not match their checksum");
   }
   for (const auto& p : net->named_parameters()) {
     if (!p.value().isfinite().all().item<bool>()) {

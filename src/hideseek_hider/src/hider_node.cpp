@@ -114,6 +114,13 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
                       n, image_height_, image_width_, static_cast<unsigned long>(malformed_));
     return;
   }
+  // The learner's buffers are shaped for its arena count: another count would be read past.
+  if (training_ && n != static_cast<size_t>(training_->numArenas())) {
+    ++malformed_;
+    ROS_WARN_THROTTLE(2.0, "hider: train mode learns from %d arenas (~num_arenas), this batch holds %zu: ignored "
+                      "(%lu so far)", training_->numArenas(), n, static_cast<unsigned long>(malformed_));
+    return;
+  }
   if (msg->header.stamp == last_stamp_ && !last_answer_.actions.empty()) {
     actions_pub_.publish(last_answer_);  // the world re-sent a batch: same step, same answer
     return;

@@ -101,6 +101,22 @@ TEST(Checkpoint, TruncatedFileIsRefused) {
   EXPECT_NE(errorOf([&] { loadCheckpoint(tempPath("missing.pt"), 84, 84); }).find("cannot be read"), std::string::npos);
 }
 
+// One flipped byte inside the weights, which the archive format does not notice, is refused.
+TEST(Checkpoint, FlippedByteIsRefusedByTheChecksum) {
+  HiderNet net(84, 84);
+  const std::string path = tempPath("flip_whole.pt"), bad = tempPath("flipped.pt");
+  saveCheckpoint(path, net, infoFor(84, 84));
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The middle of the file lies in the 9 MB of the features layer's weights.
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x10);
+  std::ofstream(bad, std::ios::binary) << bytes;
+  const std::string e = errorOf([&] { loadCheckpoint(bad, 84, 84); });
+  EXPECT_NE(e.find("flipped.pt"), std::string::npos) << e;
+  EXPECT_NE(e.find("checksum"), std::string::npos) << e;
+  EXPECT_EQ(errorOf([&] { loadCheckpoint(path, 84, 84); }), "") << "the untouched file still loads";
+}
+
 TEST(HiderPolicy, RandomPolicyIsReproducibleAndUsesAllActions) {
   RandomHiderPolicy policy;
   std::vector<ArenaObservation> batch;

@@ -47,6 +47,11 @@ grep -q "resumed at step" "$run/launch_$target.log" || failures+=("the second ru
 resumed_at=$(sed -n 's/.*resumed at step \([0-9]*\).*/\1/p' "$run/launch_$target.log" | head -n 1)
 [ -n "$resumed_at" ] && [ "$resumed_at" -ge "$((steps_before - 4 * 64))" ] && [ "$resumed_at" -le "$steps_before" ] ||
   failures+=("resumed at step '${resumed_at}', the killed run had logged ${steps_before}")
+# The resumed log continues the killed one: update numbers 1, 2, 3, ... once each, and steps,
+# wall time and episodes never go back.
+bad_rows=$(awk -F, 'NR > 1 && ($1 != NR - 1 || (NR > 2 && ($2 <= s || $3 < w || $5 < e))) { print NR } { s = $2; w = $3; e = $5 }' \
+  "$run/training_log.csv" | head -n 3 | tr '\n' ' ')
+[ -z "$bad_rows" ] || failures+=("training_log.csv repeats or goes back at rows: $bad_rows")
 final_steps=$(tail -n 1 "$run/training_log.csv" | cut -d, -f2)
 [ "$final_steps" -ge "$target" ] || failures+=("final log row at ${final_steps} steps, wanted ${target}")
 

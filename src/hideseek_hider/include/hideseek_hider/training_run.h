@@ -65,6 +65,7 @@ class TrainingRun {
   int droppedLogRows() const { return dropped_log_rows_; }
   int64_t steps() const { return trainer_.samplesSeen(); }
   int64_t totalSteps() const { return options_.total_steps; }
+  int numArenas() const { return num_arenas_; }
   // Writes output_dir/checkpoint.pt atomically.
   void saveCheckpoint();
   std::string checkpointPath() const { return options_.output_dir + "/checkpoint.pt"; }

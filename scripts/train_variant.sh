@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Trains one variant through train.launch (resuming when RUNS_DIR/<run> holds a checkpoint), then
+# ships what it produced: the exported policy, the training log and its learning curve.
+# usage: scripts/train_variant.sh VARIANT [SEED=0] [STEPS=2000000] [RUNS_DIR=~/hideseek_runs]
+# Seed 0 ships as policies/<variant>.pt; other seeds as policies/<variant>_seed<S>.pt (the spread).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+source scripts/env.sh
+variant=$1
+seed=${2:-0}
+steps=${3:-2000000}
+runs=${4:-$HOME/hideseek_runs}
+name=$variant
+[ "$seed" = 0 ] || name=${variant}_seed$seed
+run="$runs/$name"
+port=$((11700 + seed))
+export ROS_MASTER_URI=http://localhost:$port
+mkdir -p "$run"
+echo "train_variant: $name, $steps steps, into $run (log: $run/launch.log)"
+roslaunch -p "$port" hideseek_world train.launch variant:="$variant" seed:="$seed" steps:="$steps" \
+  output_dir:="$run" > "$run/launch.log" 2>&1
+devel/lib/hideseek_hider/export_policy "$run/checkpoint.pt" "policies/$name.pt"
+cp "$run/training_log.csv" "docs/training_log_$name.csv"
+/usr/bin/python3 scripts/plot_learning_curve.py "docs/training_log_$name.csv" "docs/learning_curve_$name.png" \
+  "$variant, training seed $seed, $(tail -n 1 "$run/training_log.csv" | cut -d, -f2) steps"
