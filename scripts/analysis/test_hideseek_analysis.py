@@ -1,0 +1,65 @@
+"""Tests of the analysis statistics: run with python3 -m pytest."""
+import numpy as np
+import pytest
+
+import hideseek_analysis as ha
+
+
+def synthetic(n_episodes=60, steps=50, dims=64, separable=True, seed=0):
+    rng = np.random.default_rng(seed)
+    groups = np.repeat(np.arange(n_episodes), steps)
+    labels = rng.random(len(groups)) < 0.3
+    features = rng.normal(size=(len(groups), dims))
+    if separable:
+        features[:, 5] += np.where(labels, 3.0, -3.0)  # one direction carries the label
+    return features, labels, groups
+
+
+def test_probe_reaches_about_100_percent_where_the_label_is_linearly_separable():
+    features, labels, groups = synthetic(separable=True)
+    r = ha.probe(features, labels, groups)
+    assert r["accuracy"] > 0.98
+    assert r["balanced_accuracy"] > 0.98
+
+
+def test_probe_is_at_chance_on_random_features_and_says_so():
+    features, labels, groups = synthetic(separable=False)
+    r = ha.probe(features, labels, groups)
+    # A probe on noise cannot beat predicting the majority class by much, and its balanced
+    # accuracy stays near 0.5 even though plain accuracy sits near the 70 % prior.
+    assert abs(r["balanced_accuracy"] - 0.5) < 0.06
+    assert r["accuracy"] < r["majority_accuracy"] + 0.03
+    assert 0.2 < r["positive_prior"] < 0.4
+
+
+def test_probe_splits_by_episode():
+    features, labels, groups = synthetic()
+    r = ha.probe(features, labels, groups, test_size=0.25)
+    assert r["test_episodes"] == 15
+    assert r["train_samples"] + r["test_samples"] == len(labels)
+
+
+def test_state_index_and_frequencies():
+    assert list(ha.state_index([0, 0, 1, 1], [0, 1, 0, 1], [1, 0, 0, 1])) == [1, 2, 4, 7]
+    f = ha.state_frequencies([0, 0, 7, 3])
+    assert f.sum() == pytest.approx(1.0)
+    assert f[0] == pytest.approx(0.5)
+    assert ha.STATE_NAMES[6] == "S1 H1 O0"
+
+
+def test_transition_probabilities_out_of_each_source_state_sum_to_one():
+    rng = np.random.default_rng(1)
+    episodes = np.repeat(np.arange(40), 100)
+    states = rng.integers(0, 8, size=len(episodes))
+    p, counts = ha.transitions(states, episodes)
+    assert np.allclose(np.nansum(p, axis=1), 1.0)
+    assert np.all(np.diag(counts) == 0)
+    assert counts.sum() > 0
+
+
+def test_transitions_do_not_cross_episodes_and_unvisited_states_are_nan():
+    # Episode 0: 0 -> 1 -> 1 -> 2; episode 1 starts in 5: the 2 -> 5 boundary is no transition.
+    p, counts = ha.transitions([0, 1, 1, 2, 5, 5], [0, 0, 0, 0, 1, 1])
+    assert counts[0, 1] == 1 and counts[1, 2] == 1 and counts[2, 5] == 0
+    assert counts.sum() == 2
+    assert np.isnan(p[3]).all()
