@@ -5,8 +5,8 @@
 # folder given) and prints the table. The in-process game is the one the ROS graph plays
 # (evaluate_test.sh checks that episode by episode); it takes about 2 seconds.
 set -euo pipefail
+out=$(realpath -m "${1:-$(dirname "$0")/../docs}")
 cd "$(dirname "$0")/.."
 source scripts/env.sh
-out=${1:-docs}
 mkdir -p "$out"
 devel/lib/hideseek_seeker/random_hider_table --csv "$out/calibration.csv" | tee "$out/calibration.md"

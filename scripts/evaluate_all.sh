@@ -5,12 +5,13 @@
 # Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/). Writes table2.md, table2.csv
 # and, per evaluation, OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv.
 set -euo pipefail
+out=$(realpath -m "${1:-$(dirname "$0")/../docs}")
 cd "$(dirname "$0")/.."
 source scripts/env.sh
-out=$(realpath -m "${1:-docs}")
 port=${HIDESEEK_PORT:-11477}
 export ROS_MASTER_URI=http://localhost:$port
 variants=(basic fasterhider visibilityreward_faster stochasticseeker stochasticmaps visibilityreward slowerhider)
+rm -rf "$out/evaluations"
 mkdir -p "$out/evaluations"
 for v in "${variants[@]}"; do
   for p in random trained; do
@@ -20,10 +21,13 @@ for v in "${variants[@]}"; do
       [ -f "$policy" ] || { echo "evaluate_all: $v: no shipped policy"; continue; }
     fi
     dir="$out/evaluations/${v}_$p"
+    rm -rf "$dir"
     mkdir -p "$dir"
     start=$(date +%s)
+    # roslaunch exits 0 even when a required node dies: the evaluator's files are the verdict.
     roslaunch -p "$port" hideseek_world evaluate.launch variant:="$v" policy:="$policy" output_dir:="$dir" \
-      > "$dir/launch.log" 2>&1 || { echo "evaluate_all: $v $p failed, see $dir/launch.log"; exit 1; }
+      > "$dir/launch.log" 2>&1 || true
+    [ -s "$dir/evaluation.csv" ] || { echo "evaluate_all: $v $p failed, see $dir/launch.log"; exit 1; }
     rm -f "$dir/launch.log"
     echo "evaluate_all: $v $p: $(tail -n 1 "$dir/evaluation.csv" | cut -d, -f4,5 | tr , ' ') ($(($(date +%s) - start)) s)"
   done

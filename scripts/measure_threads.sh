@@ -16,9 +16,9 @@ for ht in 1 2; do
       awk '/samples_per_s/ { print $2 }')
     for rt in 1 2; do
       run=$(mktemp -d)
-      OPENBLAS_NUM_THREADS=$blas roslaunch -p 11488 hideseek_world train.launch num_arenas:=16 steps:=$((16 * 64 * 7)) \
+      roslaunch -p 11488 hideseek_world train.launch num_arenas:=16 steps:=$((16 * 64 * 7)) \
         output_dir:="$run" checkpoint_interval:=100000 precision:="$precision" hider_threads:="$ht" \
-        render_threads:="$rt" >/dev/null 2>&1
+        blas_threads:="$blas" render_threads:="$rt" >/dev/null 2>&1
       ros=$(awk -F, 'NR == 2 { s0 = $2; t0 = $3 } END { printf "%.0f", ($2 - s0) / ($3 - t0) }' "$run/training_log.csv")
       rm -rf "$run"
       echo "| $precision | $ht | $blas | $rt | $ros | $floor |"

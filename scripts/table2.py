@@ -19,7 +19,10 @@ def evaluation(folder):
     if not os.path.exists(path):
         return None
     with open(path) as f:
-        row = list(csv.DictReader(f))[-1]
+        rows = list(csv.DictReader(f))
+    if not rows:
+        return None
+    row = rows[-1]
     return float(row["avg_living_steps"]), 100.0 * float(row["success_rate"]), int(row["episodes"])
 
 

@@ -4,12 +4,12 @@
 # usage: scripts/train_variant.sh VARIANT [SEED=0] [STEPS=2000000] [RUNS_DIR=~/hideseek_runs]
 # Seed 0 ships as policies/<variant>.pt; other seeds as policies/<variant>_seed<S>.pt (the spread).
 set -euo pipefail
-cd "$(dirname "$0")/.."
-source scripts/env.sh
 variant=$1
 seed=${2:-0}
 steps=${3:-2000000}
-runs=${4:-$HOME/hideseek_runs}
+runs=$(realpath -m "${4:-$HOME/hideseek_runs}")
+cd "$(dirname "$0")/.."
+source scripts/env.sh
 name=$variant
 [ "$seed" = 0 ] || name=${variant}_seed$seed
 run="$runs/$name"
@@ -19,6 +19,12 @@ mkdir -p "$run"
 echo "train_variant: $name, $steps steps, into $run (log: $run/launch.log)"
 roslaunch -p "$port" hideseek_world train.launch variant:="$variant" seed:="$seed" steps:="$steps" \
   output_dir:="$run" > "$run/launch.log" 2>&1
+# roslaunch exits 0 even when the hider dies: ship only a run that trained all its steps.
+trained=$(tail -n 1 "$run/training_log.csv" | cut -d, -f2)
+if [ "${trained:-0}" -lt "$steps" ]; then
+  echo "train_variant: $name stopped at ${trained:-0} of $steps steps (see $run/launch.log); nothing shipped" >&2
+  exit 1
+fi
 devel/lib/hideseek_hider/export_policy "$run/checkpoint.pt" "policies/$name.pt"
 cp "$run/training_log.csv" "docs/training_log_$name.csv"
 /usr/bin/python3 scripts/plot_learning_curve.py "docs/training_log_$name.csv" "docs/learning_curve_$name.png" \

@@ -48,13 +48,15 @@ def test_state_index_and_frequencies():
 
 
 def test_transition_probabilities_out_of_each_source_state_sum_to_one():
-    rng = np.random.default_rng(1)
-    episodes = np.repeat(np.arange(40), 100)
-    states = rng.integers(0, 8, size=len(episodes))
-    p, counts = ha.transitions(states, episodes)
-    assert np.allclose(np.nansum(p, axis=1), 1.0)
-    assert np.all(np.diag(counts) == 0)
-    assert counts.sum() > 0
+    # From state 0: to 1 twice and to 2 once; from 1: to 0 once; from 2: to 0 once. Repeats of a
+    # state (0 0) are no transition.
+    p, counts = ha.transitions([0, 0, 1, 0, 1, 0, 2, 0], [0] * 8)
+    assert counts[0, 1] == 2 and counts[0, 2] == 1 and counts[1, 0] == 2 and counts[2, 0] == 1
+    assert p[0, 1] == pytest.approx(2 / 3) and p[0, 2] == pytest.approx(1 / 3)
+    assert p[1, 0] == pytest.approx(1.0)
+    visited = ~np.isnan(p).all(axis=1)
+    assert list(np.nonzero(visited)[0]) == [0, 1, 2]
+    assert np.allclose(p[visited].sum(axis=1), 1.0)
 
 
 def test_transitions_do_not_cross_episodes_and_unvisited_states_are_nan():

@@ -4,6 +4,7 @@
 #include <hideseek_msgs/EpisodeResult.h>
 #include <ros/ros.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -33,10 +34,12 @@ int main(int argc, char** argv) {
   // A folder that cannot be written is found out now, not after the whole evaluation.
   std::error_code error;
   std::filesystem::create_directories(output_dir, error);
-  if (error || !std::ofstream(output_dir + "/evaluation.csv")) {
+  const std::string probe = output_dir + "/.evaluator_can_write";
+  if (error || !std::ofstream(probe)) {
     ROS_FATAL("evaluator: cannot write to %s (parameter %s)", output_dir.c_str(), pnh.resolveName("output_dir").c_str());
     return 1;
   }
+  std::remove(probe.c_str());
   hideseek_hider::EpisodeTally tally(static_cast<uint32_t>(episodes), static_cast<uint32_t>(first_seed));
   size_t reported = 0;
   // Every episode result, however far behind the world this node falls: the world publishes them

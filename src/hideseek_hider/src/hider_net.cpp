@@ -53,17 +53,24 @@ HiderOutput HiderNetImpl::forward(const torch::Tensor& images) {
   TORCH_CHECK(images.dim() == 4 && images.size(1) == image_height_ && images.size(2) == image_width_ &&
                   images.size(3) == 3,
               "hider network expects [B, ", image_height_, ", ", image_width_, ", 3] images, got ", images.sizes());
-  const AutocastScope autocast(precision_, conv1_->weight.device());
-  torch::Tensor x = images.permute({0, 3, 1, 2}).to(torch::kFloat32).div(255.0);
-  x = leaky(conv1_->forward(x));
-  x = leaky(conv2_->forward(x));
-  x = leaky(conv3_->forward(x));
-  const torch::Tensor features = leaky(features_->forward(x.flatten(1)));
-  // Losses, softmax and probes work in fp32 whatever precision the layers ran in.
+  torch::Tensor features, actor, critic;
+  {
+    const AutocastScope autocast(precision_, conv1_->weight.device());
+    torch::Tensor x = images.permute({0, 3, 1, 2}).to(torch::kFloat32).div(255.0);
+    x = leaky(conv1_->forward(x));
+    x = leaky(conv2_->forward(x));
+    x = leaky(conv3_->forward(x));
+    features = leaky(features_->forward(x.flatten(1)));
+    actor = leaky(actor_hidden_->forward(features));
+    critic = leaky(critic_hidden_->forward(features));
+  }
+  // The two output layers run in fp32 (a negligible share of the work): a bf16 value would be
+  // rounded to about 0.004 near 1, coarser than the 0.001 per-step reward GAE works with.
+  // Losses, softmax and probes then work in fp32 whatever precision the layers ran in.
   HiderOutput out;
   out.features = features.to(torch::kFloat32);
-  out.logits = actor_out_->forward(leaky(actor_hidden_->forward(features))).to(torch::kFloat32);
-  out.value = critic_out_->forward(leaky(critic_hidden_->forward(features))).squeeze(1).to(torch::kFloat32);
+  out.logits = actor_out_->forward(actor.to(torch::kFloat32));
+  out.value = critic_out_->forward(critic.to(torch::kFloat32)).squeeze(1);
   return out;
 }
 

@@ -36,7 +36,10 @@ TrainingOptions roundedToRollouts(TrainingOptions o, const PpoOptions& ppo, int 
 
 }  // namespace
 
-int64_t wholeRollouts(int64_t requested, int64_t rollout) { return (requested + rollout - 1) / rollout * rollout; }
+int64_t wholeRollouts(int64_t requested, int64_t rollout) {
+  if (rollout < 1) throw std::invalid_argument("a rollout must hold at least one sample");
+  return (requested + rollout - 1) / rollout * rollout;
+}
 
 std::string formatDuration(double seconds) {
   const auto total = static_cast<int64_t>(std::llround(std::max(0.0, seconds)));
@@ -59,6 +62,11 @@ int truncateLogAfter(const std::string& path, int64_t steps) {
   std::getline(in, header);
   int dropped = 0;
   while (std::getline(in, line)) {
+    // A row cut off by a kill mid-write (no newline) is dropped, or the next row would join it.
+    if (in.eof()) {
+      ++dropped;
+      break;
+    }
     // Column 2 is the step count (update,steps,...).
     const size_t comma = line.find(',');
     const int64_t row_steps = comma == std::string::npos ? 0 : std::atoll(line.c_str() + comma + 1);
@@ -71,7 +79,10 @@ int truncateLogAfter(const std::string& path, int64_t steps) {
   in.close();
   if (dropped == 0) return 0;
   const std::string tmp = path + ".tmp";
-  std::ofstream(tmp) << header << '\n' << kept;
+  std::ofstream out(tmp);
+  out << header << '\n' << kept;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + tmp + " (disk full?); " + path + " is left as it was");
   if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot move " + tmp + " to " + path);
   return dropped;
 }
@@ -94,6 +105,10 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
     start_wall_s_ = info.wall_s;
     episodes_ = info.episodes;
     dropped_log_rows_ = truncateLogAfter(logPath(), info.steps);
+  } else {
+    // A log without a checkpoint belongs to a run killed before its first checkpoint: none of
+    // its updates survive, so neither do its rows.
+    dropped_log_rows_ = truncateLogAfter(logPath(), 0);
   }
   trainer_.setTotalSamples(options_.total_steps);
   start_steps_ = trainer_.samplesSeen();

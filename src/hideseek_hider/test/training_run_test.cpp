@@ -119,6 +119,34 @@ TEST(TrainingRun, ResumedLogContinuesWithoutDuplicatesAndKeepsWallTimeAndEpisode
   EXPECT_GE(std::stod(column(log[5], 2)), std::stod(column(log[4], 2)));
 }
 
+TEST(TrainingRun, RestartAfterAKillBeforeTheFirstCheckpointStartsAFreshLog) {
+  const std::string dir = testing::TempDir() + "run_no_checkpoint";
+  std::remove((dir + "/checkpoint.pt").c_str());
+  std::remove((dir + "/training_log.csv").c_str());
+  torch::manual_seed(0);
+  {
+    TrainingRun run(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
+    feed(run, 3);  // logged, never checkpointed
+  }
+  // A kill mid-write leaves half a row without its newline.
+  std::ofstream(dir + "/training_log.csv", std::ios::app) << "4,32,0.1";
+  TrainingRun restarted(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
+  EXPECT_FALSE(restarted.resumed());
+  EXPECT_EQ(restarted.droppedLogRows(), 4);
+  feed(restarted, 2);
+  const auto log = lines(restarted.logPath());
+  ASSERT_EQ(log.size(), 1u + 2u);
+  EXPECT_EQ(column(log[1], 0), "1");
+  EXPECT_EQ(column(log[2], 1), "16");
+}
+
+TEST(TrainingLog, ARowCutOffMidWriteIsDropped) {
+  const std::string path = testing::TempDir() + "cut_log.csv";
+  std::ofstream(path) << "update,steps\n1,8\n2,16\n3,2";
+  EXPECT_EQ(truncateLogAfter(path, 16), 1);
+  EXPECT_EQ(lines(path), (std::vector<std::string>{"update,steps", "1,8", "2,16"}));
+}
+
 TEST(FormatDuration, ReadsAtEveryScale) {
   EXPECT_EQ(formatDuration(0.4), "0 s");
   EXPECT_EQ(formatDuration(42.2), "42 s");

@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
         std::ofstream rows(episodes_csv_path);
         rows << "seed,living_steps,outcome\n";
         for (const auto& e : played) rows << e.seed << ',' << e.living_steps << ',' << (e.survived ? "survived" : "captured") << '\n';
+        if (!rows) return usage(("cannot write " + episodes_csv_path).c_str());
       }
       const double reference = paper[name] ? paper[name]["living_random"].as<double>() : NAN;
       const double ratio = s.avg_living_steps / reference;

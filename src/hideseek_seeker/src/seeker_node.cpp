@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "hideseek_seeker/random_hider_game.h"
 #include "hideseek_world/topic_names.h"
 #include "hideseek_world/world_node_options.h"
 
@@ -29,13 +30,12 @@ SeekerPerception toPerception(const hideseek_msgs::SeekerObservationBatch& batch
 
 SeekerNode::SeekerNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
   const hideseek_world::VariantConfig v = hideseek_world::loadVariantParams(pnh);
-  options_.type = v.seeker_policy == "stochastic" ? SeekerPolicyType::kStochastic : SeekerPolicyType::kDeterministic;
-  options_.radius = v.game.agent_radius;
-  options_.turn_per_step = v.game.seeker.turn_rate * v.game.stepDuration();
-  options_.grid_resolution = pnh.param("grid_resolution", 0.1);
-  if (!(options_.grid_resolution >= 0.02 && options_.grid_resolution <= 1.0)) {
+  const double grid_resolution = pnh.param("grid_resolution", 0.1);
+  if (!(grid_resolution >= 0.02 && grid_resolution <= 1.0)) {
     throw std::runtime_error("parameter " + pnh.resolveName("grid_resolution") + " must be in [0.02, 1.0] m");
   }
+  // The same seeker the in-process calibration plays.
+  options_ = seekerOptionsFor(v, grid_resolution);
   actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kSeekerActionsTopic, 2);
   observations_sub_ = nh_.subscribe(hideseek_world::kSeekerObservationsTopic, 2, &SeekerNode::onObservations, this,
                                     ros::TransportHints().tcpNoDelay());

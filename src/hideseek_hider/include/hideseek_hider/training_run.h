@@ -33,8 +33,9 @@ int64_t wholeRollouts(int64_t requested, int64_t rollout);
 std::string formatDuration(double seconds);
 
 // Drops the rows of a training log whose step count is beyond `steps` (updates a killed run logged
-// after its last checkpoint), so that a resumed run continues the log without duplicates.
-// Returns the number of rows dropped; the header stays. The file is rewritten atomically.
+// after its last checkpoint) and a last row cut off mid-write, so that a resumed run continues the
+// log without duplicates. Returns the number of rows dropped; the header stays. The file is
+// rewritten atomically.
 int truncateLogAfter(const std::string& path, int64_t steps);
 
 // What one PPO update reports: the console line and the CSV row come from it.
