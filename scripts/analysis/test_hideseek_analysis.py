@@ -65,3 +65,42 @@ def test_transitions_do_not_cross_episodes_and_unvisited_states_are_nan():
     assert counts[0, 1] == 1 and counts[1, 2] == 1 and counts[2, 5] == 0
     assert counts.sum() == 2
     assert np.isnan(p[3]).all()
+
+
+def test_report_writes_every_file_from_synthetic_inputs(tmp_path):
+    import subprocess
+    import sys
+    import os
+    rng = np.random.default_rng(2)
+    inp, out = tmp_path / "in", tmp_path / "out"
+    inp.mkdir()
+    episodes = np.repeat(np.arange(20), 30)
+    s, h, o = (rng.random((3, len(episodes))) < 0.4).astype(int)
+    for name in ("trained", "random"):
+        with open(inp / ("steps_%s.csv" % name), "w") as f:
+            f.write("episode,step,S,H,O,distance\n")
+            for i, e in enumerate(episodes):
+                f.write("%d,%d,%d,%d,%d,%.2f\n" % (e, i % 30, s[i], h[i], o[i], 3.0))
+    with open(inp / "features.csv", "w") as f:
+        f.write("episode,step,S,H\n")
+        for i, e in enumerate(episodes):
+            f.write("%d,%d,%d,%d\n" % (e, i % 30, s[i], h[i]))
+    features = rng.normal(size=(len(episodes), 512)).astype(np.float32)
+    features[:, :8] += 3.0 * s[:, None]  # the label shows in a few directions
+    np.save(inp / "features_trained.npy", features)
+    np.save(inp / "features_random.npy", rng.normal(size=(len(episodes), 512)).astype(np.float32))
+    here = os.path.dirname(os.path.abspath(__file__))
+    subprocess.run([sys.executable, os.path.join(here, "report.py"), str(inp), str(out), "--variant", "basic",
+                    "--policy", "synthetic", "--steps", "0", "--tsne-samples", "200"], check=True, cwd=here)
+    for name in ("probes.csv", "probes.md", "tsne_S.png", "tsne_H.png", "state_frequencies.csv",
+                 "state_frequencies.md", "state_frequencies.png", "transitions.csv", "transitions.png"):
+        assert (out / name).stat().st_size > 0, name
+    with open(out / "probes.csv") as f:
+        rows = list(csv_rows(f))
+    trained_s = [r for r in rows if r["label"] == "S" and r["network"] == "trained"][0]
+    assert float(trained_s["balanced_accuracy"]) > 0.9
+
+
+def csv_rows(f):
+    import csv
+    return csv.DictReader(f)
