@@ -50,16 +50,17 @@ TEST(GridPlanner, PathsNeverCrossInflatedObstacles) {
 TEST(GridPlanner, GoesAroundTheCrossNotThroughIt) {
   const Layout layout = deterministicLayout();
   const GridPlanner planner(layout, 0.4, 0.1);
-  // Either side of the cross's east arm (which spans x in [-2.5, 2.5], y in [-0.5, 0.5]).
-  const Vec2 south{1.5, -1.5}, north{1.5, 1.5};
+  // Either side of the cross's east arm (which spans x in [-1, 1], y in [-0.3, 0.3]).
+  const Vec2 south{0.6, -1.2}, north{0.6, 1.2};
   EXPECT_FALSE(planner.lineOfSight(south, north));
   const auto path = planner.plan(south, north);
   ASSERT_GE(path.size(), 2u);
   double length = hideseek_world::distance(south, path.front());
   for (size_t i = 1; i < path.size(); ++i) length += hideseek_world::distance(path[i - 1], path[i]);
-  // Around the arm tip (2.5 m out, plus 0.4 m radius): longer than straight, far shorter than a loop.
-  EXPECT_GT(length, 3.0 + 1.0);
-  EXPECT_LT(length, 6.0);
+  // Around the arm tip (1 m out, plus 0.4 m radius: about 2 x 1.44 m): longer than the straight
+  // 2.4 m, far shorter than a loop round the whole cross.
+  EXPECT_GT(length, 2.4 + 0.3);
+  EXPECT_LT(length, 4.5);
 }
 
 TEST(GridPlanner, UnreachableGoalGivesNoPath) {

@@ -36,8 +36,8 @@ TEST(SeekerPolicy, ReachesAGoalBehindTheCrossFromLastKnownPosition) {
   SeekerPolicy seeker({});
   seeker.reset(layout, 1);
   // South of the cross's east arm; the hider was glimpsed once north of it, then never again.
-  AgentState s{{1.5, -1.5}, hideseek_world::kPi / 2, 0.0};
-  const Vec2 behind{1.5, 1.5};
+  AgentState s{{0.6, -1.2}, hideseek_world::kPi / 2, 0.0};
+  const Vec2 behind{0.6, 1.2};
   seeker.act({s, behind});
   for (int step = 0; step < 200 && hideseek_world::distance(s.position, behind) > 0.5; ++step) {
     const Action a = seeker.act({s, std::nullopt});
@@ -56,8 +56,8 @@ TEST(SeekerPolicy, PlansOnTheLayoutOfTheCurrentEpisode) {
   Layout open;
   open.waypoints = {{0.0, 0.0}};
   const Layout cross = deterministicLayout();
-  const AgentState s{{1.5, -1.5}, hideseek_world::kPi / 2, 0.0};
-  const Vec2 behind{1.5, 1.5};
+  const AgentState s{{0.6, -1.2}, hideseek_world::kPi / 2, 0.0};
+  const Vec2 behind{0.6, 1.2};
   auto pathLength = [&](SeekerPolicy& seeker) {
     seeker.act({s, behind});
     double length = 0.0;
@@ -67,13 +67,13 @@ TEST(SeekerPolicy, PlansOnTheLayoutOfTheCurrentEpisode) {
   };
   SeekerPolicy seeker({});
   seeker.reset(open, 1);
-  EXPECT_NEAR(pathLength(seeker), 3.0, 0.2) << "straight across open ground";
+  EXPECT_NEAR(pathLength(seeker), 2.4, 0.2) << "straight across open ground";
   seeker.reset(cross, 2);
-  EXPECT_GT(pathLength(seeker), 4.0) << "around the cross's east arm";
+  EXPECT_GT(pathLength(seeker), 2.7) << "around the cross's east arm";
   seeker.reset(cross, 3);
-  EXPECT_GT(pathLength(seeker), 4.0);
+  EXPECT_GT(pathLength(seeker), 2.7);
   seeker.reset(open, 4);
-  EXPECT_NEAR(pathLength(seeker), 3.0, 0.2);
+  EXPECT_NEAR(pathLength(seeker), 2.4, 0.2);
 }
 
 TEST(SeekerPolicy, ChasesOnSightAndTurnsTowardsTheHider) {
