@@ -22,12 +22,6 @@ torch::Device deviceFrom(const std::string& name, const std::string& param) {
   throw std::runtime_error("parameter " + param + " must be 'cpu' or 'cuda', got '" + name + "'");
 }
 
-PrecisionChoice precisionFor(const ros::NodeHandle& pnh, torch::Device device) {
-  const PrecisionRequest request =
-      parsePrecision(pnh.param<std::string>("precision", "auto"), pnh.resolveName("precision"));
-  return choosePrecision(request, device, detectCpuBf16());
-}
-
 }  // namespace
 
 HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
@@ -41,13 +35,14 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
   // Measured on the 2-core reference machine: 2 intra-op threads train 1.5x faster than 1.
   torch::set_num_threads(threads);
   // Parsed in every mode, so that a typo is refused even where the network is not used.
-  parsePrecision(pnh.param<std::string>("precision", "auto"), pnh.resolveName("precision"));
+  const PrecisionRequest precision_request =
+      parsePrecision(pnh.param<std::string>("precision", "auto"), pnh.resolveName("precision"));
   if (mode == "random") {
     policy_ = std::make_unique<RandomHiderPolicy>();
     ROS_INFO("hider: uniformly random policy");
   } else if (mode == "policy") {
     const torch::Device device = deviceFrom(pnh.param<std::string>("device", "cpu"), pnh.resolveName("device"));
-    const PrecisionChoice precision = precisionFor(pnh, device);
+    const PrecisionChoice precision = choosePrecision(precision_request, device, detectCpuBf16());
     CheckpointInfo info;
     HiderNet net = loadCheckpoint(policy, image_height_, image_width_, &info);
     net->setPrecision(precision.precision);
@@ -56,7 +51,7 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
              static_cast<long>(info.steps), device.str().c_str(), precision.reason.c_str());
   } else if (mode == "train") {
     const torch::Device device = deviceFrom(pnh.param<std::string>("device", "cpu"), pnh.resolveName("device"));
-    startTraining(pnh, v.name, device, precisionFor(pnh, device));
+    startTraining(pnh, v.name, device, choosePrecision(precision_request, device, detectCpuBf16()));
   } else {
     throw std::runtime_error("parameter " + pnh.resolveName("mode") + " must be random, policy or train, got '" + mode + "'");
   }
