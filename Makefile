@@ -5,7 +5,7 @@ CATKIN := source scripts/env.sh && catkin_make -DCMAKE_BUILD_TYPE=Release \
 	-DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=ON
 JOBS ?= $(shell nproc)
 
-.PHONY: deps build run test bench clean
+.PHONY: deps build run test bench reproduce clean
 
 deps:
 	scripts/install_deps.sh
@@ -22,6 +22,10 @@ test: build
 
 bench: build
 	scripts/bench.sh
+
+# Table 2, the analysis of every variant with a shipped policy, Table 3 and the figures, in docs/report.
+reproduce: build
+	scripts/reproduce.sh
 
 clean:
 	rm -rf build devel install

@@ -21,7 +21,8 @@ SeekerOptions seekerOptionsFor(const hideseek_world::VariantConfig& variant, dou
 
 std::vector<RandomHiderEpisode> playRandomHider(const hideseek_world::VariantConfig& variant,
                                                 std::shared_ptr<const hideseek_world::MapSpec> map,
-                                                uint32_t first_seed, int episodes) {
+                                                uint32_t first_seed, int episodes,
+                                                const RandomHiderStepObserver& observe) {
   Arena arena(variant.game, map);
   SeekerPolicy seeker(seekerOptionsFor(variant));
   std::vector<RandomHiderEpisode> out;
@@ -38,6 +39,7 @@ std::vector<RandomHiderEpisode> playRandomHider(const hideseek_world::VariantCon
       const Action seeker_action = seeker.act(hideseek_world::seekerPerception(arena));
       const auto hider_action =
           static_cast<Action>(hideseek_world::hashAction(episode.seed, step, hideseek_world::kSaltRandomHider));
+      if (observe) observe({episode.seed, static_cast<int>(step), arena.hider(), arena.seeker(), arena.labels(), hider_action});
       const hideseek_world::StepResult r = arena.step(hider_action, seeker_action);
       if (r.done()) {
         episode.living_steps = arena.stepCount();

@@ -182,4 +182,40 @@ visualization_msgs::MarkerArray toMarkers(const Arena& arena, const std::string&
   return out;
 }
 
+hideseek_msgs::StepBatch beginStepBatch(const World& world, uint64_t decision, const uint8_t* images, int image_every) {
+  const int n = world.numArenas();
+  hideseek_msgs::StepBatch b;
+  b.decision = decision;
+  b.num_arenas = static_cast<uint32_t>(n);
+  for (int i = 0; i < n; ++i) {
+    const Arena& a = world.arena(i);
+    b.episode.push_back(world.episode(i));
+    b.seed.push_back(a.seed());
+    b.step.push_back(static_cast<uint32_t>(a.stepCount()));
+    b.hider_pose.push_back(toPose2D(a.hider()));
+    b.seeker_pose.push_back(toPose2D(a.seeker()));
+    b.distance.push_back(static_cast<float>(distance(a.hider().position, a.seeker().position)));
+    b.hider_sees_seeker.push_back(a.labels().hider_sees_seeker);
+    b.seeker_sees_hider.push_back(a.labels().seeker_sees_hider);
+    b.obstacle_in_view.push_back(a.labels().obstacle_in_view);
+  }
+  b.image_every = static_cast<uint32_t>(image_every);
+  b.height = static_cast<uint32_t>(world.options().camera.height);
+  b.width = static_cast<uint32_t>(world.options().camera.width);
+  if (image_every > 0 && decision % static_cast<uint64_t>(image_every) == 0) {
+    b.images.assign(images, images + world.imageBytes() * n);
+  }
+  return b;
+}
+
+void finishStepBatch(const std::vector<ArenaStep>& results, const std::vector<Action>& hider,
+                     const std::vector<Action>& seeker, hideseek_msgs::StepBatch& batch) {
+  for (size_t i = 0; i < results.size(); ++i) {
+    batch.hider_action.push_back(static_cast<uint8_t>(hider[i]));
+    batch.seeker_action.push_back(static_cast<uint8_t>(seeker[i]));
+    batch.reward.push_back(static_cast<float>(results[i].result.reward));
+    batch.outcome.push_back(static_cast<uint8_t>(results[i].result.outcome));
+  }
+}
+
 }  // namespace hideseek_world

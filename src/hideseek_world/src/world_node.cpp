@@ -1,5 +1,7 @@
 #include "hideseek_world/world_node.h"
 
+#include <cstdio>
+
 #include <hideseek_msgs/GameState.h>
 #include <hideseek_msgs/ObservationBatch.h>
 #include <hideseek_msgs/SeekerObservationBatch.h>
@@ -64,8 +66,6 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   last_seeker_actions_.assign(n, Action::kStay);
   for (AgentChannel* c : {&hider_, &seeker_}) {
     c->pending.assign(n, std::nullopt);
-    c->latest.assign(n, Action::kStay);
-    c->received.assign(n, ros::WallTime());
   }
   hider_.name = "hider";
   seeker_.name = "seeker";
@@ -83,7 +83,10 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   map_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>(kMapTopic, 1, true);
   hider_path_pub_ = nh_.advertise<nav_msgs::Path>(kHiderPathTopic, 2);
   seeker_path_pub_ = nh_.advertise<nav_msgs::Path>(kSeekerPathTopic, 2);
-  state_pub_ = nh_.advertise<hideseek_msgs::GameState>(kGameStateTopic, 50);
+  // Deep queues: a recorder that falls behind by a few seconds of lockstep loses nothing. A
+  // step record without images is about 1 kB per 16 arenas.
+  state_pub_ = nh_.advertise<hideseek_msgs::GameState>(kGameStateTopic, 1000);
+  steps_pub_ = nh_.advertise<hideseek_msgs::StepBatch>(kStepsTopic, 1000);
   // Small and rare: a deep queue loses no episode even behind a slow listener.
   episodes_pub_ = nh_.advertise<hideseek_msgs::EpisodeResult>(kEpisodesTopic, 10000);
   diagnostics_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
@@ -127,6 +130,10 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
            options_.seed, game.camera.width, game.camera.height);
 }
 
+bool WorldNode::reachedMaxDecisions() const {
+  return options_.max_decisions > 0 && world_steps_ >= static_cast<uint64_t>(options_.max_decisions);
+}
+
 ros::Time WorldNode::simNow() const {
   if (options_.mode == ClockMode::kRealtime) return ros::Time::now();
   return ros::Time(kSimTimeOrigin + static_cast<double>(world_steps_) * options_.variant.game.stepDuration());
@@ -163,7 +170,6 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
     return;
   }
   const bool lockstep = options_.mode == ClockMode::kLockstep;
-  const ros::WallTime now = ros::WallTime::now();
   for (size_t i = 0; i < n; ++i) {
     if (msg.actions[i] >= kNumActions) {
       ++rejected_.invalid_action;
@@ -172,24 +178,31 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
       continue;
     }
     const uint32_t current = static_cast<uint32_t>(world_->arena(i).stepCount());
-    // Realtime agents may answer one step late; lockstep ones must answer the current step.
-    const bool fresh = lockstep ? msg.step[i] == current : (msg.step[i] == current || msg.step[i] + 1 == current);
-    if (!fresh) {
+    // In both modes an action answers the current step: realtime waits for it rather than
+    // applying a late answer to the step after the one it was chosen for.
+    if (!lockstep && frame_ != 0) {
+      ++rejected_.late;
+      ROS_WARN_THROTTLE(kWarnPeriod, "world: rejected %s action for arena %zu: step %u had started without it "
+                        "(the agent answered after stale_action_timeout)", channel.name.c_str(), i, msg.step[i]);
+      continue;
+    }
+    if (msg.step[i] != current) {
       ++rejected_.wrong_step;
       ROS_WARN_THROTTLE(kWarnPeriod, "world: rejected %s action for arena %zu: step id %u, current step is %u",
                         channel.name.c_str(), i, msg.step[i], current);
       continue;
     }
-    const Action a = static_cast<Action>(msg.actions[i]);
-    channel.pending[i] = a;
-    channel.latest[i] = a;
-    channel.received[i] = now;
+    channel.pending[i] = static_cast<Action>(msg.actions[i]);
   }
   if (lockstep) tryAdvanceLockstep();
 }
 
 void WorldNode::tryAdvanceLockstep() {
   if (!started_) return;
+  if (reachedMaxDecisions()) {
+    ROS_INFO_ONCE("world: max_decisions (%ld) reached; the world no longer advances", options_.max_decisions);
+    return;
+  }
   const int n = options_.num_arenas;
   for (int i = 0; i < n; ++i) {
     if (!hider_.pending[i] || !seeker_.pending[i]) return;
@@ -201,6 +214,7 @@ void WorldNode::tryAdvanceLockstep() {
     hider_.pending[i].reset();
     seeker_.pending[i].reset();
   }
+  beginStepRecord();
   std::vector<ArenaStep> results;
   results.reserve(n);
   for (int i = 0; i < n; ++i) results.push_back(world_->stepArena(i, h[i], s[i]));
@@ -212,14 +226,36 @@ void WorldNode::tryAdvanceLockstep() {
 void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
   const int n = options_.num_arenas;
   if (frame_ == 0) {
-    // A decision step starts: take each agent's latest action for its 6 frames. Like turtlesim,
-    // an agent whose commands went stale stands still.
+    // A decision step starts once both agents answered its observation, so each decision drives
+    // its own step. A slow agent slows the game (diagnostics show the real-time factor) rather
+    // than changing it; an agent silent for stale_action_timeout, or absent, stands still for
+    // the step, like turtlesim's stale commands.
     const ros::WallTime now = ros::WallTime::now();
+    bool ready = true;
+    for (int i = 0; i < n && ready; ++i) ready = hider_.pending[i] && seeker_.pending[i];
+    if (!ready) {
+      const bool connected = hider_sub_.getNumPublishers() > 0 && seeker_sub_.getNumPublishers() > 0;
+      if (decision_wait_start_.isZero()) decision_wait_start_ = now;
+      if (connected && (now - decision_wait_start_).toSec() < options_.stale_action_timeout) {
+        publishAgentTransforms(ros::Time::now());
+        return;
+      }
+      if (connected) {
+        ++stale_decisions_;
+        ROS_WARN_THROTTLE(kWarnPeriod, "world: no action for step %d within %.2f s (hider %s, seeker %s): the silent "
+                          "agent stands still this step", world_->arena(0).stepCount(), options_.stale_action_timeout,
+                          hider_.pending[0] ? "answered" : "silent", seeker_.pending[0] ? "answered" : "silent");
+      }
+    }
+    decision_wait_start_ = ros::WallTime();
     for (int i = 0; i < n; ++i) {
-      realtime_hider_[i] = (now - hider_.received[i]).toSec() <= options_.stale_action_timeout ? hider_.latest[i] : Action::kStay;
-      realtime_seeker_[i] = (now - seeker_.received[i]).toSec() <= options_.stale_action_timeout ? seeker_.latest[i] : Action::kStay;
+      realtime_hider_[i] = hider_.pending[i].value_or(Action::kStay);
+      realtime_seeker_[i] = seeker_.pending[i].value_or(Action::kStay);
+      hider_.pending[i].reset();
+      seeker_.pending[i].reset();
     }
     frame_results_.assign(n, std::nullopt);
+    beginStepRecord();
   }
   // One physics frame per tick. An arena whose step ended early (capture) waits for the others,
   // so every arena's decisions stay on the same 0.12 s clock.
@@ -246,7 +282,8 @@ void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
     // first answer is lost, and once every listener that must see the first episodes listens.
     if (hider_obs_pub_.getNumSubscribers() == 0 || seeker_obs_pub_.getNumSubscribers() == 0 ||
         hider_sub_.getNumPublishers() == 0 || seeker_sub_.getNumPublishers() == 0 ||
-        episodes_pub_.getNumSubscribers() < static_cast<uint32_t>(options_.episode_listeners)) {
+        episodes_pub_.getNumSubscribers() < static_cast<uint32_t>(options_.episode_listeners) ||
+        steps_pub_.getNumSubscribers() < static_cast<uint32_t>(options_.step_listeners)) {
       return;
     }
     started_ = true;
@@ -255,7 +292,7 @@ void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
     publishArenaZero(true);
     return;
   }
-  if ((now - last_progress_).toSec() > options_.resend_period) {
+  if (!reachedMaxDecisions() && (now - last_progress_).toSec() > options_.resend_period) {
     ROS_WARN_THROTTLE(10.0, "world: no complete action batches for %.1f s (hider %s, seeker %s); re-sending step",
                       (now - last_progress_).toSec(), hider_.owner.empty() ? "silent" : hider_.owner.c_str(),
                       seeker_.owner.empty() ? "silent" : seeker_.owner.c_str());
@@ -289,10 +326,22 @@ void WorldNode::concludeDecision(const std::vector<ArenaStep>& results, const st
               e.episode, e.seed, outcomeName(e.outcome), e.steps, e.episode_return);
     }
   }
+  if (step_record_) {
+    finishStepBatch(results, hider, seeker, *step_record_);
+    steps_pub_.publish(*step_record_);
+    step_record_.reset();
+  }
   last_hider_actions_ = hider;
   last_seeker_actions_ = seeker;
   ++world_steps_;
   world_->renderHiderViews(images_.data());
+}
+
+void WorldNode::beginStepRecord() {
+  if (steps_pub_.getNumSubscribers() == 0) return;
+  step_record_ = beginStepBatch(*world_, world_steps_, images_.data(), options_.step_image_every);
+  step_record_->header.stamp = simNow();
+  step_record_->header.frame_id = options_.frame_id;
 }
 
 void WorldNode::publishAgentTransforms(const ros::Time& stamp) {
@@ -472,6 +521,9 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
   }
   world_->renderHiderViews(images_.data());
   last_finished_.reset();
+  // A realtime decision in progress belonged to the states just replaced: start a fresh one.
+  frame_ = 0;
+  step_record_.reset();
   if (req.arena <= 0) startEpisodeVisuals();
   res.success = true;
   res.message = "reset " + (req.arena == -1 ? std::string("all arenas") : "arena " + std::to_string(req.arena));
@@ -483,28 +535,53 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
 }
 
 void WorldNode::publishDiagnostics(const ros::WallTimerEvent&) {
+  const ros::WallTime now = ros::WallTime::now();
+  const double period = reported_at_.isZero() ? 0.0 : (now - reported_at_).toSec();
+  const uint64_t rejections = rejected_.wrong_arena_count + rejected_.invalid_action + rejected_.wrong_step +
+                              rejected_.second_publisher + rejected_.late;
+  const double steps_per_s = period > 0.0 ? static_cast<double>(world_steps_ - reported_steps_) / period : 0.0;
   diagnostic_msgs::DiagnosticArray array;
   array.header.stamp = ros::Time::now();
   diagnostic_msgs::DiagnosticStatus status;
   status.name = "hideseek world: input";
   status.hardware_id = "world";
-  const uint64_t total = rejected_.wrong_arena_count + rejected_.invalid_action + rejected_.wrong_step + rejected_.second_publisher;
-  status.level = total ? diagnostic_msgs::DiagnosticStatus::WARN : diagnostic_msgs::DiagnosticStatus::OK;
-  status.message = total ? "rejected malformed or unexpected action messages" : "all input accepted";
-  auto add = [&](const std::string& key, uint64_t v) {
+  // The level reflects the last period only: it returns to OK once a problem is over, while the
+  // counts below keep the totals.
+  const bool rejecting = rejections > reported_rejections_;
+  const bool stale = stale_decisions_ > reported_stale_;
+  status.level = rejecting || stale ? diagnostic_msgs::DiagnosticStatus::WARN : diagnostic_msgs::DiagnosticStatus::OK;
+  status.message = rejecting && stale ? "rejected action messages; an agent missed decisions"
+                   : rejecting        ? "rejected malformed or unexpected action messages"
+                   : stale            ? "an agent missed decisions (it stood still)"
+                                      : "all input accepted";
+  auto add = [&](const std::string& key, const std::string& v) {
     diagnostic_msgs::KeyValue kv;
     kv.key = key;
-    kv.value = std::to_string(v);
+    kv.value = v;
     status.values.push_back(kv);
   };
-  add("rejected_wrong_arena_count", rejected_.wrong_arena_count);
-  add("rejected_invalid_action", rejected_.invalid_action);
-  add("rejected_wrong_step", rejected_.wrong_step);
-  add("rejected_second_publisher", rejected_.second_publisher);
-  add("decision_steps", world_steps_);
-  add("observation_batches", batches_published_);
+  auto fixed = [](double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f", v);
+    return std::string(buf);
+  };
+  add("decision_steps_per_s", fixed(steps_per_s));
+  // Game seconds per wall second: 1 when realtime keeps up; in lockstep, how much faster than real time.
+  add("real_time_factor", fixed(steps_per_s * options_.variant.game.stepDuration()));
+  add("rejected_wrong_arena_count", std::to_string(rejected_.wrong_arena_count));
+  add("rejected_invalid_action", std::to_string(rejected_.invalid_action));
+  add("rejected_wrong_step", std::to_string(rejected_.wrong_step));
+  add("rejected_second_publisher", std::to_string(rejected_.second_publisher));
+  add("rejected_late", std::to_string(rejected_.late));
+  add("stale_decisions", std::to_string(stale_decisions_));
+  add("decision_steps", std::to_string(world_steps_));
+  add("observation_batches", std::to_string(batches_published_));
   array.status.push_back(status);
   diagnostics_pub_.publish(array);
+  reported_rejections_ = rejections;
+  reported_stale_ = stale_decisions_;
+  reported_steps_ = world_steps_;
+  reported_at_ = now;
 }
 
 }  // namespace hideseek_world

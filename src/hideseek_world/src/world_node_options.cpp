@@ -65,6 +65,9 @@ WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& nh) {
   o.publish_rate = readDouble(nh, "publish_rate", 30.0, 0.1, 1000.0);
   o.render_threads = readInt(nh, "render_threads", 2, 0, 64);
   o.episode_listeners = readInt(nh, "episode_listeners", 0, 0, 64);
+  o.step_listeners = readInt(nh, "step_listeners", 0, 0, 64);
+  o.step_image_every = readInt(nh, "step_image_every", 10, 0, 1000000);
+  o.max_decisions = readInt(nh, "max_decisions", 0, 0, 1 << 30);
   return o;
 }
 

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
 #include "hideseek_seeker/seeker_policy.h"
 #include "hideseek_world/game_options.h"
+#include "hideseek_world/arena.h"
 #include "hideseek_world/map.h"
 
 namespace hideseek_seeker {
@@ -20,13 +22,25 @@ struct RandomHiderEpisode {
   bool seen_at_start = false;  // the seeker saw the hider at step 0
 };
 
+// One decision of a random-hider episode: the state both agents chose in, and the hider's action.
+struct RandomHiderStep {
+  uint32_t seed = 0;
+  int step = 0;
+  hideseek_world::AgentState hider, seeker;
+  hideseek_world::Labels labels;
+  hideseek_world::Action hider_action = hideseek_world::Action::kStay;
+};
+using RandomHiderStepObserver = std::function<void(const RandomHiderStep&)>;
+
 // The seeker of a variant, as the seeker node builds it.
 SeekerOptions seekerOptionsFor(const hideseek_world::VariantConfig& variant, double grid_resolution = 0.1);
 
-// Plays the episodes with seeds first_seed .. first_seed + episodes - 1, in seed order.
+// Plays the episodes with seeds first_seed .. first_seed + episodes - 1, in seed order; `observe`,
+// when given, sees every decision (the state statistics of the random policy).
 std::vector<RandomHiderEpisode> playRandomHider(const hideseek_world::VariantConfig& variant,
                                                 std::shared_ptr<const hideseek_world::MapSpec> map,
-                                                uint32_t first_seed, int episodes);
+                                                uint32_t first_seed, int episodes,
+                                                const RandomHiderStepObserver& observe = {});
 
 // Summary of a set of episodes.
 struct RandomHiderSummary {

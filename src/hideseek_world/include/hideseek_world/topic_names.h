@@ -17,6 +17,7 @@ constexpr char kHiderPathTopic[] = "hider/path";
 constexpr char kSeekerPathTopic[] = "seeker/path";
 constexpr char kGameStateTopic[] = "game_state";
 constexpr char kEpisodesTopic[] = "world/episodes";
+constexpr char kStepsTopic[] = "world/steps";
 constexpr char kResetService[] = "world/reset";
 
 }  // namespace hideseek_world

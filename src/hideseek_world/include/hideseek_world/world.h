@@ -36,6 +36,7 @@ class World {
         bool render, int render_threads = 2);
 
   int numArenas() const { return static_cast<int>(arenas_.size()); }
+  const GameOptions& options() const { return options_; }
   const Arena& arena(int i) const { return arenas_[i]; }
   uint32_t episode(int i) const { return episodes_[i]; }
 

@@ -6,6 +6,7 @@
 #include <hideseek_msgs/ArenaMap.h>
 #include <hideseek_msgs/EpisodeResult.h>
 #include <hideseek_msgs/Reset.h>
+#include <hideseek_msgs/StepBatch.h>
 #include <nav_msgs/Path.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <ros/ros.h>
@@ -29,14 +30,13 @@ struct RejectionCounts {
   uint64_t invalid_action = 0;
   uint64_t wrong_step = 0;
   uint64_t second_publisher = 0;
+  uint64_t late = 0;  // realtime: arrived after its step had started without it
 };
 
-// One agent's side of the exchange: its latest actions and who may send them.
+// One agent's side of the exchange: its actions for the current step and who may send them.
 struct AgentChannel {
   std::string name;                          // "hider" or "seeker"
-  std::vector<std::optional<Action>> pending;  // lockstep: action for the current step
-  std::vector<Action> latest;                // realtime: last action received
-  std::vector<ros::WallTime> received;       // realtime: when it arrived
+  std::vector<std::optional<Action>> pending;  // action for the current step, once it arrived
   std::string owner;                         // caller id of the accepted publisher
   ros::WallTime owner_last_seen;
 };
@@ -57,12 +57,15 @@ class WorldNode {
   // Records a finished decision step of every arena and renders the new hider views.
   void concludeDecision(const std::vector<ArenaStep>& results, const std::vector<Action>& hider,
                         const std::vector<Action>& seeker);
+  // The state half of world/steps' record of the decision about to be taken, when someone listens.
+  void beginStepRecord();
   void publishAgentTransforms(const ros::Time& stamp);
   void publishObservations();
   void publishArenaZero(bool force_visuals);
   void startEpisodeVisuals();
   void publishDiagnostics(const ros::WallTimerEvent&);
   ros::Time simNow() const;
+  bool reachedMaxDecisions() const;
 
   ros::NodeHandle nh_;
   WorldNodeOptions options_;
@@ -81,9 +84,11 @@ class WorldNode {
   ros::WallTime last_visuals_;
   bool started_ = false;
   std::optional<EpisodeSummary> last_finished_;  // arena 0's episode that ended in the last step
+  std::optional<hideseek_msgs::StepBatch> step_record_;  // world/steps: the decision being taken
 
   ros::Publisher hider_obs_pub_, seeker_obs_pub_, clock_pub_, hider_image_pub_, hider_info_pub_, seeker_image_pub_,
-      seeker_info_pub_, markers_pub_, map_pub_, hider_path_pub_, seeker_path_pub_, state_pub_, episodes_pub_, diagnostics_pub_;
+      seeker_info_pub_, markers_pub_, map_pub_, hider_path_pub_, seeker_path_pub_, state_pub_, episodes_pub_, steps_pub_,
+      diagnostics_pub_;
   ros::Subscriber hider_sub_, seeker_sub_;
   ros::ServiceServer reset_srv_;
   ros::WallTimer tick_timer_, watchdog_timer_, diagnostics_timer_;
@@ -99,6 +104,12 @@ class WorldNode {
   int frame_ = 0;
   std::vector<Action> realtime_hider_, realtime_seeker_;
   std::vector<std::optional<ArenaStep>> frame_results_;
+  ros::WallTime decision_wait_start_;  // since when the next decision waits for an answer (zero: not waiting)
+  uint64_t stale_decisions_ = 0;       // decisions an agent missed (it stood still)
+  // Diagnostics: the counts at the previous report, so that a status returns to OK once a
+  // problem is over.
+  uint64_t reported_rejections_ = 0, reported_stale_ = 0, reported_steps_ = 0;
+  ros::WallTime reported_at_;
 };
 
 }  // namespace hideseek_world

@@ -26,6 +26,14 @@ struct WorldNodeOptions {
   // Lockstep starts once world/episodes has this many subscribers (an evaluator, a recorder for
   // analysis): whoever must see the first episodes, however late it connects.
   int episode_listeners = 0;
+  // Lockstep also waits for this many subscribers of world/steps (an analysis recorder), so that
+  // its record starts at the first decision.
+  int step_listeners = 0;
+  // world/steps carries the hider images on every step_image_every-th decision (0: never).
+  int step_image_every = 10;
+  // Lockstep stops advancing after this many decisions (0: never): a rollout of fixed length,
+  // such as an analysis recording. The world then idles until the launch ends.
+  int64_t max_decisions = 0;
 };
 
 constexpr int kMaxArenas = 64;

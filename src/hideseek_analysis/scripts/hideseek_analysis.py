@@ -32,7 +32,10 @@ def probe(features, labels, groups, test_size=0.3, seed=0):
     train, test = next(split.split(features, labels, groups))
     if len(np.unique(labels[train])) < 2:
         raise ValueError("probe: the train split holds one class only; record more episodes")
-    model = make_pipeline(StandardScaler(), LogisticRegression(max_iter=2000, C=1.0))
+    # Classes weighted by their inverse frequency: in a policy's own games one class can be rare
+    # (a hider that is almost always in the seeker's view), and an unweighted fit would mostly
+    # learn the prior. Balanced accuracy is then the score to read.
+    model = make_pipeline(StandardScaler(), LogisticRegression(max_iter=2000, C=1.0, class_weight="balanced"))
     model.fit(features[train], labels[train])
     predicted = model.predict(features[test])
     prior = float(labels[test].mean())

@@ -9,20 +9,28 @@ INPUT_DIR holds
   features.csv                          one row per probed step: episode,step,S,H (the labels)
   features_trained.npy                  [rows, 512] float32 mid-level features of the trained network
   features_random.npy                   the same rows through a randomly initialised network
+  layouts.csv                           obstacles of the episodes drawn top-down:
+                                        episode,half_extent,x,y,size_x,size_y,yaw
 OUTPUT_DIR receives probes.csv/.md, tsne_S.png, tsne_H.png, state_frequencies.csv/.png,
-transitions.csv/.png; every figure is labelled with variant, policy and training steps.
+transitions.csv/.png, distance_time.png; every figure is labelled with variant, policy and
+training steps.
 """
 import argparse
 import csv
 import os
+import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.patches import Rectangle  # noqa: E402
+from matplotlib.transforms import Affine2D  # noqa: E402
 from sklearn.manifold import TSNE  # noqa: E402
 
+# catkin's devel space runs this file through a relay in devel/lib: find the module beside it.
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import hideseek_analysis as ha  # noqa: E402
 
 
@@ -116,6 +124,60 @@ def transitions(trained, out, title):
     plt.close(fig)
 
 
+def distance_time(trained, layouts, out, title):
+    """Distance between the agents against time, each episode beside its top-down trajectory."""
+    episodes = list(dict.fromkeys(layouts["episode"])) if layouts else []
+    if not episodes:
+        raise SystemExit("report: layouts.csv names no complete episode; record a longer rollout")
+    fig, axes = plt.subplots(len(episodes), 2, figsize=(9, 3.2 * len(episodes)), squeeze=False,
+                             gridspec_kw={"width_ratios": [1.6, 1]})
+    for row, episode in enumerate(episodes):
+        mine = trained["episode"] == episode
+        steps = trained["step"][mine].astype(int)
+        order = np.argsort(steps)
+        steps = steps[order]
+        col = {k: trained[k][mine][order].astype(float) for k in ("distance", "hider_x", "hider_y", "seeker_x",
+                                                                  "seeker_y", "H")}
+        outcome = int(trained["outcome"][mine][order][-1])
+        ax = axes[row, 0]
+        ax.plot(steps, col["distance"], color="k", lw=1)
+        seen = col["H"] > 0
+        ax.fill_between(steps, 0, col["distance"].max() * 1.05, where=seen, color="tab:red", alpha=0.15, lw=0,
+                        label="seeker sees hider (H)")
+        ax.set_xlabel("decision step")
+        ax.set_ylabel("distance between agents, m")
+        ax.set_ylim(0, col["distance"].max() * 1.05)
+        ax.set_title("episode (seed) %s: %s after %d steps" % (episode, {1: "captured", 2: "survived"}.get(outcome, "?"),
+                                                                len(steps)), fontsize=9)
+        if row == 0:
+            ax.legend(fontsize=7, loc="upper right")
+        ax = axes[row, 1]
+        boxes = layouts["episode"] == episode
+        half = float(layouts["half_extent"][boxes][0])
+        ax.add_patch(Rectangle((-half, -half), 2 * half, 2 * half, fill=False, color="k", lw=1.5))
+        for x, y, sx, sy, yaw in zip(*(layouts[k][boxes].astype(float) for k in ("x", "y", "size_x", "size_y", "yaw"))):
+            box = Rectangle((-sx / 2, -sy / 2), sx, sy, color="0.6")
+            box.set_transform(Affine2D().rotate(yaw).translate(x, y) + ax.transData)
+            ax.add_patch(box)
+        ax.plot(col["hider_x"], col["hider_y"], color="tab:blue", lw=1, label="hider")
+        ax.plot(col["seeker_x"], col["seeker_y"], color="tab:orange", lw=1, label="seeker")
+        ax.plot(col["hider_x"][0], col["hider_y"][0], "o", color="tab:blue", ms=5)
+        ax.plot(col["seeker_x"][0], col["seeker_y"][0], "o", color="tab:orange", ms=5)
+        if outcome == 1:
+            ax.plot(col["hider_x"][-1], col["hider_y"][-1], "x", color="tab:red", ms=8, mew=2, label="captured")
+        ax.set_xlim(-half - 0.3, half + 0.3)
+        ax.set_ylim(-half - 0.3, half + 0.3)
+        ax.set_aspect("equal")
+        ax.set_xticks([])
+        ax.set_yticks([])
+        if row == 0:
+            ax.legend(fontsize=7, loc="upper right")
+    fig.suptitle("Distance over time and trajectories (dots: start)\n" + title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "distance_time.png"), dpi=80)
+    plt.close(fig)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("input")
@@ -142,6 +204,8 @@ def main():
     print("report: state frequencies and transitions")
     state_frequencies(trained, random, a.output, title)
     transitions(trained, a.output, title)
+    print("report: distance over time")
+    distance_time(trained, read_csv(os.path.join(a.input, "layouts.csv")), a.output, title)
     print("report: wrote", a.output)
 
 

@@ -78,9 +78,13 @@ def test_report_writes_every_file_from_synthetic_inputs(tmp_path):
     s, h, o = (rng.random((3, len(episodes))) < 0.4).astype(int)
     for name in ("trained", "random"):
         with open(inp / ("steps_%s.csv" % name), "w") as f:
-            f.write("episode,step,S,H,O,distance\n")
+            f.write("arena,episode,step,S,H,O,distance,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw,"
+                    "hider_action,reward,outcome\n")
             for i, e in enumerate(episodes):
-                f.write("%d,%d,%d,%d,%d,%.2f\n" % (e, i % 30, s[i], h[i], o[i], 3.0))
+                f.write("0,%d,%d,%d,%d,%d,%.2f,%.2f,1.0,0.0,-2.0,-1.0,0.0,1,0.001,%d\n"
+                        % (e, i % 30, s[i], h[i], o[i], 3.0 - 0.05 * (i % 30), 0.1 * (i % 30), int(i % 30 == 29)))
+    with open(inp / "layouts.csv", "w") as f:
+        f.write("episode,half_extent,x,y,size_x,size_y,yaw\n0,7,0,0,2,0.6,0\n0,7,0,0,0.6,2,0\n3,7,5,5,8,1,0.785\n")
     with open(inp / "features.csv", "w") as f:
         f.write("episode,step,S,H\n")
         for i, e in enumerate(episodes):
@@ -93,7 +97,8 @@ def test_report_writes_every_file_from_synthetic_inputs(tmp_path):
     subprocess.run([sys.executable, os.path.join(here, "report.py"), str(inp), str(out), "--variant", "basic",
                     "--policy", "synthetic", "--steps", "0", "--tsne-samples", "200"], check=True, cwd=here)
     for name in ("probes.csv", "probes.md", "tsne_S.png", "tsne_H.png", "state_frequencies.csv",
-                 "state_frequencies.md", "state_frequencies.png", "transitions.csv", "transitions.png"):
+                 "state_frequencies.md", "state_frequencies.png", "transitions.csv", "transitions.png",
+                 "distance_time.png"):
         assert (out / name).stat().st_size > 0, name
     with open(out / "probes.csv") as f:
         rows = list(csv_rows(f))

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# The whole reproduction in one command (`make reproduce`): evaluates every shipped policy and the
+# random hider on all seven variants (Table 2), analyses every variant that has a shipped policy
+# (analyze.launch: 50,000 recorded steps, probes, t-SNE, state statistics, distance over time),
+# and gathers it all into one report folder with Table 3, the figures across variants, the
+# survival-vs-representation plot and an index.md.
+# usage: scripts/reproduce.sh [REPORT_DIR=docs/report] [WORK_DIR=~/.ros/hideseek_reproduce]
+#   WORK_DIR receives the bags and feature arrays (large; not part of the report).
+#   HIDESEEK_ANALYSIS_STEPS overrides the 50,000 steps per variant (a quick look: 5000).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+report=$(realpath -m "${1:-docs/report}")
+work=$(realpath -m "${2:-$HOME/.ros/hideseek_reproduce}")
+steps=${HIDESEEK_ANALYSIS_STEPS:-50000}
+source scripts/env.sh
+port=${HIDESEEK_PORT:-11478}
+export ROS_MASTER_URI=http://localhost:$port
+start=$(date +%s)
+mkdir -p "$report" "$work"
+echo "reproduce: [1/3] Table 2: every shipped policy and the random hider, seeds 0-99, all variants"
+HIDESEEK_PORT=$port scripts/evaluate_all.sh "$report"
+variants=()
+for v in basic fasterhider visibilityreward_faster stochasticseeker stochasticmaps visibilityreward slowerhider; do
+  [ -f "policies/$v.pt" ] && variants+=("$v")
+done
+i=0
+for v in "${variants[@]}"; do
+  i=$((i + 1))
+  echo "reproduce: [2/3] analysis $i of ${#variants[@]}: $v ($steps steps; $(($(date +%s) - start)) s so far)"
+  rm -rf "${report:?}/$v"
+  # roslaunch exits 0 even when a required node dies: the report's files are the verdict.
+  roslaunch -p "$port" hideseek_world analyze.launch variant:="$v" policy:="$PWD/policies/$v.pt" steps:="$steps" \
+    output_dir:="$work/$v" report_dir:="$report/$v" > "$work/$v.log" 2>&1 || true
+  grep -E "^analysis:|report:" "$work/$v.log" | sed 's/^/  /' || true
+  [ -s "$report/$v/distance_time.png" ] || { echo "reproduce: the analysis of $v failed, see $work/$v.log" >&2; exit 1; }
+done
+echo "reproduce: [3/3] tables and figures across variants"
+/usr/bin/python3 src/hideseek_analysis/scripts/reproduce_report.py "$report" --paper config/paper_reference.yaml
+echo "reproduce: done in $(($(date +%s) - start)) s; open $report/index.md"

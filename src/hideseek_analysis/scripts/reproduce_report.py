@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""Gathers the per-variant analysis reports into the reproduction report.
+
+usage: reproduce_report.py REPORT_DIR --paper config/paper_reference.yaml [--training-logs DOCS]
+
+REPORT_DIR holds table2.csv (scripts/evaluate_all.sh) and one folder per analysed variant
+(analyze.launch report_dir:=REPORT_DIR/<variant>). Writes into REPORT_DIR:
+  table3.csv/.md                    probe accuracy, trained / random-init network, beside the paper's
+  state_frequencies_variants.png    trained minus random state frequencies, every variant
+  transitions_variants.png          transition probabilities, every variant
+  survival_vs_representation.png    self-visibility (H) probe accuracy against average living
+                                    steps, one point per variant, with a parabolic fit
+  index.md                          links to everything, with the tables inline
+"""
+import argparse
+import csv
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import yaml  # noqa: E402
+
+ORDER = ["basic", "fasterhider", "visibilityreward_faster", "stochasticseeker", "stochasticmaps",
+         "visibilityreward", "slowerhider"]
+STATE_NAMES = ["S%d H%d O%d" % ((i >> 2) & 1, (i >> 1) & 1, i & 1) for i in range(8)]
+
+
+def rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def write_table(stem, header, table):
+    with open(stem + ".csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(header)
+        w.writerows(table)
+    with open(stem + ".md", "w") as f:
+        f.write(markdown(header, table))
+
+
+def markdown(header, table):
+    lines = ["| " + " | ".join(header) + " |", "| " + " | ".join("---" for _ in header) + " |"]
+    lines += ["| " + " | ".join(str(c) for c in r) + " |" for r in table]
+    return "\n".join(lines) + "\n"
+
+
+def probe_accuracies(folder):
+    """{(label, network): (accuracy %, balanced accuracy %)} of one variant's probes.csv."""
+    return {(r["label"], r["network"]): (100 * float(r["test_accuracy"]), 100 * float(r["balanced_accuracy"]))
+            for r in rows(os.path.join(folder, "probes.csv"))}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("report")
+    parser.add_argument("--paper", required=True)
+    a = parser.parse_args()
+    with open(a.paper) as f:
+        paper = yaml.safe_load(f)
+    ref = paper["variants"]
+    table2 = {r["variant"]: r for r in rows(os.path.join(a.report, "table2.csv"))}
+    analysed = [v for v in ORDER if os.path.isfile(os.path.join(a.report, v, "probes.csv"))]
+    if not analysed:
+        raise SystemExit("reproduce_report: no variant folder with probes.csv in %s" % a.report)
+    probes = {v: probe_accuracies(os.path.join(a.report, v)) for v in analysed}
+
+    # Table 3: probe accuracy beside the paper's.
+    header = ["variant", "S: trained / random-init", "paper S", "H: trained / random-init", "paper H",
+              "balanced S: trained / random-init", "balanced H: trained / random-init"]
+    t3 = []
+    for v in analysed:
+        p = probes[v]
+        t3.append([v,
+                   "%.1f / %.1f" % (p["S", "trained"][0], p["S", "random_init"][0]),
+                   "%.2f / %.2f" % (ref[v]["probe_S_trained"], ref[v]["probe_S_random"]),
+                   "%.1f / %.1f" % (p["H", "trained"][0], p["H", "random_init"][0]),
+                   "%.2f / %.2f" % (ref[v]["probe_H_trained"], ref[v]["probe_H_random"]),
+                   "%.1f / %.1f" % (p["S", "trained"][1], p["S", "random_init"][1]),
+                   "%.1f / %.1f" % (p["H", "trained"][1], p["H", "random_init"][1])])
+    write_table(os.path.join(a.report, "table3"), header, t3)
+
+    # State frequencies and transitions across variants.
+    fig, ax = plt.subplots(figsize=(9, 4))
+    width = 0.8 / len(analysed)
+    for k, v in enumerate(analysed):
+        diff = [float(r["trained_minus_random"]) for r in rows(os.path.join(a.report, v, "state_frequencies.csv"))]
+        ax.bar(np.arange(8) + (k - (len(analysed) - 1) / 2) * width, diff, width, label=v)
+    ax.axhline(0, color="k", lw=0.8)
+    ax.set_xticks(range(8))
+    ax.set_xticklabels(STATE_NAMES, rotation=30, fontsize=8)
+    ax.set_ylabel("relative frequency, trained - random policy")
+    ax.set_title("State frequencies of every analysed variant (S: hider sees seeker, H: seeker sees hider, "
+                 "O: obstacle in view)", fontsize=9)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.report, "state_frequencies_variants.png"), dpi=90)
+    plt.close(fig)
+
+    fig, axes = plt.subplots(1, len(analysed), figsize=(3.3 * len(analysed), 3.6), squeeze=False)
+    for ax, v in zip(axes[0], analysed):
+        p = np.full((8, 8), np.nan)
+        for r in rows(os.path.join(a.report, v, "transitions.csv")):
+            if r["probability"] != "":
+                p[STATE_NAMES.index(r["from"]), STATE_NAMES.index(r["to"])] = float(r["probability"])
+        image = ax.imshow(p, cmap="viridis", vmin=0, vmax=1)
+        ax.set_xticks(range(8))
+        ax.set_yticks(range(8))
+        ax.set_xticklabels(STATE_NAMES, rotation=90, fontsize=6)
+        ax.set_yticklabels(STATE_NAMES, fontsize=6)
+        ax.set_title(v, fontsize=9)
+    fig.colorbar(image, ax=list(axes[0]), label="P(to | a change out of from)")
+    fig.suptitle("Transitions between distinct states (rows: from, columns: to)", fontsize=10)
+    fig.savefig(os.path.join(a.report, "transitions_variants.png"), dpi=80, bbox_inches="tight")
+    plt.close(fig)
+
+    # Survival against representation: one point per variant with a policy and an analysis.
+    points = [(probes[v]["H", "trained"][0], float(table2[v]["living_trained"]), v) for v in analysed
+              if v in table2 and table2[v]["living_trained"] not in ("", None)]
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    for x, y, v in points:
+        ax.plot(x, y, "o", color="tab:blue")
+        ax.annotate(v, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=8)
+    fit_note = "fewer than 3 variants: no parabolic fit"
+    if len(points) >= 3:
+        xs, ys = np.array([p[0] for p in points]), np.array([p[1] for p in points])
+        coefficients = np.polyfit(xs, ys, 2)
+        grid = np.linspace(xs.min() - 1, xs.max() + 1, 100)
+        ax.plot(grid, np.polyval(coefficients, grid), color="tab:orange", lw=1)
+        fit_note = "parabolic fit: %.3g x^2 + %.3g x + %.3g" % tuple(coefficients)
+    ax.set_xlabel("self-visibility (H) probe accuracy of the trained features, %")
+    ax.set_ylabel("average living steps (seeds 0-99, greedy)")
+    ax.set_title("Survival against representation\n" + fit_note, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.report, "survival_vs_representation.png"), dpi=90)
+    plt.close(fig)
+
+    with open(os.path.join(a.report, "table2.md")) as f:
+        table2_md = f.read()
+    index = ["# Reproduction report", "",
+             "Made by `make reproduce`: every shipped policy and the random hider evaluated on every variant, "
+             "then every variant with a shipped policy analysed (`analyze.launch`).", "",
+             "## Table 2: living steps and success", "", table2_md.strip(), "",
+             "CSV: [table2.csv](table2.csv); per evaluation: [evaluations/](evaluations/)", "",
+             "## Table 3: linear probes of the 512 mid-level features", "",
+             "Test accuracy in % on episodes held out from the probe's fit; the balanced accuracy (mean recall of "
+             "both classes) is 50 % for any probe that ignores its input.", "", markdown(header, t3).strip(), "",
+             "CSV: [table3.csv](table3.csv)", "",
+             "## Across variants", "",
+             "![state frequencies](state_frequencies_variants.png)", "",
+             "![transitions](transitions_variants.png)", "",
+             "![survival against representation](survival_vs_representation.png)", "",
+             "## Per variant", ""]
+    for v in analysed:
+        files = sorted(f for f in os.listdir(os.path.join(a.report, v)))
+        index.append("- **%s**: " % v + ", ".join("[%s](%s/%s)" % (f, v, f) for f in files))
+    with open(os.path.join(a.report, "index.md"), "w") as f:
+        f.write("\n".join(index) + "\n")
+    print("reproduce_report: wrote %s/index.md (%d variants analysed: %s)" % (a.report, len(analysed),
+                                                                          ", ".join(analysed)))
+
+
+if __name__ == "__main__":
+    main()

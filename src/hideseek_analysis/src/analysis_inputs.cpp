@@ -1,0 +1,189 @@
+#include "hideseek_analysis/analysis_inputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "hideseek_seeker/random_hider_game.h"
+#include "hideseek_world/arena.h"
+
+namespace hideseek_analysis {
+
+namespace hw = hideseek_world;
+
+namespace {
+
+std::ofstream openOrThrow(const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out.precision(7);
+  return out;
+}
+
+constexpr char kStepsHeader[] =
+    "arena,episode,step,S,H,O,distance,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw,hider_action,reward,outcome\n";
+
+void writeStepRow(std::ofstream& out, const ArenaStepRecord& r) {
+  out << r.arena << ',' << r.seed << ',' << r.step << ',' << r.hider_sees_seeker << ',' << r.seeker_sees_hider << ','
+      << r.obstacle_in_view << ',' << r.distance << ',' << r.hider_x << ',' << r.hider_y << ',' << r.hider_yaw << ','
+      << r.seeker_x << ',' << r.seeker_y << ',' << r.seeker_yaw << ',' << r.hider_action << ',' << r.reward << ','
+      << r.outcome << '\n';
+}
+
+// Rows grouped by episode (seed) and in step order, as the transition counts need them.
+std::vector<const ArenaStepRecord*> byEpisode(const std::vector<ArenaStepRecord>& records) {
+  std::vector<const ArenaStepRecord*> rows;
+  rows.reserve(records.size());
+  for (const auto& r : records) rows.push_back(&r);
+  std::stable_sort(rows.begin(), rows.end(), [](const ArenaStepRecord* a, const ArenaStepRecord* b) {
+    return a->seed != b->seed ? a->seed < b->seed : a->step < b->step;
+  });
+  return rows;
+}
+
+}  // namespace
+
+torch::Tensor extractFeatures(hideseek_hider::HiderNet& net, const uint8_t* images, int64_t count, int height,
+                              int width, int batch) {
+  torch::NoGradGuard no_grad;
+  net->eval();
+  const int64_t bytes = static_cast<int64_t>(height) * width * 3;
+  std::vector<torch::Tensor> parts;
+  for (int64_t first = 0; first < count; first += batch) {
+    const int64_t b = std::min<int64_t>(batch, count - first);
+    const torch::Tensor x =
+        torch::from_blob(const_cast<uint8_t*>(images + first * bytes), {b, height, width, 3}, torch::kUInt8);
+    parts.push_back(net->forward(x).features.to(torch::kFloat32).contiguous());
+  }
+  if (parts.empty()) return torch::zeros({0, hideseek_hider::kFeatures});
+  return torch::cat(parts).contiguous();
+}
+
+void writeNpy(const std::string& path, const float* data, int64_t rows, int64_t cols) {
+  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
+                       std::to_string(cols) + "), }";
+  // The magic, version and header length take 10 bytes; the header ends in a newline and pads
+  // the whole preamble to a multiple of 64 bytes.
+  const size_t total = 10 + header.size() + 1;
+  header.append((64 - total % 64) % 64, ' ');
+  header.push_back('\n');
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  const uint16_t length = static_cast<uint16_t>(header.size());
+  out.write("\x93NUMPY\x01\x00", 8);
+  out.put(static_cast<char>(length & 0xff));
+  out.put(static_cast<char>(length >> 8));
+  out << header;
+  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(rows * cols * sizeof(float)));
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::HiderNet& trained,
+                                          const hw::VariantConfig& variant, std::shared_ptr<const hw::MapSpec> map,
+                                          const AnalysisInputsOptions& options, const std::string& dir) {
+  AnalysisInputsSummary summary;
+  const auto& records = log.records();
+  summary.steps = records.size();
+
+  // The trained policy's states.
+  std::set<uint32_t> seeds;
+  {
+    std::ofstream out = openOrThrow(dir + "/steps_trained.csv");
+    out << kStepsHeader;
+    for (const ArenaStepRecord* r : byEpisode(records)) {
+      writeStepRow(out, *r);
+      seeds.insert(r->seed);
+    }
+  }
+  summary.episodes = seeds.size();
+
+  // Features of every recorded image, through the trained network and a random one.
+  summary.images = log.numImages();
+  if (summary.images > 0) {
+    const int h = log.imageHeight(), w = log.imageWidth();
+    if (h != trained->imageHeight() || w != trained->imageWidth()) {
+      throw std::runtime_error("the recorded images are " + std::to_string(h) + "x" + std::to_string(w) +
+                               ", the policy's network takes " + std::to_string(trained->imageHeight()) + "x" +
+                               std::to_string(trained->imageWidth()));
+    }
+    std::ofstream labels = openOrThrow(dir + "/features.csv");
+    labels << "episode,step,S,H,O\n";
+    for (const auto& r : records) {
+      if (r.image < 0) continue;
+      labels << r.seed << ',' << r.step << ',' << r.hider_sees_seeker << ',' << r.seeker_sees_hider << ','
+             << r.obstacle_in_view << '\n';
+    }
+    torch::manual_seed(options.random_init_seed);
+    hideseek_hider::HiderNet random_init(h, w);
+    for (auto [name, net] : {std::pair<const char*, hideseek_hider::HiderNet*>{"trained", &trained},
+                             std::pair<const char*, hideseek_hider::HiderNet*>{"random", &random_init}}) {
+      const torch::Tensor f = extractFeatures(*net, log.images().data(), summary.images, h, w, options.batch);
+      writeNpy(dir + "/features_" + name + ".npy", f.data_ptr<float>(), f.size(0), f.size(1));
+    }
+  }
+
+  // The random policy over at least as many steps, in whole episodes.
+  {
+    std::ofstream out = openOrThrow(dir + "/steps_random.csv");
+    out << kStepsHeader;
+    uint32_t next_seed = seeds.empty() ? 0 : *seeds.begin();
+    while (summary.random_steps < summary.steps) {
+      hideseek_seeker::playRandomHider(
+          variant, map, next_seed, 1, [&](const hideseek_seeker::RandomHiderStep& s) {
+            ArenaStepRecord r;
+            r.seed = s.seed;
+            r.step = static_cast<uint32_t>(s.step);
+            r.hider_x = s.hider.position.x;
+            r.hider_y = s.hider.position.y;
+            r.hider_yaw = s.hider.yaw;
+            r.seeker_x = s.seeker.position.x;
+            r.seeker_y = s.seeker.position.y;
+            r.seeker_yaw = s.seeker.yaw;
+            r.distance = hw::distance(s.hider.position, s.seeker.position);
+            r.hider_sees_seeker = s.labels.hider_sees_seeker;
+            r.seeker_sees_hider = s.labels.seeker_sees_hider;
+            r.obstacle_in_view = s.labels.obstacle_in_view;
+            r.hider_action = static_cast<int>(s.hider_action);
+            writeStepRow(out, r);
+            ++summary.random_steps;
+          });
+      ++summary.random_episodes;
+      ++next_seed;
+    }
+  }
+
+  // The layouts of the complete episodes with the smallest seeds (not the first to end, which
+  // would favour short episodes), rebuilt from their seeds and checked against the recorded
+  // start: a bag of another variant or map would not match.
+  {
+    std::map<uint32_t, const ArenaStepRecord*> start;
+    std::set<uint32_t> complete;
+    for (const auto& r : records) {
+      if (r.step == 0) start[r.seed] = &r;
+      if (r.outcome != 0 && start.count(r.seed)) complete.insert(r.seed);
+    }
+    std::ofstream out = openOrThrow(dir + "/layouts.csv");
+    out << "episode,half_extent,x,y,size_x,size_y,yaw\n";
+    hw::Arena arena(variant.game, map);
+    for (uint32_t seed : complete) {
+      if (static_cast<int>(summary.trajectory_seeds.size()) >= options.trajectory_episodes) break;
+      arena.reset(seed);
+      const ArenaStepRecord& s = *start[seed];
+      if (std::abs(arena.hider().position.x - s.hider_x) > 1e-3 || std::abs(arena.hider().position.y - s.hider_y) > 1e-3) {
+        throw std::runtime_error("episode " + std::to_string(seed) + " of the recording does not start where variant '" +
+                                 variant.name + "' starts it: was it recorded with another variant or map?");
+      }
+      for (const hw::Box& b : arena.layout().obstacles) {
+        out << seed << ',' << arena.layout().half_extent << ',' << b.center.x << ',' << b.center.y << ',' << b.size.x
+            << ',' << b.size.y << ',' << b.yaw << '\n';
+      }
+      summary.trajectory_seeds.push_back(seed);
+    }
+  }
+  return summary;
+}
+
+}  // namespace hideseek_analysis

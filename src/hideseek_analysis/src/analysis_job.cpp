@@ -1,0 +1,61 @@
+#include "hideseek_analysis/analysis_job.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "hideseek_analysis/bag_reader.h"
+#include "hideseek_hider/hider_net.h"
+
+namespace hideseek_analysis {
+
+namespace {
+
+// Single quotes for the shell, so that any path survives std::system.
+std::string quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+}  // namespace
+
+void runAnalysis(const AnalysisJob& job) {
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  std::filesystem::create_directories(job.inputs_dir);
+  std::filesystem::create_directories(job.report_dir);
+
+  std::printf("analysis: reading %s\n", job.bag.c_str());
+  std::fflush(stdout);
+  const StepLog log = readStepBag(job.bag);
+  std::printf("analysis: %zu decisions of %d arenas (%zu steps), %ld images, no step missing\n", log.decisions(),
+              log.numArenas(), log.records().size(), static_cast<long>(log.numImages()));
+
+  const int h = job.variant.game.camera.height, w = job.variant.game.camera.width;
+  hideseek_hider::CheckpointInfo info;
+  hideseek_hider::HiderNet net = hideseek_hider::loadCheckpoint(job.policy, h, w, &info);
+  std::printf("analysis: features of %ld images through %s (%ld training steps) and a random network (seed %u)\n",
+              static_cast<long>(log.numImages()), job.policy.c_str(), static_cast<long>(info.steps),
+              job.inputs.random_init_seed);
+  std::fflush(stdout);
+  const AnalysisInputsSummary s = writeAnalysisInputs(log, net, job.variant,
+                                                      std::make_shared<const hideseek_world::MapSpec>(
+                                                          hideseek_world::loadMapFile(job.variant.map_file)),
+                                                      job.inputs, job.inputs_dir);
+  std::printf("analysis: %zu episodes; random policy: %zu steps in %zu episodes; inputs in %s (%.0f s)\n", s.episodes,
+              s.random_steps, s.random_episodes, job.inputs_dir.c_str(), elapsed());
+  std::fflush(stdout);
+
+  const std::string command = "/usr/bin/python3 " + quoted(job.report_script) + " " + quoted(job.inputs_dir) + " " +
+                              quoted(job.report_dir) + " --variant " + quoted(job.variant.name) + " --policy " +
+                              quoted(std::filesystem::path(job.policy).filename().string()) + " --steps " +
+                              std::to_string(info.steps) + " --tsne-samples " + std::to_string(job.tsne_samples);
+  const int status = std::system(command.c_str());
+  if (status != 0) throw std::runtime_error("the report (" + job.report_script + ") failed; see its output above");
+  std::printf("analysis: report in %s (%.0f s in all)\n", job.report_dir.c_str(), elapsed());
+}
+
+}  // namespace hideseek_analysis

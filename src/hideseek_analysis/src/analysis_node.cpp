@@ -1,0 +1,134 @@
+// Records an analysis rollout (world/steps) into a bag with the C++ rosbag API, and once it holds
+// the requested decisions, closes it and analyses it (runAnalysis). Its exit ends the launch
+// (required). A missing decision stops the recording at once: nothing past a hole is analysed.
+#include <hideseek_msgs/StepBatch.h>
+#include <ros/ros.h>
+#include <rosbag/bag.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "hideseek_analysis/analysis_job.h"
+#include "hideseek_world/topic_names.h"
+#include "hideseek_world/world_node_options.h"
+
+namespace {
+
+std::string requireParam(const ros::NodeHandle& nh, const std::string& name) {
+  std::string v;
+  if (!nh.getParam(name, v) || v.empty()) throw std::runtime_error("parameter " + nh.resolveName(name) + " is required");
+  return v;
+}
+
+int intParam(const ros::NodeHandle& nh, const std::string& name, int fallback, int min, int max) {
+  int v = fallback;
+  if (nh.hasParam(name) && !nh.getParam(name, v)) {
+    throw std::runtime_error("parameter " + nh.resolveName(name) + " must be an integer");
+  }
+  if (v < min || v > max) {
+    throw std::runtime_error("parameter " + nh.resolveName(name) + " must be in [" + std::to_string(min) + ", " +
+                             std::to_string(max) + "], got " + std::to_string(v));
+  }
+  return v;
+}
+
+class Recorder {
+ public:
+  Recorder(ros::NodeHandle& nh, const std::string& path, int decisions) : wanted_(decisions) {
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    bag_.open(path, rosbag::bagmode::Write);
+    bag_.setCompression(rosbag::compression::LZ4);
+    // A deep queue: the bag is written in the callback, and lockstep may run ahead for a while.
+    sub_ = nh.subscribe(hideseek_world::kStepsTopic, 100000, &Recorder::onSteps, this);
+  }
+
+  bool complete() const { return recorded_ == wanted_; }
+  int recorded() const { return recorded_; }
+  const std::string& failure() const { return failure_; }
+  void close() {
+    sub_.shutdown();
+    if (bag_.isOpen()) bag_.close();
+  }
+
+ private:
+  void onSteps(const ros::MessageEvent<const hideseek_msgs::StepBatch>& event) {
+    if (complete() || !failure_.empty()) return;
+    const auto& msg = *event.getConstMessage();
+    if (next_ && msg.decision != *next_) {
+      failure_ = "decision " + std::to_string(msg.decision) + " arrived after decision " + std::to_string(*next_ - 1) +
+                 ": the recording lost steps";
+      close();
+      ros::shutdown();
+      return;
+    }
+    next_ = msg.decision + 1;
+    bag_.write(sub_.getTopic(), msg.header.stamp.isZero() ? ros::TIME_MIN : msg.header.stamp, msg);
+    ++recorded_;
+    if (recorded_ % 500 == 0 || complete()) ROS_INFO("analysis: recorded %d of %d decisions", recorded_, wanted_);
+    if (complete()) {
+      close();
+      ros::shutdown();
+    }
+  }
+
+  rosbag::Bag bag_;
+  ros::Subscriber sub_;
+  const int wanted_;
+  int recorded_ = 0;
+  std::optional<uint64_t> next_;
+  std::string failure_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "analysis");
+  hideseek_analysis::AnalysisJob job;
+  std::unique_ptr<Recorder> recorder;
+  {
+    ros::NodeHandle nh, pnh("~");
+    try {
+      job.variant = hideseek_world::loadVariantParams(pnh);
+      job.policy = requireParam(pnh, "policy");
+      job.inputs_dir = requireParam(pnh, "output_dir");
+      job.report_dir = pnh.param<std::string>("report_dir", job.inputs_dir + "/report");
+      job.report_script = requireParam(pnh, "report_script");
+      job.bag = pnh.param<std::string>("bag", job.inputs_dir + "/rollout.bag");
+      job.inputs.random_init_seed = static_cast<uint32_t>(intParam(pnh, "random_init_seed", 0, 0, 1 << 30));
+      job.tsne_samples = intParam(pnh, "tsne_samples", 3000, 100, 100000);
+      const int decisions = intParam(pnh, "decisions", 0, 1, 1 << 24);
+      if (!std::filesystem::is_regular_file(job.policy)) {
+        throw std::runtime_error("parameter " + pnh.resolveName("policy") + ": no checkpoint at " + job.policy);
+      }
+      recorder = std::make_unique<Recorder>(nh, job.bag, decisions);
+      ROS_INFO("analysis: recording %d decisions of world/steps into %s", decisions, job.bag.c_str());
+    } catch (const std::exception& e) {
+      // Logged while roscpp still runs, so that roslaunch shows it.
+      ROS_FATAL("analysis: %s", e.what());
+      return 1;
+    }
+    ros::spin();
+  }
+  recorder->close();
+  if (!recorder->failure().empty()) {
+    std::fprintf(stderr, "analysis: %s; the bag %s is closed and nothing was analysed\n", recorder->failure().c_str(),
+                 job.bag.c_str());
+    return 1;
+  }
+  if (!recorder->complete()) {
+    std::fprintf(stderr, "analysis: interrupted after %d decisions; the bag %s is closed, nothing was analysed\n",
+                 recorder->recorded(), job.bag.c_str());
+    return 1;
+  }
+  try {
+    hideseek_analysis::runAnalysis(job);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "analysis: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,32 @@
+// Analyses an existing recording (one made by analyze.launch, or any bag holding world/steps),
+// without a ROS master.
+// usage: analyze_bag VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "hideseek_analysis/analysis_job.h"
+
+int main(int argc, char** argv) {
+  if (argc < 5 || argc > 6) {
+    std::fprintf(stderr,
+                 "usage: analyze_bag VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]\n"
+                 "  writes the arrays to OUTPUT_DIR and the report to REPORT_DIR (default OUTPUT_DIR/report)\n");
+    return 2;
+  }
+  try {
+    const std::string config = HIDESEEK_CONFIG_DIR;
+    hideseek_analysis::AnalysisJob job;
+    job.variant = hideseek_world::loadVariantConfig(config + "/game.yaml", config + "/variants/" + argv[1] + ".yaml");
+    job.policy = argv[2];
+    job.bag = argv[3];
+    job.inputs_dir = argv[4];
+    job.report_dir = argc > 5 ? argv[5] : job.inputs_dir + "/report";
+    job.report_script = HIDESEEK_REPORT_SCRIPT;
+    hideseek_analysis::runAnalysis(job);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "analyze_bag: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
