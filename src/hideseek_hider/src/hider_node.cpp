@@ -123,11 +123,16 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
     ros::shutdown();
     return;
   }
-  if (msg->header.stamp == last_stamp_ && !last_answer_.actions.empty()) {
-    actions_pub_.publish(last_answer_);  // the world re-sent a batch: same step, same answer
+  // The world re-sent a batch: same step, same answer. A reset re-sends at the same sim time but
+  // with new step ids or seeds, and must be answered afresh (the cached answer's step ids would
+  // be rejected, and lockstep would wait for ever).
+  if (msg->header.stamp == last_stamp_ && msg->step == last_answer_.step && msg->seed == last_seeds_ &&
+      !last_answer_.actions.empty()) {
+    actions_pub_.publish(last_answer_);
     return;
   }
   last_stamp_ = msg->header.stamp;
+  last_seeds_ = msg->seed;
   hideseek_msgs::ActionBatch out;
   out.header.stamp = msg->header.stamp;
   out.step = msg->step;

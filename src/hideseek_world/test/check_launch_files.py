@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Loads every launch file of a folder with roslaunch's own loader (arguments, includes,
-substitutions) and checks that each node's package and executable exist. Writes an xunit
+substitutions) and checks that each node's package and executable exist, and that every
+argument a user can set carries a doc= (roslaunch --ros-args lists it). Writes an xunit
 result. The agents' packages cannot be declared as dependencies of hideseek_world (they depend
 on it), so roslaunch-check's dependency test does not apply; this checks what it would run.
 
@@ -9,6 +10,7 @@ usage: check_launch_files.py LAUNCH_DIR XUNIT_OUTPUT
 import glob
 import os
 import sys
+import xml.etree.ElementTree as ET
 from xml.sax.saxutils import escape
 
 import roslaunch.config
@@ -17,8 +19,16 @@ import rospkg
 from roslib.packages import find_node
 
 
+def undocumented_arguments(path):
+    """Arguments with a default (settable from the command line) but no doc=."""
+    return [a.get("name") for a in ET.parse(path).getroot().iter("arg")
+            if a.get("value") is None and a.get("doc") is None]
+
+
 def check(path):
-    problems = []
+    problems = ["argument '%s' has no doc=" % name for name in undocumented_arguments(path)]
+    if path.endswith(".launch.xml"):
+        return problems  # an include: its required arguments come from the files that load it
     config = roslaunch.config.ROSLaunchConfig()
     loader = roslaunch.xmlloader.XmlLoader()
     try:
@@ -36,7 +46,7 @@ def check(path):
 
 def main():
     launch_dir, output = sys.argv[1], sys.argv[2]
-    files = sorted(glob.glob(os.path.join(launch_dir, "*.launch")))
+    files = sorted(glob.glob(os.path.join(launch_dir, "*.launch")) + glob.glob(os.path.join(launch_dir, "*.launch.xml")))
     cases = []
     failures = 0
     for path in files:

@@ -1,12 +1,18 @@
-// Runs against a variant launch file in lockstep with the random hider (see variant_*.test):
-// the three agents are separate processes and episodes end by capture or by the step limit.
+// Runs against a variant launch file with the random hider (see variant_*.test, realtime.test):
+// the three agents are separate processes, episodes end by capture or by the step limit, every
+// decision applies the action chosen for its own step, and a reset does not stall the game.
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <hideseek_msgs/GameState.h>
 #include <hideseek_msgs/ObservationBatch.h>
+#include <hideseek_msgs/Reset.h>
+#include <hideseek_msgs/StepBatch.h>
 #include <ros/ros.h>
 
+#include <map>
 #include <set>
 
+#include "hideseek_world/hash_uniform.h"
 #include "test_helpers.h"
 
 namespace {
@@ -57,6 +63,99 @@ TEST(Variant, EpisodesEndByCaptureOrStepLimit) {
   ASSERT_GE(captured + survived, wanted) << "episodes did not finish";
   EXPECT_GE(captured, min_capture * (captured + survived)) << captured << " captures in " << captured + survived;
   EXPECT_GE(seeds.size(), static_cast<size_t>(wanted) / 2) << "new episodes start with new seeds";
+}
+
+// The random hider's action is a function of (seed, step) only, so world/steps shows whether the
+// world applied each answer to the step it was chosen for: in realtime a late answer used to be
+// applied to the next step, and the hider's previous action repeated.
+TEST(Variant, EveryDecisionAppliesTheActionChosenForItsOwnStep) {
+  ros::NodeHandle nh, pnh("~");
+  const int wanted = pnh.param("own_step_decisions", 40);
+  std::vector<hideseek_msgs::StepBatch> got;
+  auto sub = nh.subscribe<hideseek_msgs::StepBatch>("world/steps", 1000, [&](const hideseek_msgs::StepBatch::ConstPtr& m) {
+    if (static_cast<int>(got.size()) < wanted) got.push_back(*m);
+  });
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(120.0);
+  while (ros::ok() && static_cast<int>(got.size()) < wanted && ros::WallTime::now() < end) {
+    ros::spinOnce();
+    ros::WallDuration(0.002).sleep();
+  }
+  ASSERT_EQ(static_cast<int>(got.size()), wanted) << "world/steps did not carry enough decisions";
+  int mismatches = 0, checked = 0;
+  for (size_t k = 0; k < got.size(); ++k) {
+    const auto& b = got[k];
+    if (k > 0) EXPECT_EQ(b.decision, got[k - 1].decision + 1) << "world/steps lost a decision";
+    ASSERT_EQ(b.hider_action.size(), b.num_arenas);
+    ASSERT_EQ(b.seed.size(), b.num_arenas);
+    for (size_t i = 0; i < b.num_arenas; ++i, ++checked) {
+      const uint8_t expected = hideseek_world::hashAction(b.seed[i], b.step[i], hideseek_world::kSaltRandomHider);
+      if (b.hider_action[i] != expected) ++mismatches;
+    }
+  }
+  EXPECT_EQ(mismatches, 0) << mismatches << " of " << checked << " arena steps applied another step's action";
+}
+
+// Diagnostics say how fast the game runs and, while the game is healthy, report OK.
+TEST(Variant, DiagnosticsReportRateAndNoRejectedActions) {
+  ros::NodeHandle nh;
+  std::vector<diagnostic_msgs::DiagnosticStatus> reports;
+  auto sub = nh.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+    for (const auto& st : m->status) {
+      if (st.name == "hideseek world: input") reports.push_back(st);
+    }
+  });
+  // The first report after subscribing may cover less than a second: take the third.
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (ros::ok() && reports.size() < 3 && ros::WallTime::now() < end) {
+    ros::spinOnce();
+    ros::WallDuration(0.01).sleep();
+  }
+  ASSERT_GE(reports.size(), 3u) << "no diagnostics from the world";
+  std::map<std::string, std::string> v;
+  for (const auto& kv : reports.back().values) v[kv.key] = kv.value;
+  EXPECT_GT(std::stod(v["decision_steps_per_s"]), 0.0);
+  EXPECT_GT(std::stod(v["real_time_factor"]), 0.0);
+  EXPECT_EQ(v["rejected_wrong_step"], "0");
+  EXPECT_EQ(v["rejected_late"], "0");
+  EXPECT_EQ(reports.back().level, diagnostic_msgs::DiagnosticStatus::OK) << reports.back().message;
+}
+
+// A reset re-sends the observation at the same sim time with new step ids; the agents must answer
+// it afresh (a cached answer carried the old step ids and lockstep waited for ever).
+TEST(Variant, ResetDoesNotStallTheGame) {
+  ros::NodeHandle nh, pnh("~");
+  if (!pnh.param("test_reset", false)) GTEST_SKIP() << "test_reset is false for this launch";
+  uint32_t max_step = 0;
+  std::set<uint32_t> seeds;
+  bool restarted = false;  // arena 0 showed step 0 of the reset's seed
+  // Lockstep runs fast: a deep queue keeps the batches after the reset.
+  auto sub = nh.subscribe<hideseek_msgs::ObservationBatch>("hider/observations", 2000, [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) {
+    if (m->num_arenas == 0) return;
+    if (!restarted) restarted = m->seed[0] == 700 && m->step[0] == 0;
+    if (!restarted) return;
+    for (size_t i = 0; i < m->num_arenas; ++i) {
+      seeds.insert(m->seed[i]);
+      max_step = std::max(max_step, m->step[i]);
+    }
+  });
+  ASSERT_TRUE(ros::service::waitForService("world/reset", 30000));
+  // Connected before the reset, so that its first batch is not missed.
+  const ros::WallTime connect_end = ros::WallTime::now() + ros::WallDuration(10.0);
+  while (sub.getNumPublishers() == 0 && ros::WallTime::now() < connect_end) ros::WallDuration(0.01).sleep();
+  ros::WallDuration(0.2).sleep();
+  hideseek_msgs::Reset reset;
+  reset.request.arena = -1;
+  reset.request.seed = 700;
+  ASSERT_TRUE(ros::service::call("world/reset", reset));
+  ASSERT_TRUE(reset.response.success) << reset.response.message;
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (ros::ok() && max_step < 10 && ros::WallTime::now() < end) {
+    ros::spinOnce();
+    ros::WallDuration(0.002).sleep();
+  }
+  ASSERT_TRUE(restarted) << "arena 0 did not restart with the reset's seed";
+  EXPECT_GE(max_step, 10u) << "the game stalled after a reset";
+  EXPECT_GE(*seeds.begin(), 700u) << "an episode of before the reset went on";
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <ros/ros.h>
 
 #include <memory>
+#include <vector>
 
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_hider/training_run.h"
@@ -27,6 +28,7 @@ class HiderNode {
   std::unique_ptr<TrainingRun> training_;  // train mode
   ros::Time last_stamp_;                   // a batch the world re-sent gets the same answer again
   hideseek_msgs::ActionBatch last_answer_;
+  std::vector<uint32_t> last_seeds_;       // seeds of the batch last_answer_ answers
   int image_height_ = 0;
   int image_width_ = 0;
   ros::Publisher actions_pub_;
