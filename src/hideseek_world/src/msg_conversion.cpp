@@ -63,7 +63,9 @@ sensor_msgs::CameraInfo toCameraInfo(const CameraOptions& camera, const std::str
   info.D.assign(5, 0.0);
   const double fx = 0.5 * camera.width / std::tan(0.5 * camera.horizontal_fov);
   const double fy = 0.5 * camera.height / std::tan(0.5 * camera.verticalFov());
-  const double cx = 0.5 * camera.width, cy = 0.5 * camera.height;
+  // ROS puts pixel centres at integer coordinates (image_geometry, OpenCV): the image spans
+  // [-0.5, width - 0.5], so a symmetric frustum's principal point is (width - 1) / 2.
+  const double cx = 0.5 * (camera.width - 1), cy = 0.5 * (camera.height - 1);
   info.K = {fx, 0, cx, 0, fy, cy, 0, 0, 1};
   info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   info.P = {fx, 0, cx, 0, 0, fy, cy, 0, 0, 0, 1, 0};

@@ -69,7 +69,7 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   }
   hider_.name = "hider";
   seeker_.name = "seeker";
-  camera_info_ = toCameraInfo(game.camera, "hider/camera_optical_frame");
+  camera_info_ = toCameraInfo(game.camera, options_.frame("hider/camera_optical_frame"));
 
   const bool lockstep = options_.mode == ClockMode::kLockstep;
   hider_obs_pub_ = nh_.advertise<hideseek_msgs::ObservationBatch>(kHiderObservationsTopic, 2);
@@ -107,8 +107,9 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   // z forward, x right, y down.
   std::vector<geometry_msgs::TransformStamped> fixed;
   for (const std::string agent : {"hider", "seeker"}) {
-    fixed.push_back(fixedTransform(agent + "/base_link", agent + "/camera_link", game.camera.mount_height, 0, 0, 0, 1));
-    fixed.push_back(fixedTransform(agent + "/camera_link", agent + "/camera_optical_frame", 0, -0.5, 0.5, -0.5, 0.5));
+    const std::string base = options_.frame(agent + "/base_link"), camera = options_.frame(agent + "/camera_link");
+    fixed.push_back(fixedTransform(base, camera, game.camera.mount_height, 0, 0, 0, 1));
+    fixed.push_back(fixedTransform(camera, options_.frame(agent + "/camera_optical_frame"), 0, -0.5, 0.5, -0.5, 0.5));
   }
   for (auto& t : fixed) t.header.stamp = simNow();
   static_tf_.sendTransform(fixed);
@@ -346,8 +347,8 @@ void WorldNode::beginStepRecord() {
 
 void WorldNode::publishAgentTransforms(const ros::Time& stamp) {
   const Arena& a = world_->arena(0);
-  tf_.sendTransform({agentTransform(a.hider(), options_.frame_id, "hider/base_link", stamp),
-                     agentTransform(a.seeker(), options_.frame_id, "seeker/base_link", stamp)});
+  tf_.sendTransform({agentTransform(a.hider(), options_.frame_id, options_.frame("hider/base_link"), stamp),
+                     agentTransform(a.seeker(), options_.frame_id, options_.frame("seeker/base_link"), stamp)});
 }
 
 void WorldNode::publishObservations() {
@@ -481,17 +482,17 @@ void WorldNode::publishArenaZero(bool force_visuals) {
     return img;
   };
   if (hider_image_pub_.getNumSubscribers() > 0 || hider_info_pub_.getNumSubscribers() > 0) {
-    hider_image_pub_.publish(image(images_.data(), "hider/camera_optical_frame"));
+    hider_image_pub_.publish(image(images_.data(), options_.frame("hider/camera_optical_frame")));
     sensor_msgs::CameraInfo info = camera_info_;
     info.header.stamp = stamp;
     hider_info_pub_.publish(info);
   }
   if (seeker_image_pub_.getNumSubscribers() > 0 || seeker_info_pub_.getNumSubscribers() > 0) {
     world_->renderSeekerView(0, seeker_image_.data());
-    seeker_image_pub_.publish(image(seeker_image_.data(), "seeker/camera_optical_frame"));
+    seeker_image_pub_.publish(image(seeker_image_.data(), options_.frame("seeker/camera_optical_frame")));
     sensor_msgs::CameraInfo info = camera_info_;
     info.header.stamp = stamp;
-    info.header.frame_id = "seeker/camera_optical_frame";
+    info.header.frame_id = options_.frame("seeker/camera_optical_frame");
     seeker_info_pub_.publish(info);
   }
 }

@@ -60,6 +60,10 @@ WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& nh) {
   o.seed = static_cast<uint32_t>(readInt(nh, "seed", 0, 0, 1 << 30));
   o.frame_id = nh.param<std::string>("frame_id", "map");
   if (o.frame_id.empty()) throw std::runtime_error("parameter " + nh.resolveName("frame_id") + " must not be empty");
+  o.tf_prefix = nh.param<std::string>("tf_prefix", "");
+  while (!o.tf_prefix.empty() && o.tf_prefix.back() == '/') o.tf_prefix.pop_back();
+  if (!o.tf_prefix.empty() && o.tf_prefix.front() == '/') o.tf_prefix.erase(0, 1);
+  o.frame_id = o.frame(o.frame_id);
   o.stale_action_timeout = readDouble(nh, "stale_action_timeout", 0.5, 0.01, 60.0);
   o.resend_period = readDouble(nh, "resend_period", 1.0, 0.05, 60.0);
   o.publish_rate = readDouble(nh, "publish_rate", 30.0, 0.1, 1000.0);

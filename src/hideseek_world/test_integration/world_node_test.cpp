@@ -91,6 +91,10 @@ TEST_F(WorldNodeTest, CameraImageHasSizeEncodingAndOpticalFrame) {
   EXPECT_EQ(image->header.frame_id, "hider/camera_optical_frame");
   EXPECT_EQ(info->header.frame_id, "hider/camera_optical_frame");
   EXPECT_NEAR(info->K[0], 42.0 / std::tan(60.0 * M_PI / 180.0), 1e-6);
+  // Pixel centres at integer coordinates: the symmetric frustum's centre is pixel 41.5.
+  EXPECT_DOUBLE_EQ(info->K[2], 41.5);
+  EXPECT_DOUBLE_EQ(info->K[5], 41.5);
+  EXPECT_DOUBLE_EQ(info->P[2], 41.5);
   // The image is the arena-0 image of the batch (visuals go out at most 30 times a wall second).
   ros::WallDuration(0.1).sleep();
   image.reset();
@@ -98,6 +102,20 @@ TEST_F(WorldNodeTest, CameraImageHasSizeEncodingAndOpticalFrame) {
   const auto obs = hider_obs_;
   ASSERT_TRUE(waitFor([&] { return image && image->header.stamp == obs->header.stamp; }, 10.0));
   EXPECT_TRUE(std::equal(image->data.begin(), image->data.end(), obs->images.begin()));
+}
+
+TEST_F(WorldNodeTest, TfPrefixPutsASecondGamesFramesApart) {
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  nav_msgs::OccupancyGrid::ConstPtr map;
+  auto sub = nh_.subscribe<nav_msgs::OccupancyGrid>("/second/map", 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& m) { map = m; });
+  ASSERT_TRUE(waitFor([&] { return map != nullptr; }, 20.0)) << "no latched map from the second game";
+  EXPECT_EQ(map->header.frame_id, "game2/map");
+  for (const std::string agent : {"hider", "seeker"}) {
+    ASSERT_TRUE(waitFor([&] {
+      return buffer.canTransform("game2/" + agent + "/base_link", "game2/" + agent + "/camera_optical_frame", ros::Time(0));
+    }, 10.0)) << agent;
+  }
 }
 
 TEST_F(WorldNodeTest, TfTreeJoinsMapToBothCameraOpticalFrames) {

@@ -19,6 +19,11 @@ struct WorldNodeOptions {
   int num_arenas = 1;
   uint32_t seed = 0;
   std::string frame_id = "map";
+  // Prefix of every TF frame the world names (the fixed frame, agents, cameras), so that two
+  // games can share one master: "game1" gives game1/map, game1/hider/base_link, ...
+  std::string tf_prefix;
+  // A frame name with the prefix applied.
+  std::string frame(const std::string& name) const { return tf_prefix.empty() ? name : tf_prefix + "/" + name; }
   double stale_action_timeout = 0.5;  // s of wall time; realtime agents without news stand still
   double resend_period = 1.0;         // s of wall time; lockstep re-sends a batch nobody answered
   double publish_rate = 30.0;         // Hz of wall time for rviz outputs (markers, paths, images) in lockstep
