@@ -49,9 +49,39 @@ def markdown(header, table):
 
 
 def probe_accuracies(folder):
-    """{(label, network): (accuracy %, balanced accuracy %)} of one variant's probes.csv."""
-    return {(r["label"], r["network"]): (100 * float(r["test_accuracy"]), 100 * float(r["balanced_accuracy"]))
+    """{(label, network): (accuracy %, balanced accuracy %, positive prior %)} of one variant's probes.csv."""
+    return {(r["label"], r["network"]): (100 * float(r["test_accuracy"]), 100 * float(r["balanced_accuracy"]),
+                                         100 * float(r["positive_prior"]))
             for r in rows(os.path.join(folder, "probes.csv"))}
+
+
+WEAKER = ["slowerhider", "stochasticseeker", "visibilityreward"]  # the paper's moderate weaknesses
+STRONGER = ["fasterhider"]                                         # the paper's advantage
+
+
+def weakness_finding(probes):
+    """The paper's claim, on what was analysed: do moderate weaknesses give better self-visibility
+    (H) features than an advantage? Balanced accuracy, trained features."""
+    have = lambda vs: [(v, probes[v]["H", "trained"][1]) for v in vs if v in probes]  # noqa: E731
+    weaker, stronger = have(WEAKER), have(STRONGER)
+    text = ["The paper finds that moderate weaknesses (%s) give better self-visibility features than an "
+            "advantage (%s). Here, balanced accuracy of the H probe on the trained features:" %
+            (", ".join(WEAKER), ", ".join(STRONGER)), ""]
+    for v, acc in weaker + stronger:
+        text.append("- %s: %.1f %% (random-init network: %.1f %%)" % (v, acc, probes[v]["H", "random_init"][1]))
+    missing = [v for v in WEAKER + STRONGER if v not in probes]
+    if missing:
+        text.append("")
+        text.append("Not analysed yet (no shipped policy): %s." % ", ".join(missing))
+    text.append("")
+    if weaker and stronger:
+        w = max(a for _, a in weaker)
+        s = max(a for _, a in stronger)
+        text.append("On these numbers the best weaker variant %s the advantaged one (%.1f against %.1f %%)." %
+                    ("beats" if w > s else "does not beat", w, s))
+    else:
+        text.append("The comparison needs both sides analysed; it cannot be made yet.")
+    return "\n".join(text)
 
 
 def main():
@@ -70,7 +100,7 @@ def main():
 
     # Table 3: probe accuracy beside the paper's.
     header = ["variant", "S: trained / random-init", "paper S", "H: trained / random-init", "paper H",
-              "balanced S: trained / random-init", "balanced H: trained / random-init"]
+              "balanced S: trained / random-init", "balanced H: trained / random-init", "prior S=1 / H=1"]
     t3 = []
     for v in analysed:
         p = probes[v]
@@ -80,7 +110,8 @@ def main():
                    "%.1f / %.1f" % (p["H", "trained"][0], p["H", "random_init"][0]),
                    "%.2f / %.2f" % (ref[v]["probe_H_trained"], ref[v]["probe_H_random"]),
                    "%.1f / %.1f" % (p["S", "trained"][1], p["S", "random_init"][1]),
-                   "%.1f / %.1f" % (p["H", "trained"][1], p["H", "random_init"][1])])
+                   "%.1f / %.1f" % (p["H", "trained"][1], p["H", "random_init"][1]),
+                   "%.1f / %.1f" % (p["S", "trained"][2], p["H", "trained"][2])])
     write_table(os.path.join(a.report, "table3"), header, t3)
 
     # State frequencies and transitions across variants.
@@ -149,6 +180,7 @@ def main():
              "Test accuracy in % on episodes held out from the probe's fit; the balanced accuracy (mean recall of "
              "both classes) is 50 % for any probe that ignores its input.", "", markdown(header, t3).strip(), "",
              "CSV: [table3.csv](table3.csv)", "",
+             "### Weaknesses against advantages", "", weakness_finding(probes), "",
              "## Across variants", "",
              "![state frequencies](state_frequencies_variants.png)", "",
              "![transitions](transitions_variants.png)", "",
