@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "hideseek_world/topic_names.h"
+#include "hideseek_world/wall_throttle.h"
 #include "hideseek_world/world_node_options.h"
 
 namespace hideseek_hider {
@@ -111,8 +112,14 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
       msg->images.size() != n * bytes || msg->step.size() != n || msg->seed.size() != n ||
       msg->rewards.size() != n || msg->done.size() != n) {
     ++malformed_;
-    ROS_WARN_THROTTLE(2.0, "hider: ignored an observation batch that does not hold %zu %dx%d images with step ids (%lu so far)",
-                      n, image_height_, image_width_, static_cast<unsigned long>(malformed_));
+    static hideseek_world::WallThrottle throttle(2.0);
+    if (throttle.ready()) {
+      ROS_WARN(
+          "hider: ignored an observation batch that does not hold %zu %dx%d images with step ids (%lu so far; %lu more "
+          "like it since the last)",
+          n, image_height_, image_width_, static_cast<unsigned long>(malformed_),
+          static_cast<unsigned long>(throttle.suppressed()));
+    }
     return;
   }
   // The learner's buffers are shaped for its arena count: another count would be read past, and

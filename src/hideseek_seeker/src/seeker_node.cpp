@@ -6,6 +6,7 @@
 
 #include "hideseek_seeker/random_hider_game.h"
 #include "hideseek_world/topic_names.h"
+#include "hideseek_world/wall_throttle.h"
 #include "hideseek_world/world_node_options.h"
 
 namespace hideseek_seeker {
@@ -47,8 +48,13 @@ void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::Con
   if (msg->pose.size() != n || msg->sees_hider.size() != n || msg->hider_position.size() != n ||
       msg->step.size() != n || msg->episode.size() != n || msg->seed.size() != n || msg->maps.size() != n) {
     ++malformed_;
-    ROS_WARN_THROTTLE(2.0, "seeker: ignored an observation batch whose arrays do not all hold %zu arenas (%lu so far)",
-                      n, static_cast<unsigned long>(malformed_));
+    static hideseek_world::WallThrottle throttle(2.0);
+    if (throttle.ready()) {
+      ROS_WARN(
+          "seeker: ignored an observation batch whose arrays do not all hold %zu arenas (%lu so far; %lu more like it "
+          "since the last)",
+          n, static_cast<unsigned long>(malformed_), static_cast<unsigned long>(throttle.suppressed()));
+    }
     return;
   }
   if (policies_.size() != n) {

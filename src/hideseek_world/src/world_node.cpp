@@ -13,6 +13,7 @@
 
 #include "hideseek_world/msg_conversion.h"
 #include "hideseek_world/topic_names.h"
+#include "hideseek_world/wall_throttle.h"
 
 namespace hideseek_world {
 
@@ -158,24 +159,38 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
   const std::string caller = event.getPublisherName();
   if (!acceptPublisher(caller, channel)) {
     ++rejected_.second_publisher;
-    ROS_WARN_THROTTLE(kWarnPeriod, "world: rejected %s actions from %s: %s already publishes them", channel.name.c_str(),
-                      caller.c_str(), channel.owner.c_str());
+    static WallThrottle throttle(kWarnPeriod);
+    if (throttle.ready()) {
+      ROS_WARN("world: rejected %s actions from %s: %s already publishes them (%lu more like it since the last)",
+               channel.name.c_str(), caller.c_str(), channel.owner.c_str(),
+               static_cast<unsigned long>(throttle.suppressed()));
+    }
     return;
   }
   const hideseek_msgs::ActionBatch& msg = *event.getConstMessage();
   const size_t n = static_cast<size_t>(options_.num_arenas);
   if (msg.actions.size() != n || msg.step.size() != n) {
     ++rejected_.wrong_arena_count;
-    ROS_WARN_THROTTLE(kWarnPeriod, "world: rejected %s action batch: %zu actions and %zu step ids for %zu arenas",
-                      channel.name.c_str(), msg.actions.size(), msg.step.size(), n);
+    static WallThrottle throttle(kWarnPeriod);
+    if (throttle.ready()) {
+      ROS_WARN(
+          "world: rejected %s action batch: %zu actions and %zu step ids for %zu arenas (%lu more like it since the "
+          "last)",
+          channel.name.c_str(), msg.actions.size(), msg.step.size(), n,
+          static_cast<unsigned long>(throttle.suppressed()));
+    }
     return;
   }
   const bool lockstep = options_.mode == ClockMode::kLockstep;
   for (size_t i = 0; i < n; ++i) {
     if (msg.actions[i] >= kNumActions) {
       ++rejected_.invalid_action;
-      ROS_WARN_THROTTLE(kWarnPeriod, "world: rejected %s action %u for arena %zu: actions are 0..%d",
-                        channel.name.c_str(), msg.actions[i], i, kNumActions - 1);
+      static WallThrottle throttle(kWarnPeriod);
+      if (throttle.ready()) {
+        ROS_WARN("world: rejected %s action %u for arena %zu: actions are 0..%d (%lu more like it since the last)",
+                 channel.name.c_str(), msg.actions[i], i, kNumActions - 1,
+                 static_cast<unsigned long>(throttle.suppressed()));
+      }
       continue;
     }
     const uint32_t current = static_cast<uint32_t>(world_->arena(i).stepCount());
@@ -183,14 +198,23 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
     // applying a late answer to the step after the one it was chosen for.
     if (!lockstep && frame_ != 0) {
       ++rejected_.late;
-      ROS_WARN_THROTTLE(kWarnPeriod, "world: rejected %s action for arena %zu: step %u had started without it "
-                        "(the agent answered after stale_action_timeout)", channel.name.c_str(), i, msg.step[i]);
+      static WallThrottle throttle(kWarnPeriod);
+      if (throttle.ready()) {
+        ROS_WARN(
+            "world: rejected %s action for arena %zu: step %u had started without it "
+            "(the agent answered after stale_action_timeout) (%lu more like it since the last)",
+            channel.name.c_str(), i, msg.step[i], static_cast<unsigned long>(throttle.suppressed()));
+      }
       continue;
     }
     if (msg.step[i] != current) {
       ++rejected_.wrong_step;
-      ROS_WARN_THROTTLE(kWarnPeriod, "world: rejected %s action for arena %zu: step id %u, current step is %u",
-                        channel.name.c_str(), i, msg.step[i], current);
+      static WallThrottle throttle(kWarnPeriod);
+      if (throttle.ready()) {
+        ROS_WARN(
+            "world: rejected %s action for arena %zu: step id %u, current step is %u (%lu more like it since the last)",
+            channel.name.c_str(), i, msg.step[i], current, static_cast<unsigned long>(throttle.suppressed()));
+      }
       continue;
     }
     channel.pending[i] = static_cast<Action>(msg.actions[i]);
@@ -243,9 +267,14 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
       }
       if (connected) {
         ++stale_decisions_;
-        ROS_WARN_THROTTLE(kWarnPeriod, "world: no action for step %d within %.2f s (hider %s, seeker %s): the silent "
-                          "agent stands still this step", world_->arena(0).stepCount(), options_.stale_action_timeout,
-                          hider_.pending[0] ? "answered" : "silent", seeker_.pending[0] ? "answered" : "silent");
+        static WallThrottle throttle(kWarnPeriod);
+        if (throttle.ready()) {
+          ROS_WARN(
+              "world: no action for step %d within %.2f s (hider %s, seeker %s): the silent "
+              "agent stands still this step (%lu more like it since the last)",
+              world_->arena(0).stepCount(), options_.stale_action_timeout, hider_.pending[0] ? "answered" : "silent",
+              seeker_.pending[0] ? "answered" : "silent", static_cast<unsigned long>(throttle.suppressed()));
+        }
       }
     }
     decision_wait_start_ = ros::WallTime();
@@ -294,9 +323,14 @@ void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
     return;
   }
   if (!reachedMaxDecisions() && (now - last_progress_).toSec() > options_.resend_period) {
-    ROS_WARN_THROTTLE(10.0, "world: no complete action batches for %.1f s (hider %s, seeker %s); re-sending step",
-                      (now - last_progress_).toSec(), hider_.owner.empty() ? "silent" : hider_.owner.c_str(),
-                      seeker_.owner.empty() ? "silent" : seeker_.owner.c_str());
+    static WallThrottle throttle(10.0);
+    if (throttle.ready()) {
+      ROS_WARN(
+          "world: no complete action batches for %.1f s (hider %s, seeker %s); re-sending step (%lu more like it since "
+          "the last)",
+          (now - last_progress_).toSec(), hider_.owner.empty() ? "silent" : hider_.owner.c_str(),
+          seeker_.owner.empty() ? "silent" : seeker_.owner.c_str(), static_cast<unsigned long>(throttle.suppressed()));
+    }
     publishObservations();
   }
 }
