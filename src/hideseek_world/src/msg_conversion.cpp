@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "hideseek_world/free_space_grid.h"
+#include "hideseek_world/visibility.h"
 
 namespace hideseek_world {
 
@@ -113,11 +114,12 @@ visualization_msgs::Marker boxMarker(const Box& b, int id, const std::string& ns
   return m;
 }
 
-// The view cone on the floor: a fan over the horizontal field of view, reaching `range`.
-visualization_msgs::Marker coneMarker(const AgentState& a, const CameraOptions& camera, const std::string& ns,
-                                      bool sees_other) {
-  constexpr int kSegments = 12;
-  constexpr double kRange = 4.0;
+// The view cone on the floor: a fan over the horizontal field of view whose rays stop where the
+// camera's sight line meets an obstacle or a wall.
+visualization_msgs::Marker coneMarker(const AgentState& a, const CameraOptions& camera, const Layout& layout,
+                                      const std::string& ns, bool sees_other) {
+  constexpr int kRays = 48;
+  constexpr double kMaxRange = 50.0;  // m: beyond any arena; the walls stop every ray first
   visualization_msgs::Marker m;
   m.ns = ns;
   m.type = visualization_msgs::Marker::TRIANGLE_LIST;
@@ -128,17 +130,21 @@ visualization_msgs::Marker coneMarker(const AgentState& a, const CameraOptions& 
   apex.x = a.position.x;
   apex.y = a.position.y;
   apex.z = 0.02;
-  for (int i = 0; i < kSegments; ++i) {
-    const double a0 = a.yaw - 0.5 * camera.horizontal_fov + camera.horizontal_fov * i / kSegments;
-    const double a1 = a.yaw - 0.5 * camera.horizontal_fov + camera.horizontal_fov * (i + 1) / kSegments;
-    geometry_msgs::Point p0 = apex, p1 = apex;
-    p0.x += kRange * std::cos(a0);
-    p0.y += kRange * std::sin(a0);
-    p1.x += kRange * std::cos(a1);
-    p1.y += kRange * std::sin(a1);
+  auto end = [&](int i) {
+    const double yaw = a.yaw - 0.5 * camera.horizontal_fov + camera.horizontal_fov * i / kRays;
+    const double r = sightRange(a.position, yaw, camera.mount_height, layout, kMaxRange);
+    geometry_msgs::Point p = apex;
+    p.x += r * std::cos(yaw);
+    p.y += r * std::sin(yaw);
+    return p;
+  };
+  geometry_msgs::Point previous = end(0);
+  for (int i = 1; i <= kRays; ++i) {
+    const geometry_msgs::Point next = end(i);
     m.points.push_back(apex);
-    m.points.push_back(p0);
-    m.points.push_back(p1);
+    m.points.push_back(previous);
+    m.points.push_back(next);
+    previous = next;
   }
   return m;
 }
@@ -175,8 +181,8 @@ visualization_msgs::MarkerArray toMarkers(const Arena& arena, const std::string&
   const GameOptions& g = arena.options();
   out.markers.push_back(agentMarker(arena.hider(), g, "hider", colors.hider));
   out.markers.push_back(agentMarker(arena.seeker(), g, "seeker", colors.seeker));
-  out.markers.push_back(coneMarker(arena.hider(), g.camera, "hider_view", arena.labels().hider_sees_seeker));
-  out.markers.push_back(coneMarker(arena.seeker(), g.camera, "seeker_view", arena.labels().seeker_sees_hider));
+  out.markers.push_back(coneMarker(arena.hider(), g.camera, arena.layout(), "hider_view", arena.labels().hider_sees_seeker));
+  out.markers.push_back(coneMarker(arena.seeker(), g.camera, arena.layout(), "seeker_view", arena.labels().seeker_sees_hider));
   for (auto& m : out.markers) {
     m.header.frame_id = frame_id;
     m.header.stamp = stamp;

@@ -1,5 +1,6 @@
 #include "hideseek_world/visibility.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -120,6 +121,26 @@ bool obstacleInView(const AgentState& viewer, const Layout& layout, const GameOp
     }
   }
   return false;
+}
+
+double sightRange(Vec2 origin, double yaw, double height, const Layout& layout, double max_range) {
+  const double dx = std::cos(yaw), dy = std::sin(yaw);
+  double range = max_range;
+  // The walls: the first of x = +-half_extent, y = +-half_extent the ray reaches.
+  const double h = layout.half_extent;
+  if (dx > 1e-12) range = std::min(range, (h - origin.x) / dx);
+  if (dx < -1e-12) range = std::min(range, (-h - origin.x) / dx);
+  if (dy > 1e-12) range = std::min(range, (h - origin.y) / dy);
+  if (dy < -1e-12) range = std::min(range, (-h - origin.y) / dy);
+  range = std::max(range, 0.0);
+  const Vec3 a{origin.x, origin.y, height};
+  const Vec3 b{origin.x + range * dx, origin.y + range * dy, height};
+  for (const Box& box : layout.obstacles) {
+    if (height >= box.height) continue;  // a sight line above the box passes over it
+    const double t = segmentEntry(box, a, b);
+    if (t <= 1.0) range = std::min(range, std::max(t, 0.0) * std::hypot(b.x - a.x, b.y - a.y));
+  }
+  return range;
 }
 
 }  // namespace hideseek_world

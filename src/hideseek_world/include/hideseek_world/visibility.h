@@ -14,4 +14,8 @@ bool agentSeesAgent(const AgentState& viewer, const AgentState& target, const La
 // True when at least one obstacle (not wall, not floor) is in the viewer's camera image.
 bool obstacleInView(const AgentState& viewer, const Layout& layout, const GameOptions& options);
 
+// How far a horizontal sight line at `height` from `origin` along `yaw` runs before it meets an
+// obstacle or a wall (at most max_range): where a view cone drawn on the floor should stop.
+double sightRange(Vec2 origin, double yaw, double height, const Layout& layout, double max_range);
+
 }  // namespace hideseek_world
