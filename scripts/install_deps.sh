@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake
   ros-base-dev catkin python3-catkin-pkg python3-rospkg python3-rostest rosbash
-  librosbag-dev libtf2-ros-dev libtf2-geometry-msgs-dev libstd-srvs-dev ros-std-srvs libdiagnostic-msgs-dev
+  librosbag-dev libimage-transport-dev libtf2-ros-dev libtf2-geometry-msgs-dev libstd-srvs-dev ros-std-srvs libdiagnostic-msgs-dev
   rviz
   python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-nav-msgs python3-visualization-msgs
   python3-diagnostic-msgs python3-tf2-msgs python3-rosgraph-msgs

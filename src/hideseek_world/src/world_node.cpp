@@ -51,7 +51,7 @@ geometry_msgs::TransformStamped fixedTransform(const std::string& parent, const 
 }  // namespace
 
 WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
-    : nh_(nh), options_(loadWorldNodeOptions(private_nh)) {
+    : nh_(nh), image_transport_(nh), options_(loadWorldNodeOptions(private_nh)) {
   const GameOptions& game = options_.variant.game;
   const int n = options_.num_arenas;
   world_ = std::make_unique<World>(game, std::make_shared<const MapSpec>(options_.map), n, options_.seed, true,
@@ -76,10 +76,9 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   hider_obs_pub_ = nh_.advertise<hideseek_msgs::ObservationBatch>(kHiderObservationsTopic, 2);
   seeker_obs_pub_ = nh_.advertise<hideseek_msgs::SeekerObservationBatch>(kSeekerObservationsTopic, 2);
   if (lockstep) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
-  hider_image_pub_ = nh_.advertise<sensor_msgs::Image>(kHiderImageTopic, 2);
-  hider_info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>(kHiderCameraInfoTopic, 2);
-  seeker_image_pub_ = nh_.advertise<sensor_msgs::Image>(kSeekerImageTopic, 2);
-  seeker_info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>(kSeekerCameraInfoTopic, 2);
+  // image_raw with its camera_info beside it, and every transport plugin installed (compressed, ...).
+  hider_camera_pub_ = image_transport_.advertiseCamera(kHiderImageTopic, 2);
+  seeker_camera_pub_ = image_transport_.advertiseCamera(kSeekerImageTopic, 2);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>(kMarkersTopic, 2);
   map_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>(kMapTopic, 1, true);
   hider_path_pub_ = nh_.advertise<nav_msgs::Path>(kHiderPathTopic, 2);
@@ -515,19 +514,17 @@ void WorldNode::publishArenaZero(bool force_visuals) {
     img.data.assign(data, data + world_->imageBytes());
     return img;
   };
-  if (hider_image_pub_.getNumSubscribers() > 0 || hider_info_pub_.getNumSubscribers() > 0) {
-    hider_image_pub_.publish(image(images_.data(), options_.frame("hider/camera_optical_frame")));
+  if (hider_camera_pub_.getNumSubscribers() > 0) {
     sensor_msgs::CameraInfo info = camera_info_;
     info.header.stamp = stamp;
-    hider_info_pub_.publish(info);
+    hider_camera_pub_.publish(image(images_.data(), info.header.frame_id), info);
   }
-  if (seeker_image_pub_.getNumSubscribers() > 0 || seeker_info_pub_.getNumSubscribers() > 0) {
+  if (seeker_camera_pub_.getNumSubscribers() > 0) {
     world_->renderSeekerView(0, seeker_image_.data());
-    seeker_image_pub_.publish(image(seeker_image_.data(), options_.frame("seeker/camera_optical_frame")));
     sensor_msgs::CameraInfo info = camera_info_;
     info.header.stamp = stamp;
     info.header.frame_id = options_.frame("seeker/camera_optical_frame");
-    seeker_info_pub_.publish(info);
+    seeker_camera_pub_.publish(image(seeker_image_.data(), info.header.frame_id), info);
   }
 }
 

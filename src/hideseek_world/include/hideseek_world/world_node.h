@@ -7,6 +7,7 @@
 #include <hideseek_msgs/EpisodeResult.h>
 #include <hideseek_msgs/Reset.h>
 #include <hideseek_msgs/StepBatch.h>
+#include <image_transport/image_transport.h>
 #include <nav_msgs/Path.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <ros/ros.h>
@@ -68,6 +69,7 @@ class WorldNode {
   bool reachedMaxDecisions() const;
 
   ros::NodeHandle nh_;
+  image_transport::ImageTransport image_transport_;  // cameras go out through image_transport's plugins
   WorldNodeOptions options_;
   std::unique_ptr<World> world_;
   std::vector<uint8_t> images_;
@@ -86,8 +88,8 @@ class WorldNode {
   std::optional<EpisodeSummary> last_finished_;  // arena 0's episode that ended in the last step
   std::optional<hideseek_msgs::StepBatch> step_record_;  // world/steps: the decision being taken
 
-  ros::Publisher hider_obs_pub_, seeker_obs_pub_, clock_pub_, hider_image_pub_, hider_info_pub_, seeker_image_pub_,
-      seeker_info_pub_, markers_pub_, map_pub_, hider_path_pub_, seeker_path_pub_, state_pub_, episodes_pub_, steps_pub_,
+  image_transport::CameraPublisher hider_camera_pub_, seeker_camera_pub_;
+  ros::Publisher hider_obs_pub_, seeker_obs_pub_, clock_pub_, markers_pub_, map_pub_, hider_path_pub_, seeker_path_pub_, state_pub_, episodes_pub_, steps_pub_,
       diagnostics_pub_;
   ros::Subscriber hider_sub_, seeker_sub_;
   ros::ServiceServer reset_srv_;
