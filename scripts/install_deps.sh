@@ -13,7 +13,7 @@ PACKAGES=(
   libosmesa6-dev libeigen3-dev libyaml-cpp-dev
   libtorch-dev libopenblas0-pthread
   libgtest-dev googletest
-  xvfb xauth imagemagick
+  xvfb xauth imagemagick xterm
   python3-matplotlib python3-sklearn python3-pytest python3-yaml
 )
 

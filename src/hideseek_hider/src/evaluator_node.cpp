@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   const std::string variant = pnh.param<std::string>("variant", "unknown");
   // A network policy is evaluated either greedily or sampling its actions: the table says which.
   std::string policy = pnh.param<std::string>("policy", "random");
-  if (policy != "random") policy += pnh.param("greedy", true) ? " (greedy)" : " (sampled)";
+  if (policy != "random" && policy != "human") policy += pnh.param("greedy", true) ? " (greedy)" : " (sampled)";
   if (episodes < 1) {
     ROS_FATAL("evaluator: parameter %s must be at least 1", pnh.resolveName("episodes").c_str());
     return 1;

@@ -249,6 +249,20 @@ void WorldNode::tryAdvanceLockstep() {
 
 void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
   const int n = options_.num_arenas;
+  if (!started_) {
+    // The first episode starts when both players are there (a person's keyboard hider may take
+    // seconds to open), and when every listener that must see it listens.
+    if (hider_sub_.getNumPublishers() == 0 || seeker_sub_.getNumPublishers() == 0 ||
+        episodes_pub_.getNumSubscribers() < static_cast<uint32_t>(options_.episode_listeners) ||
+        steps_pub_.getNumSubscribers() < static_cast<uint32_t>(options_.step_listeners)) {
+      publishAgentTransforms(ros::Time::now());
+      return;
+    }
+    started_ = true;
+    ROS_INFO("world: both agents connected, starting realtime");
+    publishObservations();  // the batch sent at start-up went out before anyone listened
+    return;
+  }
   if (frame_ == 0) {
     // A decision step starts once both agents answered its observation, so each decision drives
     // its own step. A slow agent slows the game (diagnostics show the real-time factor) rather

@@ -28,7 +28,7 @@ struct WorldNodeOptions {
   double resend_period = 1.0;         // s of wall time; lockstep re-sends a batch nobody answered
   double publish_rate = 30.0;         // Hz of wall time for rviz outputs (markers, paths, images) in lockstep
   int render_threads = 2;             // llvmpipe rasteriser threads
-  // Lockstep starts once world/episodes has this many subscribers (an evaluator, a recorder for
+  // The game starts once world/episodes has this many subscribers (an evaluator, a recorder for
   // analysis): whoever must see the first episodes, however late it connects.
   int episode_listeners = 0;
   // Lockstep also waits for this many subscribers of world/steps (an analysis recorder), so that

@@ -1,0 +1,84 @@
+#include "hideseek_hider/teleop.h"
+
+namespace hideseek_hider {
+
+namespace {
+
+// ActionBatch values (hideseek_msgs/ActionBatch.msg).
+constexpr uint8_t kStay = 0, kForward = 1, kBackward = 2, kTurnLeft = 3, kTurnRight = 4;
+
+std::optional<uint8_t> letterAction(char c) {
+  switch (c) {
+    case 'w': case 'W': return kForward;
+    case 's': case 'S': return kBackward;
+    case 'a': case 'A': return kTurnLeft;
+    case 'd': case 'D': return kTurnRight;
+    case ' ': case 'x': case 'X': return kStay;
+    default: return std::nullopt;
+  }
+}
+
+std::optional<uint8_t> arrowAction(char c) {
+  switch (c) {
+    case 'A': return kForward;
+    case 'B': return kBackward;
+    case 'D': return kTurnLeft;
+    case 'C': return kTurnRight;
+    default: return std::nullopt;
+  }
+}
+
+}  // namespace
+
+TeleopCommand TeleopKeys::feed(const std::string& bytes) {
+  TeleopCommand out;
+  for (char c : bytes) {
+    if (!pending_.empty()) {
+      pending_ += c;
+      if (pending_.size() == 2 && c != '[' && c != 'O') pending_.clear();  // a lone escape
+      if (pending_.size() == 3) {
+        if (auto a = arrowAction(c)) out.action = a;
+        pending_.clear();
+      }
+      continue;
+    }
+    if (c == '\x1b') {
+      pending_ = c;
+    } else if (c == 'q' || c == 'Q' || c == '\x03') {
+      out.quit = true;
+    } else if (auto a = letterAction(c)) {
+      out.action = a;
+    }
+  }
+  return out;
+}
+
+void TeleopAction::press(uint8_t action, double now_s) {
+  action_ = action;
+  pressed_at_ = now_s;
+}
+
+uint8_t TeleopAction::current(double now_s) const {
+  if (timeout_ > 0.0 && now_s - pressed_at_ > timeout_) return kStay;
+  return action_;
+}
+
+std::string renderHalfBlocks(const uint8_t* rgb, int height, int width) {
+  std::string out = "\x1b[H";
+  out.reserve(static_cast<size_t>(height / 2 + 1) * width * 40);
+  auto colour = [&](int layer, const uint8_t* p) {
+    out += "\x1b[" + std::to_string(layer) + ";2;" + std::to_string(p[0]) + ';' + std::to_string(p[1]) + ';' +
+           std::to_string(p[2]) + 'm';
+  };
+  for (int y = 0; y < height; y += 2) {
+    for (int x = 0; x < width; ++x) {
+      colour(38, rgb + (static_cast<size_t>(y) * width + x) * 3);
+      colour(48, rgb + (static_cast<size_t>(y + 1 < height ? y + 1 : y) * width + x) * 3);
+      out += "\u2580";
+    }
+    out += "\x1b[0m\r\n";
+  }
+  return out;
+}
+
+}  // namespace hideseek_hider

@@ -1,0 +1,118 @@
+// The keyboard hider: a person plays arena 0 from a terminal that shows the hider's camera.
+// w/s/a/d or the arrow keys move and turn, space stops, q quits. The node answers every
+// observation batch like the hider node does, so the world, the recorder and the evaluator treat
+// a human like any policy.
+#include <fcntl.h>
+#include <hideseek_msgs/ActionBatch.h>
+#include <hideseek_msgs/ObservationBatch.h>
+#include <ros/ros.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+
+#include "hideseek_hider/teleop.h"
+#include "hideseek_world/topic_names.h"
+
+namespace {
+
+// The terminal in raw mode (keys arrive one by one, unechoed) for the node's lifetime.
+class Terminal {
+ public:
+  Terminal() {
+    fd_ = isatty(STDIN_FILENO) ? STDIN_FILENO : open("/dev/tty", O_RDWR | O_NONBLOCK);
+    if (fd_ < 0 || !isatty(fd_) || tcgetattr(fd_, &saved_) != 0) {
+      fd_ = -1;
+      return;
+    }
+    termios raw = saved_;
+    raw.c_lflag &= ~(ICANON | ECHO);
+    raw.c_cc[VMIN] = 0;
+    raw.c_cc[VTIME] = 0;
+    tcsetattr(fd_, TCSANOW, &raw);
+    write("\x1b[2J\x1b[?25l");  // clear, hide the cursor
+  }
+  ~Terminal() {
+    if (fd_ < 0) return;
+    write("\x1b[0m\x1b[?25h\r\n");
+    tcsetattr(fd_, TCSANOW, &saved_);
+    if (fd_ != STDIN_FILENO) close(fd_);
+  }
+  bool ok() const { return fd_ >= 0; }
+  std::string read() {
+    std::string out;
+    char buf[64];
+    ssize_t n;
+    while ((n = ::read(fd_, buf, sizeof buf)) > 0) out.append(buf, static_cast<size_t>(n));
+    return out;
+  }
+  void write(const std::string& s) {
+    if (::write(fd_, s.data(), s.size()) < 0) return;  // a closed terminal: nothing to show
+  }
+
+ private:
+  int fd_ = -1;
+  termios saved_{};
+};
+
+double wallNow() { return ros::WallTime::now().toSec(); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "teleop");
+  ros::NodeHandle nh, pnh("~");
+  const double key_timeout = pnh.param("key_timeout", 0.7);
+  if (key_timeout < 0.0) {
+    ROS_FATAL("teleop: parameter %s must not be negative", pnh.resolveName("key_timeout").c_str());
+    return 1;
+  }
+  ROS_INFO("teleop: you play the hider of arena 0 (key_timeout %.2f s)", key_timeout);
+  Terminal terminal;  // clears the screen: the game's picture replaces the log from here on
+  if (!terminal.ok()) {
+    ROS_FATAL("teleop: no terminal to read keys from. Run it in one: rosrun hideseek_hider teleop_node "
+              "(play.launch opens an xterm for it when a display is available)");
+    return 1;
+  }
+  hideseek_hider::TeleopKeys keys;
+  hideseek_hider::TeleopAction action(key_timeout);
+  std::string last_outcome = "no episode finished yet";
+  uint32_t previous_step = 0;
+  auto pub = nh.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kHiderActionsTopic, 2);
+  auto sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
+      hideseek_world::kHiderObservationsTopic, 1, [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) {
+        const size_t n = m->num_arenas, bytes = static_cast<size_t>(m->height) * m->width * 3;
+        if (n == 0 || m->step.size() != n || m->images.size() != n * bytes || m->done.size() != n ||
+            m->outcome.size() != n || m->episode.size() != n) {
+          return;  // the world checks its own batches; nothing sensible to answer
+        }
+        hideseek_msgs::ActionBatch out;
+        out.header.stamp = m->header.stamp;
+        out.step = m->step;
+        out.actions.assign(n, hideseek_msgs::ActionBatch::STAY);  // a person plays arena 0 only
+        out.actions[0] = action.current(wallNow());
+        pub.publish(out);
+        if (m->done[0]) {
+          last_outcome = std::string(m->outcome[0] == 2 ? "survived" : "caught") + " after " +
+                         std::to_string(previous_step + 1) + " steps";
+        }
+        previous_step = m->step[0];
+        char status[200];
+        std::snprintf(status, sizeof status,
+                      "\x1b[0mepisode %u, step %u    last episode: %s\x1b[K\r\n"
+                      "w/up forward  s/down back  a/left d/right turn  space stop  q quit\x1b[K\r\n",
+                      m->episode[0], m->step[0], last_outcome.c_str());
+        terminal.write(hideseek_hider::renderHalfBlocks(m->images.data(), static_cast<int>(m->height),
+                                                        static_cast<int>(m->width)) +
+                       status);
+      });
+  // Keys are polled between batches on the wall clock (the game may run on sim time).
+  ros::WallTimer poll = nh.createWallTimer(ros::WallDuration(0.01), [&](const ros::WallTimerEvent&) {
+    const hideseek_hider::TeleopCommand c = keys.feed(terminal.read());
+    if (c.action) action.press(*c.action, wallNow());
+    if (c.quit) ros::shutdown();
+  });
+  ros::spin();
+  return 0;
+}
