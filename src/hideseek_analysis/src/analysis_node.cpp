@@ -13,28 +13,11 @@
 #include <string>
 
 #include "hideseek_analysis/analysis_job.h"
+#include "hideseek_world/params.h"
 #include "hideseek_world/topic_names.h"
 #include "hideseek_world/world_node_options.h"
 
 namespace {
-
-std::string requireParam(const ros::NodeHandle& nh, const std::string& name) {
-  std::string v;
-  if (!nh.getParam(name, v) || v.empty()) throw std::runtime_error("parameter " + nh.resolveName(name) + " is required");
-  return v;
-}
-
-int intParam(const ros::NodeHandle& nh, const std::string& name, int fallback, int min, int max) {
-  int v = fallback;
-  if (nh.hasParam(name) && !nh.getParam(name, v)) {
-    throw std::runtime_error("parameter " + nh.resolveName(name) + " must be an integer");
-  }
-  if (v < min || v > max) {
-    throw std::runtime_error("parameter " + nh.resolveName(name) + " must be in [" + std::to_string(min) + ", " +
-                             std::to_string(max) + "], got " + std::to_string(v));
-  }
-  return v;
-}
 
 class Recorder {
  public:
@@ -93,14 +76,14 @@ int main(int argc, char** argv) {
     ros::NodeHandle nh, pnh("~");
     try {
       job.variant = hideseek_world::loadVariantParams(pnh);
-      job.policy = requireParam(pnh, "policy");
-      job.inputs_dir = requireParam(pnh, "output_dir");
-      job.report_dir = pnh.param<std::string>("report_dir", job.inputs_dir + "/report");
-      job.report_script = requireParam(pnh, "report_script");
-      job.bag = pnh.param<std::string>("bag", job.inputs_dir + "/rollout.bag");
-      job.inputs.random_init_seed = static_cast<uint32_t>(intParam(pnh, "random_init_seed", 0, 0, 1 << 30));
-      job.tsne_samples = intParam(pnh, "tsne_samples", 3000, 100, 100000);
-      const int decisions = intParam(pnh, "decisions", 0, 1, 1 << 24);
+      job.policy = hideseek_world::requireString(pnh, "policy", "a checkpoint file");
+      job.inputs_dir = hideseek_world::requireString(pnh, "output_dir", "a folder");
+      job.report_dir = hideseek_world::readString(pnh, "report_dir", job.inputs_dir + "/report");
+      job.report_script = hideseek_world::requireString(pnh, "report_script", "report.py");
+      job.bag = hideseek_world::readString(pnh, "bag", job.inputs_dir + "/rollout.bag");
+      job.inputs.random_init_seed = static_cast<uint32_t>(hideseek_world::readInt(pnh, "random_init_seed", 0, 0, 1 << 30));
+      job.tsne_samples = hideseek_world::readInt(pnh, "tsne_samples", 3000, 100, 100000);
+      const int decisions = hideseek_world::readInt(pnh, "decisions", 0, 1, 1 << 24);
       if (!std::filesystem::is_regular_file(job.policy)) {
         throw std::runtime_error("parameter " + pnh.resolveName("policy") + ": no checkpoint at " + job.policy);
       }

@@ -5,30 +5,33 @@
 #include <ros/ros.h>
 
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <utility>
 
 #include "hideseek_hider/episode_tally.h"
+#include "hideseek_world/params.h"
 #include "hideseek_world/topic_names.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "evaluator");
   ros::NodeHandle nh, pnh("~");
-  const int episodes = pnh.param("episodes", 100);
-  const int first_seed = pnh.param("first_seed", 0);
-  const std::string output_dir = pnh.param<std::string>("output_dir", ".");
-  const std::string variant = pnh.param<std::string>("variant", "unknown");
-  // A network policy is evaluated either greedily or sampling its actions: the table says which.
-  std::string policy = pnh.param<std::string>("policy", "random");
-  if (policy != "random" && policy != "human") policy += pnh.param("greedy", true) ? " (greedy)" : " (sampled)";
-  if (episodes < 1) {
-    ROS_FATAL("evaluator: parameter %s must be at least 1", pnh.resolveName("episodes").c_str());
-    return 1;
-  }
-  if (first_seed < 0) {
-    ROS_FATAL("evaluator: parameter %s must not be negative", pnh.resolveName("first_seed").c_str());
+  int episodes = 0, first_seed = 0;
+  std::string output_dir, variant, policy;
+  try {
+    episodes = hideseek_world::readInt(pnh, "episodes", 100, 1, 1 << 24);
+    first_seed = hideseek_world::readInt(pnh, "first_seed", 0, 0, 1 << 30);
+    output_dir = hideseek_world::readString(pnh, "output_dir", ".");
+    variant = hideseek_world::readString(pnh, "variant", "unknown");
+    // A network policy is evaluated either greedily or sampling its actions: the table says which.
+    policy = hideseek_world::readString(pnh, "policy", "random");
+    if (policy != "random" && policy != "human") {
+      policy += hideseek_world::readBool(pnh, "greedy", true) ? " (greedy)" : " (sampled)";
+    }
+  } catch (const std::exception& e) {
+    ROS_FATAL("evaluator: %s", e.what());
     return 1;
   }
   // A folder that cannot be written is found out now, not after the whole evaluation.

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "hideseek_world/params.h"
 #include "hideseek_world/topic_names.h"
 #include "hideseek_world/wall_throttle.h"
 #include "hideseek_world/world_node_options.h"
@@ -29,32 +30,32 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
   const hideseek_world::VariantConfig v = hideseek_world::loadVariantParams(pnh);
   image_height_ = v.game.camera.height;
   image_width_ = v.game.camera.width;
-  const std::string policy = pnh.param<std::string>("policy", "random");
-  const std::string mode = pnh.param<std::string>("mode", policy == "random" ? "random" : "policy");
-  const int threads = pnh.param("threads", 2);
-  if (threads < 1 || threads > 64) throw std::runtime_error("parameter " + pnh.resolveName("threads") + " must be in [1, 64]");
+  using hideseek_world::readBool;
+  using hideseek_world::readString;
+  const std::string policy = readString(pnh, "policy", "random");
+  const std::string mode =
+      hideseek_world::readChoice(pnh, "mode", policy == "random" ? "random" : "policy", {"random", "policy", "train"});
+  const int threads = hideseek_world::readInt(pnh, "threads", 2, 1, 64);
   // Measured on the 2-core reference machine: 2 intra-op threads train 1.5x faster than 1.
   torch::set_num_threads(threads);
   // Parsed in every mode, so that a typo is refused even where the network is not used.
   const PrecisionRequest precision_request =
-      parsePrecision(pnh.param<std::string>("precision", "auto"), pnh.resolveName("precision"));
+      parsePrecision(readString(pnh, "precision", "auto"), pnh.resolveName("precision"));
   if (mode == "random") {
     policy_ = std::make_unique<RandomHiderPolicy>();
     ROS_INFO("hider: uniformly random policy");
   } else if (mode == "policy") {
-    const torch::Device device = deviceFrom(pnh.param<std::string>("device", "cpu"), pnh.resolveName("device"));
+    const torch::Device device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
     const PrecisionChoice precision = choosePrecision(precision_request, device, detectCpuBf16());
     CheckpointInfo info;
     HiderNet net = loadCheckpoint(policy, image_height_, image_width_, &info);
     net->setPrecision(precision.precision);
-    policy_ = std::make_unique<NetworkHiderPolicy>(net, device, pnh.param("greedy", true));
+    policy_ = std::make_unique<NetworkHiderPolicy>(net, device, readBool(pnh, "greedy", true));
     ROS_INFO("hider: policy %s (variant '%s', %ld training steps) on %s in %s", policy.c_str(), info.variant.c_str(),
              static_cast<long>(info.steps), device.str().c_str(), precision.reason.c_str());
-  } else if (mode == "train") {
-    const torch::Device device = deviceFrom(pnh.param<std::string>("device", "cpu"), pnh.resolveName("device"));
-    startTraining(pnh, v.name, device, choosePrecision(precision_request, device, detectCpuBf16()));
   } else {
-    throw std::runtime_error("parameter " + pnh.resolveName("mode") + " must be random, policy or train, got '" + mode + "'");
+    const torch::Device device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
+    startTraining(pnh, v.name, device, choosePrecision(precision_request, device, detectCpuBf16()));
   }
   actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kHiderActionsTopic, 2);
   observations_sub_ = nh_.subscribe(hideseek_world::kHiderObservationsTopic, 2, &HiderNode::onObservations, this,
@@ -68,28 +69,14 @@ void HiderNode::startTraining(const ros::NodeHandle& pnh, const std::string& var
   o.precision = precision.precision;
   o.image_height = image_height_;
   o.image_width = image_width_;
-  if (!pnh.getParam("output_dir", o.output_dir) || o.output_dir.empty()) {
-    throw std::runtime_error("parameter " + pnh.resolveName("output_dir") + " is required in train mode");
-  }
-  double total = 1e6;
-  pnh.param("total_steps", total, 1e6);
-  if (!(total >= 1)) throw std::runtime_error("parameter " + pnh.resolveName("total_steps") + " must be at least 1");
-  o.total_steps = static_cast<int64_t>(total);
-  o.checkpoint_interval_s = pnh.param("checkpoint_interval", 300.0);
-  if (!(o.checkpoint_interval_s > 0)) {
-    throw std::runtime_error("parameter " + pnh.resolveName("checkpoint_interval") + " must be positive (seconds)");
-  }
-  std::string ppo_config;
-  if (!pnh.getParam("ppo_config", ppo_config)) {
-    throw std::runtime_error("parameter " + pnh.resolveName("ppo_config") + " is required in train mode (a file path)");
-  }
-  const PpoOptions ppo = loadPpoOptions(ppo_config);
-  const int arenas = pnh.param("num_arenas", 16);
-  if (arenas < 1 || arenas > 64) {
-    throw std::runtime_error("parameter " + pnh.resolveName("num_arenas") + " must be in [1, 64], got " +
-                             std::to_string(arenas));
-  }
-  torch::manual_seed(static_cast<uint64_t>(pnh.param("seed", 0)));  // a resumed run restores its own state
+  o.output_dir = hideseek_world::requireString(pnh, "output_dir", "a folder, in train mode");
+  // A double: launch files write large step counts as 2e6.
+  o.total_steps = static_cast<int64_t>(hideseek_world::readDouble(pnh, "total_steps", 1e6, 1.0, 1e12));
+  o.checkpoint_interval_s = hideseek_world::readDouble(pnh, "checkpoint_interval", 300.0, 1.0, 1e6);
+  const PpoOptions ppo = loadPpoOptions(hideseek_world::requireString(pnh, "ppo_config", "a file path, in train mode"));
+  const int arenas = hideseek_world::readInt(pnh, "num_arenas", 16, 1, 64);
+  // A resumed run restores its own generator state.
+  torch::manual_seed(static_cast<uint64_t>(hideseek_world::readInt(pnh, "seed", 0, 0, 1 << 30)));
   training_ = std::make_unique<TrainingRun>(o, ppo, arenas, device);
   ROS_INFO("hider: training %s PPO on %s in %s", variant.c_str(), device.str().c_str(), precision.reason.c_str());
   if (training_->totalSteps() != o.total_steps) {

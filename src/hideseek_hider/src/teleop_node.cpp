@@ -10,9 +10,11 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <exception>
 #include <string>
 
 #include "hideseek_hider/teleop.h"
+#include "hideseek_world/params.h"
 #include "hideseek_world/topic_names.h"
 
 namespace {
@@ -63,9 +65,11 @@ double wallNow() { return ros::WallTime::now().toSec(); }
 int main(int argc, char** argv) {
   ros::init(argc, argv, "teleop");
   ros::NodeHandle nh, pnh("~");
-  const double key_timeout = pnh.param("key_timeout", 0.7);
-  if (key_timeout < 0.0) {
-    ROS_FATAL("teleop: parameter %s must not be negative", pnh.resolveName("key_timeout").c_str());
+  double key_timeout = 0.0;
+  try {
+    key_timeout = hideseek_world::readDouble(pnh, "key_timeout", 0.7, 0.0, 60.0);
+  } catch (const std::exception& e) {
+    ROS_FATAL("teleop: %s", e.what());
     return 1;
   }
   ROS_INFO("teleop: you play the hider of arena 0 (key_timeout %.2f s)", key_timeout);

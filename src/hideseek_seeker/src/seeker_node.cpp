@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "hideseek_seeker/random_hider_game.h"
+#include "hideseek_world/params.h"
 #include "hideseek_world/topic_names.h"
 #include "hideseek_world/wall_throttle.h"
 #include "hideseek_world/world_node_options.h"
@@ -31,10 +32,7 @@ SeekerPerception toPerception(const hideseek_msgs::SeekerObservationBatch& batch
 
 SeekerNode::SeekerNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
   const hideseek_world::VariantConfig v = hideseek_world::loadVariantParams(pnh);
-  const double grid_resolution = pnh.param("grid_resolution", 0.1);
-  if (!(grid_resolution >= 0.02 && grid_resolution <= 1.0)) {
-    throw std::runtime_error("parameter " + pnh.resolveName("grid_resolution") + " must be in [0.02, 1.0] m");
-  }
+  const double grid_resolution = hideseek_world::readDouble(pnh, "grid_resolution", 0.1, 0.02, 1.0);
   // The same seeker the in-process calibration plays.
   options_ = seekerOptionsFor(v, grid_resolution);
   actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kSeekerActionsTopic, 2);

@@ -2,43 +2,9 @@
 
 #include <stdexcept>
 
+#include "hideseek_world/params.h"
+
 namespace hideseek_world {
-
-namespace {
-
-std::string requireString(const ros::NodeHandle& nh, const std::string& name) {
-  std::string value;
-  if (!nh.getParam(name, value) || value.empty()) {
-    throw std::runtime_error("parameter " + nh.resolveName(name) + " is required (a file path)");
-  }
-  return value;
-}
-
-double readDouble(const ros::NodeHandle& nh, const std::string& name, double fallback, double min, double max) {
-  double value = fallback;
-  if (nh.hasParam(name) && !nh.getParam(name, value)) {
-    throw std::runtime_error("parameter " + nh.resolveName(name) + " must be a number");
-  }
-  if (!(value >= min && value <= max)) {
-    throw std::runtime_error("parameter " + nh.resolveName(name) + " must be in [" + std::to_string(min) + ", " +
-                             std::to_string(max) + "], got " + std::to_string(value));
-  }
-  return value;
-}
-
-int readInt(const ros::NodeHandle& nh, const std::string& name, int fallback, int min, int max) {
-  int value = fallback;
-  if (nh.hasParam(name) && !nh.getParam(name, value)) {
-    throw std::runtime_error("parameter " + nh.resolveName(name) + " must be an integer");
-  }
-  if (value < min || value > max) {
-    throw std::runtime_error("parameter " + nh.resolveName(name) + " must be in [" + std::to_string(min) + ", " +
-                             std::to_string(max) + "], got " + std::to_string(value));
-  }
-  return value;
-}
-
-}  // namespace
 
 VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
   return loadVariantConfig(requireString(nh, "game_config"), requireString(nh, "variant_config"));
@@ -48,19 +14,13 @@ WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& nh) {
   WorldNodeOptions o;
   o.variant = loadVariantParams(nh);
   o.map = loadMapFile(o.variant.map_file);
-  const std::string mode = nh.param<std::string>("mode", "realtime");
-  if (mode == "realtime") {
-    o.mode = ClockMode::kRealtime;
-  } else if (mode == "lockstep") {
-    o.mode = ClockMode::kLockstep;
-  } else {
-    throw std::runtime_error("parameter " + nh.resolveName("mode") + " must be 'realtime' or 'lockstep', got '" + mode + "'");
-  }
+  o.mode = readChoice(nh, "mode", "realtime", {"realtime", "lockstep"}) == "lockstep" ? ClockMode::kLockstep
+                                                                                      : ClockMode::kRealtime;
   o.num_arenas = readInt(nh, "num_arenas", 1, 1, kMaxArenas);
   o.seed = static_cast<uint32_t>(readInt(nh, "seed", 0, 0, 1 << 30));
-  o.frame_id = nh.param<std::string>("frame_id", "map");
+  o.frame_id = readString(nh, "frame_id", "map");
   if (o.frame_id.empty()) throw std::runtime_error("parameter " + nh.resolveName("frame_id") + " must not be empty");
-  o.tf_prefix = nh.param<std::string>("tf_prefix", "");
+  o.tf_prefix = readString(nh, "tf_prefix", "");
   while (!o.tf_prefix.empty() && o.tf_prefix.back() == '/') o.tf_prefix.pop_back();
   if (!o.tf_prefix.empty() && o.tf_prefix.front() == '/') o.tf_prefix.erase(0, 1);
   o.frame_id = o.frame(o.frame_id);

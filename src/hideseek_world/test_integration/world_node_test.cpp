@@ -15,6 +15,7 @@
 #include <functional>
 #include <map>
 
+#include "hideseek_world/params.h"
 #include "test_helpers.h"
 
 namespace {
@@ -102,6 +103,39 @@ TEST_F(WorldNodeTest, CameraImageHasSizeEncodingAndOpticalFrame) {
   const auto obs = hider_obs_;
   ASSERT_TRUE(waitFor([&] { return image && image->header.stamp == obs->header.stamp; }, 10.0));
   EXPECT_TRUE(std::equal(image->data.begin(), image->data.end(), obs->images.begin()));
+}
+
+// Every node reads its parameters through one header: values are checked, and an error names
+// the parameter as the user would set it.
+TEST(Params, CheckTypeAndRangeAndNameTheParameter) {
+  ros::NodeHandle pnh("~params_test");
+  pnh.setParam("count", 5);
+  pnh.setParam("word", std::string("lockstep"));
+  pnh.setParam("flag", true);
+  pnh.setParam("rate", 2.5);
+  EXPECT_EQ(hideseek_world::readInt(pnh, "count", 1, 1, 10), 5);
+  EXPECT_EQ(hideseek_world::readInt(pnh, "missing", 3, 1, 10), 3);
+  EXPECT_DOUBLE_EQ(hideseek_world::readDouble(pnh, "rate", 1.0, 0.0, 10.0), 2.5);
+  EXPECT_TRUE(hideseek_world::readBool(pnh, "flag", false));
+  EXPECT_EQ(hideseek_world::readChoice(pnh, "word", "realtime", {"realtime", "lockstep"}), "lockstep");
+  auto message = [](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([&] { hideseek_world::readInt(pnh, "count", 1, 6, 10); }).find("params_test/count must be in [6, 10], got 5"),
+            std::string::npos);
+  EXPECT_NE(message([&] { hideseek_world::readInt(pnh, "word", 1, 0, 10); }).find("params_test/word must be an integer"),
+            std::string::npos);
+  EXPECT_NE(message([&] { hideseek_world::readBool(pnh, "count", false); }).find("must be true or false"),
+            std::string::npos);
+  EXPECT_NE(message([&] { hideseek_world::readChoice(pnh, "word", "a", {"a", "b"}); }).find("must be one of 'a', 'b', got 'lockstep'"),
+            std::string::npos);
+  EXPECT_NE(message([&] { hideseek_world::requireString(pnh, "nothing", "a file path"); }).find("params_test/nothing is required (a file path)"),
+            std::string::npos);
 }
 
 TEST_F(WorldNodeTest, TfPrefixPutsASecondGamesFramesApart) {
