@@ -2,7 +2,8 @@
 """Table 2 of the paper beside this project's evaluations.
 
 usage: table2.py PAPER_REFERENCE.yaml EVALUATIONS_DIR OUTPUT_STEM POLICIES_DIR
-Reads EVALUATIONS_DIR/<variant>_{trained,random}/evaluation.csv, writes OUTPUT_STEM.md and .csv.
+Reads EVALUATIONS_DIR/<variant>_{trained,random}/evaluation.csv and POLICIES_DIR/policies.yaml (each
+shipped policy's training steps and wall time), writes OUTPUT_STEM.md and .csv.
 """
 import csv
 import os
@@ -29,6 +30,10 @@ def evaluation(folder):
 def main(paper_file, evaluations, stem, policies):
     with open(paper_file) as f:
         paper = yaml.safe_load(f)
+    shipped = {}
+    if os.path.exists(os.path.join(policies, "policies.yaml")):
+        with open(os.path.join(policies, "policies.yaml")) as f:
+            shipped = yaml.safe_load(f) or {}
     rows = []
     for v in VARIANTS:
         p = paper["variants"][v]
@@ -43,6 +48,8 @@ def main(paper_file, evaluations, stem, policies):
             "paper_living_trained": p["living_trained"], "paper_living_random": p["living_random"],
             "paper_success_trained": p["success_trained"], "paper_success_random": p["success_random"],
             "trained_beats_random": ("yes" if trained[0] > random[0] else "no") if trained and random else "",
+            "training_steps": shipped.get(v, {}).get("steps", "") if trained else "",
+            "training_wall_h": "%.1f" % (shipped[v]["wall_s"] / 3600.0) if trained and "wall_s" in shipped.get(v, {}) else "",
         })
     with open(stem + ".csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
@@ -51,16 +58,18 @@ def main(paper_file, evaluations, stem, policies):
     lines = [
         "Average living steps and success rate over the evaluation seeds 0..99 (at most 1000 steps), "
         "trained policy (`%s/<variant>.pt`, greedy) / uniformly random hider, beside the paper's "
-        "(trained for %d steps). An empty cell: no policy shipped for that variant yet." % (policies, paper["training_steps"]),
+        "(trained for %d steps). Training: the steps and wall hours of the shipped checkpoint's run on this "
+        "2-core machine (fp32). An empty cell: no policy shipped for that variant yet." % (policies, paper["training_steps"]),
         "",
-        "| variant | living steps, trained / random | paper | success %, trained / random | paper |",
-        "| --- | --- | --- | --- | --- |",
+        "| variant | living steps, trained / random | paper | success %, trained / random | paper | training steps | wall h |",
+        "| --- | --- | --- | --- | --- | --- | --- |",
     ]
     for r in rows:
-        lines.append("| %s | %s / %s | %s / %s | %s / %s | %s / %s |" % (
+        lines.append("| %s | %s / %s | %s / %s | %s / %s | %s / %s | %s | %s |" % (
             r["variant"], r["living_trained"] or "-", r["living_random"] or "-", r["paper_living_trained"],
             r["paper_living_random"], r["success_trained"] or "-", r["success_random"] or "-",
-            r["paper_success_trained"], r["paper_success_random"]))
+            r["paper_success_trained"], r["paper_success_random"], r["training_steps"] or "-",
+            r["training_wall_h"] or "-"))
     with open(stem + ".md", "w") as f:
         f.write("\n".join(lines) + "\n")
 
