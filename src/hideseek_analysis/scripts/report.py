@@ -40,6 +40,16 @@ def read_csv(path):
     return {k: np.array([r[k] for r in rows]) for k in rows[0]} if rows else {}
 
 
+def complete_episodes(table):
+    """The rows of the episodes the table holds from step 0 to their end (an outcome): a rollout of
+    fixed length cuts some episodes short, which would over-weight their early states."""
+    episodes, steps, outcome = table["episode"], table["step"].astype(int), table["outcome"].astype(int)
+    started = set(episodes[steps == 0])
+    ended = set(episodes[outcome != 0])
+    keep = np.array([e in started and e in ended for e in episodes])
+    return {k: v[keep] for k, v in table.items()}
+
+
 def states_of(table):
     return ha.state_index(table["S"].astype(int), table["H"].astype(int), table["O"].astype(int))
 
@@ -197,13 +207,18 @@ def main():
             raise SystemExit("report: features_%s.npy has %d rows, features.csv %d" % (name, len(f), len(labels["episode"])))
     trained = read_csv(os.path.join(a.input, "steps_trained.csv"))
     random = read_csv(os.path.join(a.input, "steps_random.csv"))
+    # State statistics over whole episodes only, on both sides.
+    trained_whole, random_whole = complete_episodes(trained), complete_episodes(random)
+    print("report: state statistics over %d whole episodes (%d steps) of the policy, %d (%d steps) of the random "
+          "policy" % (len(set(trained_whole["episode"])), len(trained_whole["episode"]),
+                      len(set(random_whole["episode"])), len(random_whole["episode"])))
     print("report: probes")
     probes(labels, features, a.output, title)
     print("report: t-SNE of %d samples" % min(a.tsne_samples, len(labels["episode"])))
     tsne(features["trained"], labels, a.output, title, a.tsne_samples)
     print("report: state frequencies and transitions")
-    state_frequencies(trained, random, a.output, title)
-    transitions(trained, a.output, title)
+    state_frequencies(trained_whole, random_whole, a.output, title)
+    transitions(trained_whole, a.output, title)
     print("report: distance over time")
     distance_time(trained, read_csv(os.path.join(a.input, "layouts.csv")), a.output, title)
     print("report: wrote", a.output)

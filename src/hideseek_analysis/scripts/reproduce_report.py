@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
 """Gathers the per-variant analysis reports into the reproduction report.
 
-usage: reproduce_report.py REPORT_DIR --paper config/paper_reference.yaml [--training-logs DOCS]
+usage: reproduce_report.py REPORT_DIR --paper config/paper_reference.yaml
 
 REPORT_DIR holds table2.csv (scripts/evaluate_all.sh) and one folder per analysed variant
 (analyze.launch report_dir:=REPORT_DIR/<variant>). Writes into REPORT_DIR:
   table3.csv/.md                    probe accuracy, trained / random-init network, beside the paper's
   state_frequencies_variants.png    trained minus random state frequencies, every variant
   transitions_variants.png          transition probabilities, every variant
-  survival_vs_representation.png    self-visibility (H) probe accuracy against average living
+  survival_vs_representation.png    self-visibility (H) probe balanced accuracy against average living
                                     steps, one point per variant, with a parabolic fit
   index.md                          links to everything, with the tables inline
 """
@@ -149,7 +149,7 @@ def main():
     plt.close(fig)
 
     # Survival against representation: one point per variant with a policy and an analysis.
-    points = [(probes[v]["H", "trained"][0], float(table2[v]["living_trained"]), v) for v in analysed
+    points = [(probes[v]["H", "trained"][1], float(table2[v]["living_trained"]), v) for v in analysed
               if v in table2 and table2[v]["living_trained"] not in ("", None)]
     fig, ax = plt.subplots(figsize=(6, 4.5))
     for x, y, v in points:
@@ -162,7 +162,7 @@ def main():
         grid = np.linspace(xs.min() - 1, xs.max() + 1, 100)
         ax.plot(grid, np.polyval(coefficients, grid), color="tab:orange", lw=1)
         fit_note = "parabolic fit: %.3g x^2 + %.3g x + %.3g" % tuple(coefficients)
-    ax.set_xlabel("self-visibility (H) probe accuracy of the trained features, %")
+    ax.set_xlabel("self-visibility (H) probe, balanced accuracy of the trained features, %")
     ax.set_ylabel("average living steps (seeds 0-99, greedy)")
     ax.set_title("Survival against representation\n" + fit_note, fontsize=9)
     fig.tight_layout()

@@ -131,7 +131,8 @@ AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::Hi
     out << kStepsHeader;
     uint32_t next_seed = seeds.empty() ? 0 : *seeds.begin();
     while (summary.random_steps < summary.steps) {
-      hideseek_seeker::playRandomHider(
+      std::vector<ArenaStepRecord> episode;
+      const auto played = hideseek_seeker::playRandomHider(
           variant, map, next_seed, 1, [&](const hideseek_seeker::RandomHiderStep& s) {
             ArenaStepRecord r;
             r.seed = s.seed;
@@ -147,9 +148,12 @@ AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::Hi
             r.seeker_sees_hider = s.labels.seeker_sees_hider;
             r.obstacle_in_view = s.labels.obstacle_in_view;
             r.hider_action = static_cast<int>(s.hider_action);
-            writeStepRow(out, r);
-            ++summary.random_steps;
+            episode.push_back(r);
           });
+      // The episode's last step carries how it ended (rewards are the trained rollout's only).
+      if (!episode.empty()) episode.back().outcome = played.front().survived ? 2 : 1;
+      for (const auto& r : episode) writeStepRow(out, r);
+      summary.random_steps += episode.size();
       ++summary.random_episodes;
       ++next_seed;
     }

@@ -48,6 +48,13 @@ class Recorder {
       ros::shutdown();
       return;
     }
+    if (msg.image_every == 0) {
+      failure_ = "world/steps carries no hider images (the world's step_image_every is 0, or record_images is "
+                 "false): the probes need them";
+      close();
+      ros::shutdown();
+      return;
+    }
     next_ = msg.decision + 1;
     bag_.write(sub_.getTopic(), msg.header.stamp.isZero() ? ros::TIME_MIN : msg.header.stamp, msg);
     ++recorded_;
@@ -83,6 +90,9 @@ int main(int argc, char** argv) {
       job.bag = hideseek_world::readString(pnh, "bag", job.inputs_dir + "/rollout.bag");
       job.inputs.random_init_seed = static_cast<uint32_t>(hideseek_world::readInt(pnh, "random_init_seed", 0, 0, 1 << 30));
       job.tsne_samples = hideseek_world::readInt(pnh, "tsne_samples", 3000, 100, 100000);
+      if (!pnh.hasParam("decisions")) {
+        throw std::runtime_error("parameter " + pnh.resolveName("decisions") + " is required (decision steps to record)");
+      }
       const int decisions = hideseek_world::readInt(pnh, "decisions", 0, 1, 1 << 24);
       if (!std::filesystem::is_regular_file(job.policy)) {
         throw std::runtime_error("parameter " + pnh.resolveName("policy") + ": no checkpoint at " + job.policy);

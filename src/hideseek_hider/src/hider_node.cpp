@@ -72,7 +72,7 @@ void HiderNode::startTraining(const ros::NodeHandle& pnh, const std::string& var
   o.output_dir = hideseek_world::requireString(pnh, "output_dir", "a folder, in train mode");
   // A double: launch files write large step counts as 2e6.
   o.total_steps = static_cast<int64_t>(hideseek_world::readDouble(pnh, "total_steps", 1e6, 1.0, 1e12));
-  o.checkpoint_interval_s = hideseek_world::readDouble(pnh, "checkpoint_interval", 300.0, 1.0, 1e6);
+  o.checkpoint_interval_s = hideseek_world::readDouble(pnh, "checkpoint_interval", 300.0, 1e-3, 1e6);
   const PpoOptions ppo = loadPpoOptions(hideseek_world::requireString(pnh, "ppo_config", "a file path, in train mode"));
   const int arenas = hideseek_world::readInt(pnh, "num_arenas", 16, 1, 64);
   // A resumed run restores its own generator state.

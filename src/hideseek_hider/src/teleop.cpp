@@ -34,13 +34,20 @@ TeleopCommand TeleopKeys::feed(const std::string& bytes) {
   TeleopCommand out;
   for (char c : bytes) {
     if (!pending_.empty()) {
-      pending_ += c;
-      if (pending_.size() == 2 && c != '[' && c != 'O') pending_.clear();  // a lone escape
-      if (pending_.size() == 3) {
-        if (auto a = arrowAction(c)) out.action = a;
-        pending_.clear();
+      if (pending_.size() == 1 && c != '[' && c != 'O') {
+        pending_.clear();  // a lone Esc: the byte after it is a key of its own
+      } else {
+        pending_ += c;
+        // An escape sequence ends at its final byte (0x40-0x7e): the arrows are ESC [ A..D or
+        // ESC O A..D; a modified arrow (ESC [ 1 ; 5 A) counts as the arrow itself.
+        if (pending_.size() > 2 && c >= 0x40 && c <= 0x7e) {
+          if (auto a = arrowAction(c)) out.action = a;
+          pending_.clear();
+        } else if (pending_.size() > 16) {
+          pending_.clear();  // not a sequence we know
+        }
+        continue;
       }
-      continue;
     }
     if (c == '\x1b') {
       pending_ = c;

@@ -28,6 +28,14 @@ TEST(TeleopKeys, AnArrowSplitAcrossReadsStillCounts) {
   EXPECT_EQ(k.feed("w").action, 1);  // nothing left pending
 }
 
+TEST(TeleopKeys, ModifiedArrowsAndALoneEscapeDoNotMisfire) {
+  TeleopKeys k;
+  EXPECT_EQ(k.feed("\x1b[1;5D").action, 3);  // Ctrl+left is left, not a stray 'D' (turn right)
+  EXPECT_EQ(k.feed("\x1bOA").action, 1);     // application-mode up
+  EXPECT_TRUE(k.feed("\x1bq").quit);         // Esc then q: the q still quits
+  EXPECT_EQ(k.feed("\x1bw").action, 1);
+}
+
 TEST(TeleopKeys, QAndCtrlCQuit) {
   TeleopKeys k;
   EXPECT_TRUE(k.feed("q").quit);

@@ -309,13 +309,23 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
     publishAgentTransforms(ros::Time::now());
     return;
   }
+  finishRealtimeDecision();
+  publishObservations();
+  publishArenaZero(true);
+}
+
+void WorldNode::finishRealtimeDecision() {
+  const int n = options_.num_arenas;
+  for (; frame_ < options_.variant.game.action_repeat; ++frame_) {
+    for (int i = 0; i < n; ++i) {
+      if (!frame_results_[i]) frame_results_[i] = world_->advanceArenaFrame(i, realtime_hider_[i], realtime_seeker_[i]);
+    }
+  }
   frame_ = 0;
   std::vector<ArenaStep> results;
   results.reserve(n);
   for (const auto& r : frame_results_) results.push_back(*r);
   concludeDecision(results, realtime_hider_, realtime_seeker_);
-  publishObservations();
-  publishArenaZero(true);
 }
 
 void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
@@ -554,6 +564,10 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
     res.message = "seed must be -1 or in [0, 2^32)";
     return true;
   }
+  // A realtime decision in progress is played to its end first, with the actions it started
+  // with: every arena's step stays whole, and an episode it ends is reported like any other.
+  if (options_.mode == ClockMode::kRealtime && frame_ != 0) finishRealtimeDecision();
+  decision_wait_start_ = ros::WallTime();
   for (int i = 0; i < n; ++i) {
     if (req.arena != -1 && req.arena != i) continue;
     std::optional<uint32_t> seed;
@@ -567,9 +581,6 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
   }
   world_->renderHiderViews(images_.data());
   last_finished_.reset();
-  // A realtime decision in progress belonged to the states just replaced: start a fresh one.
-  frame_ = 0;
-  step_record_.reset();
   if (req.arena <= 0) startEpisodeVisuals();
   res.success = true;
   res.message = "reset " + (req.arena == -1 ? std::string("all arenas") : "arena " + std::to_string(req.arena));

@@ -53,6 +53,8 @@ class WorldNode {
   bool acceptPublisher(const std::string& caller, AgentChannel& channel);
   void tryAdvanceLockstep();
   void onRealtimeTick(const ros::WallTimerEvent&);
+  // Plays the realtime decision in progress to its last frame and concludes it.
+  void finishRealtimeDecision();
   void onWatchdog(const ros::WallTimerEvent&);
   bool onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset::Response& res);
   // Records a finished decision step of every arena and renders the new hider views.

@@ -20,7 +20,7 @@ struct WorldNodeOptions {
   uint32_t seed = 0;
   std::string frame_id = "map";
   // Prefix of every TF frame the world names (the fixed frame, agents, cameras), so that two
-  // games can share one master: "game1" gives game1/map, game1/hider/base_link, ...
+  // worlds keep their frames apart on one tf tree: "game1" gives game1/map, game1/hider/base_link, ...
   std::string tf_prefix;
   // A frame name with the prefix applied.
   std::string frame(const std::string& name) const { return tf_prefix.empty() ? name : tf_prefix + "/" + name; }
