@@ -51,7 +51,10 @@ geometry_msgs::TransformStamped fixedTransform(const std::string& parent, const 
 }  // namespace
 
 WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
-    : nh_(nh), image_transport_(nh), options_(loadWorldNodeOptions(private_nh)) {
+    : nh_(nh),
+      image_transport_(nh),
+      options_(loadWorldNodeOptions(private_nh)),
+      scheduler_(options_.mode, options_.num_arenas, options_.stale_action_timeout, options_.resend_period) {
   const GameOptions& game = options_.variant.game;
   const int n = options_.num_arenas;
   world_ = std::make_unique<World>(game, std::make_shared<const MapSpec>(options_.map), n, options_.seed, true,
@@ -65,11 +68,10 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   arena_maps_.resize(n);
   arena_map_versions_.assign(n, ~uint64_t{0});  // no map built yet
   last_seeker_actions_.assign(n, Action::kStay);
-  for (AgentChannel* c : {&hider_, &seeker_}) {
-    c->pending.assign(n, std::nullopt);
-  }
   hider_.name = "hider";
+  hider_.player = Player::kHider;
   seeker_.name = "seeker";
+  seeker_.player = Player::kSeeker;
   camera_info_ = toCameraInfo(game.camera, options_.frame("hider/camera_optical_frame"));
 
   const bool lockstep = options_.mode == ClockMode::kLockstep;
@@ -182,41 +184,43 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
   }
   const bool lockstep = options_.mode == ClockMode::kLockstep;
   for (size_t i = 0; i < n; ++i) {
-    if (msg.actions[i] >= kNumActions) {
-      ++rejected_.invalid_action;
-      static WallThrottle throttle(kWarnPeriod);
-      if (throttle.ready()) {
-        ROS_WARN("world: rejected %s action %u for arena %zu: actions are 0..%d (%lu more like it since the last)",
-                 channel.name.c_str(), msg.actions[i], i, kNumActions - 1,
-                 static_cast<unsigned long>(throttle.suppressed()));
-      }
-      continue;
-    }
     const uint32_t current = static_cast<uint32_t>(world_->arena(i).stepCount());
-    // In both modes an action answers the current step: realtime waits for it rather than
-    // applying a late answer to the step after the one it was chosen for.
-    if (!lockstep && frame_ != 0) {
-      ++rejected_.late;
-      static WallThrottle throttle(kWarnPeriod);
-      if (throttle.ready()) {
-        ROS_WARN(
-            "world: rejected %s action for arena %zu: step %u had started without it "
-            "(the agent answered after stale_action_timeout) (%lu more like it since the last)",
-            channel.name.c_str(), i, msg.step[i], static_cast<unsigned long>(throttle.suppressed()));
+    switch (scheduler_.offer(channel.player, static_cast<int>(i), msg.actions[i], msg.step[i], current)) {
+      case Verdict::kAccepted:
+        break;
+      case Verdict::kInvalidAction: {
+        ++rejected_.invalid_action;
+        static WallThrottle throttle(kWarnPeriod);
+        if (throttle.ready()) {
+          ROS_WARN("world: rejected %s action %u for arena %zu: actions are 0..%d (%lu more like it since the last)",
+                   channel.name.c_str(), msg.actions[i], i, kNumActions - 1,
+                   static_cast<unsigned long>(throttle.suppressed()));
+        }
+        break;
       }
-      continue;
-    }
-    if (msg.step[i] != current) {
-      ++rejected_.wrong_step;
-      static WallThrottle throttle(kWarnPeriod);
-      if (throttle.ready()) {
-        ROS_WARN(
-            "world: rejected %s action for arena %zu: step id %u, current step is %u (%lu more like it since the last)",
-            channel.name.c_str(), i, msg.step[i], current, static_cast<unsigned long>(throttle.suppressed()));
+      case Verdict::kLate: {
+        ++rejected_.late;
+        static WallThrottle throttle(kWarnPeriod);
+        if (throttle.ready()) {
+          ROS_WARN(
+              "world: rejected %s action for arena %zu: step %u had started without it "
+              "(the agent answered after stale_action_timeout) (%lu more like it since the last)",
+              channel.name.c_str(), i, msg.step[i], static_cast<unsigned long>(throttle.suppressed()));
+        }
+        break;
       }
-      continue;
+      case Verdict::kWrongStep: {
+        ++rejected_.wrong_step;
+        static WallThrottle throttle(kWarnPeriod);
+        if (throttle.ready()) {
+          ROS_WARN(
+              "world: rejected %s action for arena %zu: step id %u, current step is %u (%lu more like it since the "
+              "last)",
+              channel.name.c_str(), i, msg.step[i], current, static_cast<unsigned long>(throttle.suppressed()));
+        }
+        break;
+      }
     }
-    channel.pending[i] = static_cast<Action>(msg.actions[i]);
   }
   if (lockstep) tryAdvanceLockstep();
 }
@@ -227,22 +231,14 @@ void WorldNode::tryAdvanceLockstep() {
     ROS_INFO_ONCE("world: max_decisions (%ld) reached; the world no longer advances", options_.max_decisions);
     return;
   }
+  if (!scheduler_.complete()) return;
   const int n = options_.num_arenas;
-  for (int i = 0; i < n; ++i) {
-    if (!hider_.pending[i] || !seeker_.pending[i]) return;
-  }
-  std::vector<Action> h(n), s(n);
-  for (int i = 0; i < n; ++i) {
-    h[i] = *hider_.pending[i];
-    s[i] = *seeker_.pending[i];
-    hider_.pending[i].reset();
-    seeker_.pending[i].reset();
-  }
   beginStepRecord();
+  const DecisionActions d = scheduler_.takeDecision();
   std::vector<ArenaStep> results;
   results.reserve(n);
-  for (int i = 0; i < n; ++i) results.push_back(world_->stepArena(i, h[i], s[i]));
-  concludeDecision(results, h, s);
+  for (int i = 0; i < n; ++i) results.push_back(world_->stepArena(i, d.hider[i], d.seeker[i]));
+  concludeDecision(results, d.hider, d.seeker);
   publishObservations();
   publishArenaZero(false);
 }
@@ -268,37 +264,31 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
     // its own step. A slow agent slows the game (diagnostics show the real-time factor) rather
     // than changing it; an agent silent for stale_action_timeout, or absent, stands still for
     // the step, like turtlesim's stale commands.
-    const ros::WallTime now = ros::WallTime::now();
-    bool ready = true;
-    for (int i = 0; i < n && ready; ++i) ready = hider_.pending[i] && seeker_.pending[i];
-    if (!ready) {
-      const bool connected = hider_sub_.getNumPublishers() > 0 && seeker_sub_.getNumPublishers() > 0;
-      if (decision_wait_start_.isZero()) decision_wait_start_ = now;
-      if (connected && (now - decision_wait_start_).toSec() < options_.stale_action_timeout) {
-        publishAgentTransforms(ros::Time::now());
-        return;
-      }
-      if (connected) {
-        ++stale_decisions_;
-        static WallThrottle throttle(kWarnPeriod);
-        if (throttle.ready()) {
-          ROS_WARN(
-              "world: no action for step %d within %.2f s (hider %s, seeker %s): the silent "
-              "agent stands still this step (%lu more like it since the last)",
-              world_->arena(0).stepCount(), options_.stale_action_timeout, hider_.pending[0] ? "answered" : "silent",
-              seeker_.pending[0] ? "answered" : "silent", static_cast<unsigned long>(throttle.suppressed()));
-        }
+    const bool connected = hider_sub_.getNumPublishers() > 0 && seeker_sub_.getNumPublishers() > 0;
+    const RealtimeStart start = scheduler_.realtimeStart(ros::WallTime::now().toSec(), connected);
+    if (start == RealtimeStart::kWait) {
+      publishAgentTransforms(ros::Time::now());
+      return;
+    }
+    if (start == RealtimeStart::kStale && connected) {
+      ++stale_decisions_;
+      static WallThrottle throttle(kWarnPeriod);
+      if (throttle.ready()) {
+        ROS_WARN(
+            "world: no action for step %d within %.2f s (hider %s, seeker %s): the silent "
+            "agent stands still this step (%lu more like it since the last)",
+            world_->arena(0).stepCount(), options_.stale_action_timeout,
+            scheduler_.answered(Player::kHider, 0) ? "answered" : "silent",
+            scheduler_.answered(Player::kSeeker, 0) ? "answered" : "silent",
+            static_cast<unsigned long>(throttle.suppressed()));
       }
     }
-    decision_wait_start_ = ros::WallTime();
-    for (int i = 0; i < n; ++i) {
-      realtime_hider_[i] = hider_.pending[i].value_or(Action::kStay);
-      realtime_seeker_[i] = seeker_.pending[i].value_or(Action::kStay);
-      hider_.pending[i].reset();
-      seeker_.pending[i].reset();
-    }
-    frame_results_.assign(n, std::nullopt);
+    // The step record's state half is taken before the frames change it.
     beginStepRecord();
+    const DecisionActions d = scheduler_.takeDecision();
+    realtime_hider_ = d.hider;
+    realtime_seeker_ = d.seeker;
+    frame_results_.assign(n, std::nullopt);
   }
   // One physics frame per tick. An arena whose step ended early (capture) waits for the others,
   // so every arena's decisions stay on the same 0.12 s clock.
@@ -326,6 +316,7 @@ void WorldNode::finishRealtimeDecision() {
   results.reserve(n);
   for (const auto& r : frame_results_) results.push_back(*r);
   concludeDecision(results, realtime_hider_, realtime_seeker_);
+  scheduler_.finishDecision();
 }
 
 void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
@@ -345,13 +336,13 @@ void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
     publishArenaZero(true);
     return;
   }
-  if (!reachedMaxDecisions() && (now - last_progress_).toSec() > options_.resend_period) {
+  if (!reachedMaxDecisions() && scheduler_.resendDue(now.toSec())) {
     static WallThrottle throttle(10.0);
     if (throttle.ready()) {
       ROS_WARN(
           "world: no complete action batches for %.1f s (hider %s, seeker %s); re-sending step (%lu more like it since "
           "the last)",
-          (now - last_progress_).toSec(), hider_.owner.empty() ? "silent" : hider_.owner.c_str(),
+          scheduler_.sinceSent(now.toSec()), hider_.owner.empty() ? "silent" : hider_.owner.c_str(),
           seeker_.owner.empty() ? "silent" : seeker_.owner.c_str(), static_cast<unsigned long>(throttle.suppressed()));
     }
     publishObservations();
@@ -458,7 +449,7 @@ void WorldNode::publishObservations() {
   }
   hider_obs_pub_.publish(obs);
   seeker_obs_pub_.publish(seen);
-  last_progress_ = ros::WallTime::now();
+  scheduler_.observationSent(ros::WallTime::now().toSec());
   ++batches_published_;
 }
 
@@ -566,8 +557,8 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
   }
   // A realtime decision in progress is played to its end first, with the actions it started
   // with: every arena's step stays whole, and an episode it ends is reported like any other.
-  if (options_.mode == ClockMode::kRealtime && frame_ != 0) finishRealtimeDecision();
-  decision_wait_start_ = ros::WallTime();
+  if (scheduler_.executing()) finishRealtimeDecision();
+  scheduler_.reset(req.arena);
   for (int i = 0; i < n; ++i) {
     if (req.arena != -1 && req.arena != i) continue;
     std::optional<uint32_t> seed;
@@ -576,8 +567,6 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
     rewards_[i] = 0.f;
     done_[i] = 0;
     outcome_[i] = 0;
-    hider_.pending[i].reset();
-    seeker_.pending[i].reset();
   }
   world_->renderHiderViews(images_.data());
   last_finished_.reset();

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_world/decision_scheduler.h"
 #include "hideseek_world/world.h"
 #include "hideseek_world/world_node_options.h"
 
@@ -34,10 +35,10 @@ struct RejectionCounts {
   uint64_t late = 0;  // realtime: arrived after its step had started without it
 };
 
-// One agent's side of the exchange: its actions for the current step and who may send them.
+// One agent's side of the exchange: who may send its actions.
 struct AgentChannel {
   std::string name;                          // "hider" or "seeker"
-  std::vector<std::optional<Action>> pending;  // action for the current step, once it arrived
+  Player player = Player::kHider;
   std::string owner;                         // caller id of the accepted publisher
   ros::WallTime owner_last_seen;
 };
@@ -73,6 +74,7 @@ class WorldNode {
   ros::NodeHandle nh_;
   image_transport::ImageTransport image_transport_;  // cameras go out through image_transport's plugins
   WorldNodeOptions options_;
+  DecisionScheduler scheduler_;  // when decisions happen: the lockstep and realtime rules
   std::unique_ptr<World> world_;
   std::vector<uint8_t> images_;
   std::vector<uint8_t> seeker_image_;
@@ -84,7 +86,6 @@ class WorldNode {
   RejectionCounts rejected_;
   uint64_t world_steps_ = 0;  // decision steps of arena 0's clock, for /clock in lockstep
   uint64_t batches_published_ = 0;
-  ros::WallTime last_progress_;
   ros::WallTime last_visuals_;
   bool started_ = false;
   std::optional<EpisodeSummary> last_finished_;  // arena 0's episode that ended in the last step
@@ -108,7 +109,6 @@ class WorldNode {
   int frame_ = 0;
   std::vector<Action> realtime_hider_, realtime_seeker_;
   std::vector<std::optional<ArenaStep>> frame_results_;
-  ros::WallTime decision_wait_start_;  // since when the next decision waits for an answer (zero: not waiting)
   uint64_t stale_decisions_ = 0;       // decisions an agent missed (it stood still)
   // Diagnostics: the counts at the previous report, so that a status returns to OK once a
   // problem is over.

@@ -5,12 +5,11 @@
 
 #include <string>
 
+#include "hideseek_world/decision_scheduler.h"
 #include "hideseek_world/game_options.h"
 #include "hideseek_world/map.h"
 
 namespace hideseek_world {
-
-enum class ClockMode { kRealtime, kLockstep };
 
 struct WorldNodeOptions {
   VariantConfig variant;

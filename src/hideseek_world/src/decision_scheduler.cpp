@@ -1,0 +1,56 @@
+#include "hideseek_world/decision_scheduler.h"
+
+namespace hideseek_world {
+
+DecisionScheduler::DecisionScheduler(ClockMode mode, int num_arenas, double stale_action_timeout,
+                                     double resend_period)
+    : mode_(mode),
+      num_arenas_(num_arenas),
+      stale_action_timeout_(stale_action_timeout),
+      resend_period_(resend_period),
+      pending_(2 * static_cast<size_t>(num_arenas)) {}
+
+Verdict DecisionScheduler::offer(Player player, int arena, uint8_t action, uint32_t step_id, uint32_t current_step) {
+  if (action >= kNumActions) return Verdict::kInvalidAction;
+  if (mode_ == ClockMode::kRealtime && executing_) return Verdict::kLate;
+  if (step_id != current_step) return Verdict::kWrongStep;
+  pending_[index(player, arena)] = static_cast<Action>(action);
+  return Verdict::kAccepted;
+}
+
+bool DecisionScheduler::complete() const {
+  for (const auto& a : pending_) {
+    if (!a) return false;
+  }
+  return true;
+}
+
+RealtimeStart DecisionScheduler::realtimeStart(double now_s, bool agents_connected) {
+  if (complete()) return RealtimeStart::kReady;
+  if (!agents_connected) return RealtimeStart::kStale;
+  if (!waiting_since_) waiting_since_ = now_s;
+  return now_s - *waiting_since_ < stale_action_timeout_ ? RealtimeStart::kWait : RealtimeStart::kStale;
+}
+
+DecisionActions DecisionScheduler::takeDecision() {
+  DecisionActions d;
+  for (int i = 0; i < num_arenas_; ++i) {
+    d.hider.push_back(pending_[index(Player::kHider, i)].value_or(Action::kStay));
+    d.seeker.push_back(pending_[index(Player::kSeeker, i)].value_or(Action::kStay));
+  }
+  for (auto& a : pending_) a.reset();
+  waiting_since_.reset();
+  executing_ = mode_ == ClockMode::kRealtime;
+  return d;
+}
+
+void DecisionScheduler::reset(int arena) {
+  for (int i = 0; i < num_arenas_; ++i) {
+    if (arena != -1 && arena != i) continue;
+    pending_[index(Player::kHider, i)].reset();
+    pending_[index(Player::kSeeker, i)].reset();
+  }
+  waiting_since_.reset();
+}
+
+}  // namespace hideseek_world
