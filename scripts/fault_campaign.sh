@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# Faults and malformed input thrown at the real nodes, one case per line of a Markdown table:
+# what was done, what a user should see, what happened. Not a test (it takes a few minutes and
+# prints a report); the behaviours it checks are also held by the tests.
+# usage: scripts/fault_campaign.sh [REPORT.md]
+set -uo pipefail
+cd "$(dirname "$0")/.."
+source scripts/env.sh
+report=${1:-/dev/stdout}
+dir=$(mktemp -d /tmp/hideseek_faults.XXXXXX)
+port=$((12100 + RANDOM % 100))
+export ROS_MASTER_URI=http://localhost:$port
+rows=()
+row() { rows+=("| $1 | $2 | $3 | $4 |"); echo "fault_campaign: $1: $4" >&2; }
+pass() { [ "$1" -eq 0 ] && echo "**pass**: $2" || echo "**FAIL**: $2"; }
+
+# --- start-up: each stops the game with a FATAL line naming the problem --------------------------
+fatal_case() {  # name, expected text, launch file and arguments...
+  local name=$1 expected=$2
+  shift 2
+  timeout 120 roslaunch -p "$port" hideseek_world "$@" > "$dir/$name.log" 2>&1
+  local line
+  line=$(grep -F "[FATAL]" "$dir/$name.log" | head -n 1 | sed 's/\x1b\[[0-9;]*m//g; s/|/\\|/g' | cut -c1-160)
+  grep -F "[FATAL]" "$dir/$name.log" | grep -qF -- "$expected"
+  row "$name" "\`$*\`" "FATAL naming it" "$(pass $? "$line")"
+}
+fatal_case missing_checkpoint "cannot be read" basic.launch policy:=/nonexistent/policy.pt
+head -c 100000 policies/basic.pt > "$dir/truncated.pt"
+fatal_case truncated_checkpoint "truncated.pt" basic.launch policy:="$dir/truncated.pt"
+cp policies/basic.pt "$dir/flipped.pt"
+printf '\x55' | dd of="$dir/flipped.pt" bs=1 seek=5000000 conv=notrunc status=none
+fatal_case flipped_byte "flipped.pt" basic.launch policy:="$dir/flipped.pt"
+fatal_case bad_precision "precision" basic.launch precision:=fp16
+fatal_case cuda_without_cuda "cuda" basic.launch device:=cuda
+fatal_case bad_mode "mode" game.launch.xml variant:=basic mode:=fast
+fatal_case bad_num_arenas "num_arenas" basic.launch num_arenas:=0
+printf 'variant: basic\nmap: %s/maps/deterministic.yaml\nhider:\n  sped: 3.0\n' "$PWD/config" > "$dir/typo.yaml"
+fatal_case misspelt_field "sped" game.launch.xml variant:=basic variant_config:="$dir/typo.yaml"
+fatal_case analysis_missing_checkpoint "no checkpoint at" analyze.launch policy:=/nonexistent.pt steps:=160 num_arenas:=1 output_dir:="$dir/an"
+
+# --- a running lockstep game under malformed input -----------------------------------------------
+roslaunch -p "$port" hideseek_world basic.launch mode:=lockstep num_arenas:=2 policy:=random > "$dir/game.log" 2>&1 &
+game=$!
+for _ in $(seq 1 100); do rostopic list 2>/dev/null | grep -q /world/steps && break; sleep 0.2; done
+sleep 2
+steps() { timeout 10 rostopic echo -n 1 /diagnostics 2>/dev/null | grep -A1 'key: "decision_steps"' | tail -n 1 | grep -o '[0-9]*'; }
+count() { timeout 10 rostopic echo -n 1 /diagnostics 2>/dev/null | grep -A1 "key: \"$1\"" | tail -n 1 | grep -o '[0-9]*'; }
+flood() {  # message for hider/actions, seconds
+  timeout "$2" rostopic pub -r 50 /hider/actions hideseek_msgs/ActionBatch "$1" > /dev/null 2>&1
+}
+before=$(steps)
+flood "{actions: [1, 1], step: [0, 0]}" 6
+after=$(steps)
+n=$(count rejected_second_publisher)
+[ -n "$before" ] && [ -n "$after" ] && [ "$after" -gt "$before" ] && [ "${n:-0}" -gt 0 ]
+row second_publisher "\`rostopic pub\` on /hider/actions beside the hider (5 s at 50 Hz)" "rejected, counted; the game goes on" "$(pass $? "decision steps $before -> $after; rejected_second_publisher $n")"
+kill -INT "$game"; wait "$game" 2>/dev/null
+# Without a hider node the injector owns hider/actions, so its batches are checked one by one.
+roslaunch -p "$port" hideseek_world game.launch.xml variant:=basic mode:=lockstep num_arenas:=2 start_hider:=false \
+  > "$dir/game.log" 2>&1 &
+game=$!
+for _ in $(seq 1 100); do rostopic list 2>/dev/null | grep -q /world/steps && break; sleep 0.2; done
+sleep 2
+malformed() {  # name, what, message, diagnostics key
+  local before_n after_n
+  before_n=$(count "$4")
+  flood "$3" 5
+  after_n=$(count "$4")
+  [ -n "$after_n" ] && [ "${after_n:-0}" -gt "${before_n:-0}" ]
+  row "$1" "$2 (5 s at 50 Hz, as the only hider)" "rejected and counted; the world stays up" "$(pass $? "$4: ${before_n:-?} -> ${after_n:-?}")"
+}
+malformed wrong_arena_count "ActionBatch with 3 actions for 2 arenas" "{actions: [1, 1, 1], step: [0, 0, 0]}" rejected_wrong_arena_count
+malformed invalid_action "action 9" "{actions: [9, 9], step: [0, 0]}" rejected_invalid_action
+malformed stale_step_ids "step ids that are not the current step" "{actions: [1, 1], step: [999999, 999999]}" rejected_wrong_step
+lines=$(grep -c "rejected" "$dir/game.log")
+[ "$lines" -le 30 ]
+row warning_flood "the three floods above: 15 s of bad input at 50 Hz" "warnings throttled on the wall clock" "$(pass $? "$lines warning lines for about 750 bad batches")"
+kill -INT "$game"; wait "$game" 2>/dev/null
+roslaunch -p "$port" hideseek_world basic.launch mode:=lockstep num_arenas:=2 policy:=random > "$dir/game2.log" 2>&1 &
+game=$!
+for _ in $(seq 1 100); do rostopic list 2>/dev/null | grep -q /world/steps && break; sleep 0.2; done
+sleep 2
+for k in 1 2 3; do timeout 10 rosservice call /world/reset "{arena: -1, seed: $((500 + k))}" > /dev/null 2>&1; sleep 1; done
+before=$(steps); sleep 2; after=$(steps)
+[ -n "$before" ] && [ -n "$after" ] && [ "$after" -gt "$before" ]
+row lockstep_reset "\`rosservice call /world/reset\` three times in lockstep" "the game goes on" "$(pass $? "decision steps $before -> $after")"
+kill -INT "$game"; wait "$game" 2>/dev/null
+
+# --- realtime: a killed hider stands still; the world reports it and goes on ----------------------
+# (in the variant launch files the hider is a required node: killing it ends the game by design)
+roslaunch -p "$port" hideseek_world game.launch.xml variant:=basic start_hider:=false > "$dir/rt.log" 2>&1 &
+game=$!
+sleep 4
+rosrun hideseek_hider hider_node __name:=hider _game_config:="$PWD/config/game.yaml" \
+  _variant_config:="$PWD/config/variants/basic.yaml" > "$dir/hider.log" 2>&1 &
+sleep 6
+rosnode kill /hider > /dev/null 2>&1
+sleep 3
+before=$(steps); sleep 2; after=$(steps)
+stale=$(count stale_decisions)
+[ -n "$before" ] && [ -n "$after" ] && [ "$after" -gt "$before" ]
+row realtime_hider_killed "\`rosnode kill /hider\` in realtime (a hider started apart)" "world goes on, the hider stands still" "$(pass $? "decision steps $before -> $after; stale_decisions $stale")"
+kill -INT "$game"; wait "$game" 2>/dev/null
+
+# --- recording: SIGINT closes the bag -------------------------------------------------------------
+roslaunch -p "$port" hideseek_world basic.launch mode:=lockstep num_arenas:=2 policy:=random record:=true bag_dir:="$dir/bags" > "$dir/rec.log" 2>&1 &
+game=$!
+sleep 12
+kill -INT "$game"; wait "$game" 2>/dev/null
+bag=$(ls "$dir"/bags/*.bag 2>/dev/null | head -n 1)
+info=$(rosbag info "$bag" 2>/dev/null | grep -E "^messages" | tr -s ' ')
+[ -n "$bag" ] && [ -n "$info" ]
+row bag_on_sigint "Ctrl-C (SIGINT) on a recording launch" "the bag is closed and indexed" "$(pass $? "${info:-no readable bag}")"
+
+# --- evaluation: an evaluator that starts late still sees every episode ----------------------------
+timeout 300 roslaunch -p "$port" hideseek_world evaluate.launch variant:=basic policy:=random episodes:=20 output_dir:="$dir/eval" > "$dir/eval.log" 2>&1
+n=$(tail -n +2 "$dir/eval/episodes.csv" 2>/dev/null | wc -l)
+[ "$n" = 20 ]
+row evaluator "evaluate.launch (lockstep waits for the evaluator)" "20 episodes, seeds 0-19" "$(pass $? "$n episodes")"
+
+{
+  echo "| case | done | expected | outcome |"
+  echo "| --- | --- | --- | --- |"
+  printf '%s\n' "${rows[@]}"
+} > "$report"
+rm -rf "$dir"
