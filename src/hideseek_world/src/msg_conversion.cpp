@@ -226,4 +226,97 @@ void finishStepBatch(const std::vector<ArenaStep>& results, const std::vector<Ac
   }
 }
 
+hideseek_msgs::ObservationBatch toObservationBatch(const World& world, const std::vector<uint8_t>& images,
+                                                   const std::vector<float>& rewards,
+                                                   const std::vector<uint8_t>& done,
+                                                   const std::vector<uint8_t>& outcome) {
+  hideseek_msgs::ObservationBatch obs;
+  const int n = world.numArenas();
+  obs.num_arenas = static_cast<uint32_t>(n);
+  obs.height = static_cast<uint32_t>(world.options().camera.height);
+  obs.width = static_cast<uint32_t>(world.options().camera.width);
+  obs.images = images;
+  obs.rewards = rewards;
+  obs.done = done;
+  obs.outcome = outcome;
+  for (int i = 0; i < n; ++i) {
+    const Arena& a = world.arena(i);
+    obs.step.push_back(static_cast<uint32_t>(a.stepCount()));
+    obs.episode.push_back(world.episode(i));
+    obs.seed.push_back(a.seed());
+    obs.hider_sees_seeker.push_back(a.labels().hider_sees_seeker);
+    obs.seeker_sees_hider.push_back(a.labels().seeker_sees_hider);
+    obs.obstacle_in_view.push_back(a.labels().obstacle_in_view);
+  }
+  return obs;
+}
+
+const std::vector<hideseek_msgs::ArenaMap>& ArenaMapCache::update(const World& world) {
+  const size_t n = static_cast<size_t>(world.numArenas());
+  if (maps_.size() != n) {
+    maps_.assign(n, {});
+    versions_.assign(n, ~uint64_t{0});  // no map built yet
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const Arena& a = world.arena(static_cast<int>(i));
+    if (versions_[i] != a.layoutVersion()) {
+      maps_[i] = toArenaMap(a.layout());
+      versions_[i] = a.layoutVersion();
+    }
+  }
+  return maps_;
+}
+
+hideseek_msgs::SeekerObservationBatch toSeekerObservationBatch(const World& world, const std::vector<uint8_t>& done,
+                                                               const std::vector<hideseek_msgs::ArenaMap>& maps) {
+  hideseek_msgs::SeekerObservationBatch seen;
+  const int n = world.numArenas();
+  seen.num_arenas = static_cast<uint32_t>(n);
+  seen.done = done;
+  seen.maps = maps;
+  for (int i = 0; i < n; ++i) {
+    const Arena& a = world.arena(i);
+    const SeekerPerception perception = seekerPerception(a);
+    seen.pose.push_back(toPose2D(perception.pose));
+    seen.sees_hider.push_back(perception.hider_position.has_value());
+    geometry_msgs::Point hider;
+    if (perception.hider_position) {
+      hider.x = perception.hider_position->x;
+      hider.y = perception.hider_position->y;
+    }
+    seen.hider_position.push_back(hider);
+    seen.step.push_back(static_cast<uint32_t>(a.stepCount()));
+    seen.episode.push_back(world.episode(i));
+    seen.seed.push_back(a.seed());
+  }
+  return seen;
+}
+
+hideseek_msgs::GameState toGameState(const World& world, const std::optional<EpisodeSummary>& finished,
+                                     Action hider_action, Action seeker_action, float reward, uint8_t outcome) {
+  const Arena& a = world.arena(0);
+  hideseek_msgs::GameState state;
+  state.arena = 0;
+  const AgentState& hider = finished ? finished->hider : a.hider();
+  const AgentState& seeker = finished ? finished->seeker : a.seeker();
+  const Labels& labels = finished ? finished->labels : a.labels();
+  state.episode = finished ? finished->episode : world.episode(0);
+  state.seed = finished ? finished->seed : a.seed();
+  state.step = static_cast<uint32_t>(finished ? finished->steps : a.stepCount());
+  state.hider_pose = toPose2D(hider);
+  state.seeker_pose = toPose2D(seeker);
+  state.hider_speed = static_cast<float>(hider.speed);
+  state.seeker_speed = static_cast<float>(seeker.speed);
+  state.hider_action = static_cast<uint8_t>(hider_action);
+  state.seeker_action = static_cast<uint8_t>(seeker_action);
+  state.hider_sees_seeker = labels.hider_sees_seeker;
+  state.seeker_sees_hider = labels.seeker_sees_hider;
+  state.obstacle_in_view = labels.obstacle_in_view;
+  state.distance = static_cast<float>(distance(hider.position, seeker.position));
+  state.reward = reward;
+  state.episode_return = static_cast<float>(finished ? finished->episode_return : a.episodeReturn());
+  state.outcome = outcome;
+  return state;
+}
+
 }  // namespace hideseek_world

@@ -65,8 +65,6 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   done_.assign(n, 0);
   outcome_.assign(n, 0);
   last_hider_actions_.assign(n, Action::kStay);
-  arena_maps_.resize(n);
-  arena_map_versions_.assign(n, ~uint64_t{0});  // no map built yet
   last_seeker_actions_.assign(n, Action::kStay);
   hider_.name = "hider";
   hider_.player = Player::kHider;
@@ -400,53 +398,17 @@ void WorldNode::publishAgentTransforms(const ros::Time& stamp) {
 }
 
 void WorldNode::publishObservations() {
-  const int n = options_.num_arenas;
   const ros::Time stamp = simNow();
   if (options_.mode == ClockMode::kLockstep) {
     rosgraph_msgs::Clock clock;
     clock.clock = stamp;
     clock_pub_.publish(clock);
   }
-  hideseek_msgs::ObservationBatch obs;
+  hideseek_msgs::ObservationBatch obs = toObservationBatch(*world_, images_, rewards_, done_, outcome_);
   obs.header.stamp = stamp;
   obs.header.frame_id = options_.frame_id;
-  obs.num_arenas = n;
-  obs.height = options_.variant.game.camera.height;
-  obs.width = options_.variant.game.camera.width;
-  obs.images = images_;
-  obs.rewards = rewards_;
-  obs.done = done_;
-  obs.outcome = outcome_;
-  hideseek_msgs::SeekerObservationBatch seen;
+  hideseek_msgs::SeekerObservationBatch seen = toSeekerObservationBatch(*world_, done_, arena_maps_.update(*world_));
   seen.header = obs.header;
-  seen.num_arenas = n;
-  seen.done = done_;
-  for (int i = 0; i < n; ++i) {
-    const Arena& a = world_->arena(i);
-    obs.step.push_back(a.stepCount());
-    obs.episode.push_back(world_->episode(i));
-    obs.seed.push_back(a.seed());
-    obs.hider_sees_seeker.push_back(a.labels().hider_sees_seeker);
-    obs.seeker_sees_hider.push_back(a.labels().seeker_sees_hider);
-    obs.obstacle_in_view.push_back(a.labels().obstacle_in_view);
-    const SeekerPerception perception = seekerPerception(a);
-    seen.pose.push_back(toPose2D(perception.pose));
-    seen.sees_hider.push_back(perception.hider_position.has_value());
-    geometry_msgs::Point hider;
-    if (perception.hider_position) {
-      hider.x = perception.hider_position->x;
-      hider.y = perception.hider_position->y;
-    }
-    seen.hider_position.push_back(hider);
-    seen.step.push_back(a.stepCount());
-    seen.episode.push_back(world_->episode(i));
-    seen.seed.push_back(a.seed());
-    if (arena_map_versions_[i] != a.layoutVersion()) {
-      arena_maps_[i] = toArenaMap(a.layout());
-      arena_map_versions_[i] = a.layoutVersion();
-    }
-    seen.maps.push_back(arena_maps_[i]);
-  }
   hider_obs_pub_.publish(obs);
   seeker_obs_pub_.publish(seen);
   scheduler_.observationSent(ros::WallTime::now().toSec());
@@ -469,30 +431,10 @@ void WorldNode::publishArenaZero(bool force_visuals) {
   const ros::Time stamp = simNow();
   const GameOptions& game = options_.variant.game;
 
-  hideseek_msgs::GameState state;
+  hideseek_msgs::GameState state =
+      toGameState(*world_, last_finished_, last_hider_actions_[0], last_seeker_actions_[0], rewards_[0], outcome_[0]);
   state.header.stamp = stamp;
   state.header.frame_id = options_.frame_id;
-  state.arena = 0;
-  // A step that ended the episode reports how it ended, not the next episode's start.
-  const AgentState& hider = last_finished_ ? last_finished_->hider : a.hider();
-  const AgentState& seeker = last_finished_ ? last_finished_->seeker : a.seeker();
-  const Labels& labels = last_finished_ ? last_finished_->labels : a.labels();
-  state.episode = last_finished_ ? last_finished_->episode : world_->episode(0);
-  state.seed = last_finished_ ? last_finished_->seed : a.seed();
-  state.step = last_finished_ ? last_finished_->steps : a.stepCount();
-  state.hider_pose = toPose2D(hider);
-  state.seeker_pose = toPose2D(seeker);
-  state.hider_speed = static_cast<float>(hider.speed);
-  state.seeker_speed = static_cast<float>(seeker.speed);
-  state.hider_action = static_cast<uint8_t>(last_hider_actions_[0]);
-  state.seeker_action = static_cast<uint8_t>(last_seeker_actions_[0]);
-  state.hider_sees_seeker = labels.hider_sees_seeker;
-  state.seeker_sees_hider = labels.seeker_sees_hider;
-  state.obstacle_in_view = labels.obstacle_in_view;
-  state.distance = static_cast<float>(distance(hider.position, seeker.position));
-  state.reward = rewards_[0];
-  state.episode_return = static_cast<float>(last_finished_ ? last_finished_->episode_return : a.episodeReturn());
-  state.outcome = outcome_[0];
   state_pub_.publish(state);
 
   publishAgentTransforms(stamp);

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "hideseek_world/decision_scheduler.h"
+#include "hideseek_world/msg_conversion.h"
 #include "hideseek_world/world.h"
 #include "hideseek_world/world_node_options.h"
 
@@ -103,8 +104,7 @@ class WorldNode {
   sensor_msgs::CameraInfo camera_info_;
   std::vector<Action> last_hider_actions_, last_seeker_actions_;
   // Each arena's map as the seeker receives it, rebuilt only when the arena's layout changes.
-  std::vector<hideseek_msgs::ArenaMap> arena_maps_;
-  std::vector<uint64_t> arena_map_versions_;
+  ArenaMapCache arena_maps_;
   // Realtime mode: physics frame within the decision step, its actions and finished results.
   int frame_ = 0;
   std::vector<Action> realtime_hider_, realtime_seeker_;
