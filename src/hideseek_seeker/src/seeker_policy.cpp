@@ -52,6 +52,7 @@ void SeekerPolicy::reset(const Layout& layout, uint32_t seed) {
   path_.clear();
   mode_ = options_.type == SeekerPolicyType::kDeterministic ? SeekerMode::kPatrol : SeekerMode::kWander;
   rng_.seed(seed ^ 0x5eed5eedu);
+  last_action_ = Action::kStay;
 }
 
 void SeekerPolicy::setGoal(const AgentState& pose, Vec2 goal) {
@@ -69,11 +70,25 @@ Action SeekerPolicy::steerTowards(const AgentState& pose, Vec2 target) const {
   const double bearing = std::atan2(target.y - pose.position.y, target.x - pose.position.x);
   const double error = wrapAngle(bearing - pose.yaw);
   // Turn while more than half a turn step off, so the heading error stays within a half step.
-  if (std::abs(error) > 0.5 * options_.turn_per_step) return error > 0 ? Action::kTurnLeft : Action::kTurnRight;
-  return Action::kForward;
+  if (std::abs(error) <= 0.5 * options_.turn_per_step) return Action::kForward;
+  const Action turn = error > 0 ? Action::kTurnLeft : Action::kTurnRight;
+  // Never undo the previous turn. When the target flips between two sides from one step to the
+  // next (a hider stepping forward and back with the bearing near the middle between two
+  // reachable headings, or a path that changes corner), undoing would keep the seeker turning
+  // left, right, left, ... on the spot for good. Instead it moves forward when the target is
+  // ahead, which changes the geometry and still closes in, or keeps turning the same way.
+  const Action back = last_action_ == Action::kTurnLeft ? Action::kTurnRight : Action::kTurnLeft;
+  const bool just_turned = last_action_ == Action::kTurnLeft || last_action_ == Action::kTurnRight;
+  if (just_turned && turn == back) return std::abs(error) < 0.5 * kPi ? Action::kForward : last_action_;
+  return turn;
 }
 
 Action SeekerPolicy::act(const SeekerPerception& p) {
+  last_action_ = decide(p);
+  return last_action_;
+}
+
+Action SeekerPolicy::decide(const SeekerPerception& p) {
   if (!planner_) return Action::kStay;
   const Vec2 here = p.pose.position;
   if (p.hider_position) {

@@ -47,6 +47,7 @@ class SeekerPolicy {
   std::optional<Vec2> goal() const { return goal_; }
 
  private:
+  Action decide(const SeekerPerception& perception);
   Action steerTowards(const AgentState& pose, Vec2 target) const;
   void setGoal(const AgentState& pose, Vec2 goal);
 
@@ -59,6 +60,7 @@ class SeekerPolicy {
   std::optional<Vec2> goal_;
   std::vector<Vec2> path_;
   SeekerMode mode_ = SeekerMode::kPatrol;
+  Action last_action_ = Action::kStay;  // what act() answered last, for steering hysteresis
   std::mt19937 rng_;
 };
 
