@@ -531,8 +531,8 @@ void WorldNode::publishDiagnostics(const ros::WallTimerEvent&) {
   diagnostic_msgs::DiagnosticArray array;
   array.header.stamp = ros::Time::now();
   diagnostic_msgs::DiagnosticStatus status;
-  status.name = "hideseek world: input";
-  status.hardware_id = "world";
+  status.name = worldDiagnosticName(ros::this_node::getNamespace());
+  status.hardware_id = ros::this_node::getName();
   // The level reflects the last period only: it returns to OK once a problem is over, while the
   // counts below keep the totals.
   const bool rejecting = rejections > reported_rejections_;

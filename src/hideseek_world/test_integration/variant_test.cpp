@@ -7,12 +7,15 @@
 #include <hideseek_msgs/ObservationBatch.h>
 #include <hideseek_msgs/Reset.h>
 #include <hideseek_msgs/StepBatch.h>
+#include <nav_msgs/OccupancyGrid.h>
 #include <ros/ros.h>
+#include <tf2_ros/transform_listener.h>
 
 #include <map>
 #include <set>
 
 #include "hideseek_world/hash_uniform.h"
+#include "hideseek_world/topic_names.h"
 #include "test_helpers.h"
 
 namespace {
@@ -21,7 +24,8 @@ using hideseek_test::nodeUri;
 
 TEST(Variant, WorldSeekerAndHiderAreSeparateProcesses) {
   std::set<std::string> uris;
-  for (const std::string node : {"/world", "/seeker", "/hider"}) {
+  // Relative names: the test runs in the game's namespace (two_games.test runs two).
+  for (const std::string node : {ros::names::resolve("world"), ros::names::resolve("seeker"), ros::names::resolve("hider")}) {
     std::string uri;
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(30.0);
     while ((uri = nodeUri(node)).empty() && ros::WallTime::now() < end) ros::WallDuration(0.1).sleep();
@@ -101,7 +105,7 @@ TEST(Variant, DiagnosticsReportRateAndNoRejectedActions) {
   std::vector<diagnostic_msgs::DiagnosticStatus> reports;
   auto sub = nh.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
     for (const auto& st : m->status) {
-      if (st.name == "hideseek world: input") reports.push_back(st);
+      if (st.name == hideseek_world::worldDiagnosticName(ros::this_node::getNamespace())) reports.push_back(st);
     }
   });
   // The first report after subscribing may cover less than a second: take the third.
@@ -158,6 +162,23 @@ TEST(Variant, ResetDoesNotStallTheGame) {
   ASSERT_TRUE(restarted) << "arena 0 did not restart with the reset's seed";
   EXPECT_GE(max_step, 10u) << "the game stalled after a reset";
   EXPECT_GE(*seeds.begin(), 700u) << "an episode of before the reset went on";
+}
+
+// A game in a namespace (two_games.test) names its frames with its own prefix: its latched map
+// and the TF chain from its map to its hider's camera.
+TEST(Variant, FramesCarryTheGamesTfPrefix) {
+  ros::NodeHandle nh, pnh("~");
+  const std::string prefix = pnh.param<std::string>("expect_tf_prefix", "");
+  if (prefix.empty()) GTEST_SKIP() << "expect_tf_prefix is not set for this launch";
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  nav_msgs::OccupancyGrid::ConstPtr map;
+  auto sub = nh.subscribe<nav_msgs::OccupancyGrid>("map", 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& m) { map = m; });
+  ASSERT_TRUE(hideseek_test::waitFor([&] { return map != nullptr; }, 20.0)) << "no latched map in " << nh.getNamespace();
+  EXPECT_EQ(map->header.frame_id, prefix + "/map");
+  EXPECT_TRUE(hideseek_test::waitFor([&] {
+    return buffer.canTransform(prefix + "/map", prefix + "/hider/camera_optical_frame", ros::Time(0));
+  }, 10.0)) << prefix << "/map to " << prefix << "/hider/camera_optical_frame";
 }
 
 }  // namespace

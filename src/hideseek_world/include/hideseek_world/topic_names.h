@@ -1,6 +1,8 @@
 // Default topic and service names of the game graph; launch files remap them.
 #pragma once
 
+#include <string>
+
 namespace hideseek_world {
 
 constexpr char kHiderObservationsTopic[] = "hider/observations";
@@ -17,5 +19,11 @@ constexpr char kGameStateTopic[] = "game_state";
 constexpr char kEpisodesTopic[] = "world/episodes";
 constexpr char kStepsTopic[] = "world/steps";
 constexpr char kResetService[] = "world/reset";
+
+// Name of the world's diagnostic status on /diagnostics. A game in a namespace other than the
+// root says which, so that two games on one master report apart.
+inline std::string worldDiagnosticName(const std::string& ns) {
+  return ns.empty() || ns == "/" ? "hideseek world: input" : "hideseek world " + ns + ": input";
+}
 
 }  // namespace hideseek_world
