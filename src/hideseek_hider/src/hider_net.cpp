@@ -32,7 +32,16 @@ int64_t weightsChecksum(HiderNet& net) {
 
 }  // namespace
 
-HiderNetImpl::HiderNetImpl(int image_height, int image_width) : image_height_(image_height), image_width_(image_width) {
+const char* networkName(NetworkKind kind) { return kind == NetworkKind::kGru ? "gru" : "ff"; }
+
+NetworkKind parseNetwork(const std::string& name, const std::string& what) {
+  if (name == "ff") return NetworkKind::kFeedForward;
+  if (name == "gru") return NetworkKind::kGru;
+  throw std::invalid_argument(what + " must be ff or gru, got '" + name + "'");
+}
+
+HiderNetImpl::HiderNetImpl(int image_height, int image_width, NetworkKind network)
+    : image_height_(image_height), image_width_(image_width), network_(network) {
   const int h = convOut(convOut(convOut(image_height, 8, 4), 4, 2), 3, 1);
   const int w = convOut(convOut(convOut(image_width, 8, 4), 4, 2), 3, 1);
   if (h < 1 || w < 1) {
@@ -43,35 +52,83 @@ HiderNetImpl::HiderNetImpl(int image_height, int image_width) : image_height_(im
   conv2_ = register_module("conv2", torch::nn::Conv2d(torch::nn::Conv2dOptions(32, 64, 4).stride(2)));
   conv3_ = register_module("conv3", torch::nn::Conv2d(torch::nn::Conv2dOptions(64, 64, 3).stride(1)));
   features_ = register_module("features", torch::nn::Linear(64 * h * w, kFeatures));
-  actor_hidden_ = register_module("actor_hidden", torch::nn::Linear(kFeatures, 512));
+  if (recurrent()) gru_ = register_module("gru", torch::nn::GRUCell(torch::nn::GRUCellOptions(kFeatures, kHidden)));
+  const int head_in = recurrent() ? kHidden : kFeatures;
+  actor_hidden_ = register_module("actor_hidden", torch::nn::Linear(head_in, 512));
   actor_out_ = register_module("actor_out", torch::nn::Linear(512, kActions));
-  critic_hidden_ = register_module("critic_hidden", torch::nn::Linear(kFeatures, 512));
+  critic_hidden_ = register_module("critic_hidden", torch::nn::Linear(head_in, 512));
   critic_out_ = register_module("critic_out", torch::nn::Linear(512, 1));
 }
 
-HiderOutput HiderNetImpl::forward(const torch::Tensor& images) {
+torch::Tensor HiderNetImpl::encode(const torch::Tensor& images) {
   TORCH_CHECK(images.dim() == 4 && images.size(1) == image_height_ && images.size(2) == image_width_ &&
                   images.size(3) == 3,
               "hider network expects [B, ", image_height_, ", ", image_width_, ", 3] images, got ", images.sizes());
-  torch::Tensor features, actor, critic;
+  const AutocastScope autocast(precision_, conv1_->weight.device());
+  torch::Tensor x = images.permute({0, 3, 1, 2}).to(torch::kFloat32).div(255.0);
+  x = leaky(conv1_->forward(x));
+  x = leaky(conv2_->forward(x));
+  x = leaky(conv3_->forward(x));
+  return leaky(features_->forward(x.flatten(1)));
+}
+
+void HiderNetImpl::heads(const torch::Tensor& x, HiderOutput& out) {
+  torch::Tensor actor, critic;
   {
     const AutocastScope autocast(precision_, conv1_->weight.device());
-    torch::Tensor x = images.permute({0, 3, 1, 2}).to(torch::kFloat32).div(255.0);
-    x = leaky(conv1_->forward(x));
-    x = leaky(conv2_->forward(x));
-    x = leaky(conv3_->forward(x));
-    features = leaky(features_->forward(x.flatten(1)));
-    actor = leaky(actor_hidden_->forward(features));
-    critic = leaky(critic_hidden_->forward(features));
+    actor = leaky(actor_hidden_->forward(x));
+    critic = leaky(critic_hidden_->forward(x));
   }
   // The two output layers run in fp32 (a negligible share of the work): a bf16 value would be
   // rounded to about 0.004 near 1, coarser than the 0.001 per-step reward GAE works with.
   // Losses, softmax and probes then work in fp32 whatever precision the layers ran in.
-  HiderOutput out;
-  out.features = features.to(torch::kFloat32);
   out.logits = actor_out_->forward(actor.to(torch::kFloat32));
   out.value = critic_out_->forward(critic.to(torch::kFloat32)).squeeze(1);
+}
+
+HiderOutput HiderNetImpl::forward(const torch::Tensor& images) {
+  TORCH_CHECK(!recurrent(), "a GRU hider network needs its state: call forwardSequence");
+  HiderOutput out;
+  out.features = encode(images).to(torch::kFloat32);
+  heads(out.features, out);
   return out;
+}
+
+HiderOutput HiderNetImpl::forwardSequence(const torch::Tensor& images, const torch::Tensor& hidden,
+                                          const torch::Tensor& starts, torch::Tensor* hidden_out) {
+  TORCH_CHECK(images.dim() == 5, "forwardSequence expects [T, B, H, W, 3] images, got ", images.sizes());
+  const int64_t steps = images.size(0), batch = images.size(1);
+  TORCH_CHECK(starts.dim() == 2 && starts.size(0) == steps && starts.size(1) == batch, "starts must be [", steps,
+              ", ", batch, "], got ", starts.sizes());
+  HiderOutput out;
+  const torch::Tensor features = encode(images.flatten(0, 1)).to(torch::kFloat32);
+  out.features = features.view({steps, batch, kFeatures});
+  torch::Tensor x = features;
+  if (recurrent()) {
+    TORCH_CHECK(hidden.dim() == 2 && hidden.size(0) == batch && hidden.size(1) == kHidden, "hidden must be [", batch,
+                ", ", kHidden, "], got ", hidden.sizes());
+    const torch::Tensor keep = (1.0 - starts.to(torch::kFloat32)).unsqueeze(2);  // [T, B, 1]
+    torch::Tensor h = hidden.to(torch::kFloat32);
+    std::vector<torch::Tensor> states;
+    states.reserve(steps);
+    for (int64_t t = 0; t < steps; ++t) {
+      h = gru_->forward(out.features[t], h * keep[t]);
+      states.push_back(h);
+    }
+    out.memory = torch::stack(states);
+    x = out.memory.flatten(0, 1);
+    if (hidden_out) *hidden_out = h;
+  } else if (hidden_out) {
+    *hidden_out = hidden;
+  }
+  heads(x, out);
+  out.logits = out.logits.view({steps, batch, kActions});
+  out.value = out.value.view({steps, batch});
+  return out;
+}
+
+torch::Tensor HiderNetImpl::initialHidden(int64_t batch) const {
+  return torch::zeros({batch, kHidden}, torch::TensorOptions().device(conv1_->weight.device()).dtype(torch::kFloat32));
 }
 
 void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo& info,
@@ -124,6 +181,7 @@ CheckpointInfo infoOf(torch::serialize::InputArchive& archive, const std::string
   info.image_width = static_cast<int>(read("image_width").toInt());
   info.variant = read("variant").toStringRef();
   info.steps = read("steps").toInt();
+  info.network = info.architecture == kArchitectureGru ? NetworkKind::kGru : NetworkKind::kFeedForward;
   // Progress entries are younger than the format: a checkpoint without them starts from zero.
   if (archive.try_read("wall_s", v)) info.wall_s = v.toDouble();
   if (archive.try_read("episodes", v)) info.episodes = v.toInt();
@@ -137,19 +195,27 @@ CheckpointInfo readCheckpointInfo(const std::string& path) {
   return infoOf(archive, path);
 }
 
-HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width, CheckpointInfo* info_out) {
+HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width, CheckpointInfo* info_out,
+                        std::optional<NetworkKind> expected_network) {
   auto archive = openArchive(path);
   const CheckpointInfo info = infoOf(archive, path);
-  if (info.architecture != kArchitecture) {
+  if (info.architecture != kArchitecture && info.architecture != kArchitectureGru) {
     throw std::runtime_error("checkpoint " + path + " holds architecture '" + info.architecture + "', this build runs '" +
-                             kArchitecture + "'");
+                             kArchitecture + "' (network ff) or '" + kArchitectureGru + "' (network gru)");
+  }
+  if (expected_network && *expected_network != info.network) {
+    throw std::runtime_error("checkpoint " + path + " holds a " +
+                             (info.network == NetworkKind::kGru ? "recurrent (GRU)" : "feed-forward") +
+                             " hider (network " + networkName(info.network) + "), but network " +
+                             networkName(*expected_network) + " was asked: set network:=" +
+                             networkName(info.network) + " or use a " + networkName(*expected_network) + " checkpoint");
   }
   if (info.image_height != expected_height || info.image_width != expected_width) {
     throw std::runtime_error("checkpoint " + path + " was trained on " + std::to_string(info.image_height) + "x" +
                              std::to_string(info.image_width) + " images, the world renders " +
                              std::to_string(expected_height) + "x" + std::to_string(expected_width));
   }
-  HiderNet net(info.image_height, info.image_width);
+  HiderNet net(info.image_height, info.image_width, info.network);
   torch::serialize::InputArchive weights;
   if (!archive.try_read("model", weights)) throw std::runtime_error("checkpoint " + path + " has no weights");
   // libtorch's load replaces tensors whatever their shape, so compare against the built network.

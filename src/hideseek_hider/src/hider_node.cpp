@@ -41,6 +41,12 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
   // Parsed in every mode, so that a typo is refused even where the network is not used.
   const PrecisionRequest precision_request =
       parsePrecision(readString(pnh, "precision", "auto"), pnh.resolveName("precision"));
+  // ff or gru; auto: what the checkpoint holds (policy mode), ff (train mode). A checkpoint of the
+  // other kind than asked is refused, naming both.
+  const std::string network_name = hideseek_world::readChoice(pnh, "network", "auto", {"auto", "ff", "gru"});
+  const std::optional<NetworkKind> network =
+      network_name == "auto" ? std::nullopt
+                             : std::optional<NetworkKind>(parseNetwork(network_name, pnh.resolveName("network")));
   if (mode == "random") {
     policy_ = std::make_unique<RandomHiderPolicy>();
     ROS_INFO("hider: uniformly random policy");
@@ -48,14 +54,16 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
     const torch::Device device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
     const PrecisionChoice precision = choosePrecision(precision_request, device, detectCpuBf16());
     CheckpointInfo info;
-    HiderNet net = loadCheckpoint(policy, image_height_, image_width_, &info);
+    HiderNet net = loadCheckpoint(policy, image_height_, image_width_, &info, network);
     net->setPrecision(precision.precision);
     policy_ = std::make_unique<NetworkHiderPolicy>(net, device, readBool(pnh, "greedy", true));
-    ROS_INFO("hider: policy %s (variant '%s', %ld training steps) on %s in %s", policy.c_str(), info.variant.c_str(),
-             static_cast<long>(info.steps), device.str().c_str(), precision.reason.c_str());
+    ROS_INFO("hider: policy %s (variant '%s', network %s, %ld training steps) on %s in %s", policy.c_str(),
+             info.variant.c_str(), networkName(info.network), static_cast<long>(info.steps), device.str().c_str(),
+             precision.reason.c_str());
   } else {
     const torch::Device device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
-    startTraining(pnh, v.name, device, choosePrecision(precision_request, device, detectCpuBf16()));
+    startTraining(pnh, v.name, device, choosePrecision(precision_request, device, detectCpuBf16()),
+                  network.value_or(NetworkKind::kFeedForward));
   }
   actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kHiderActionsTopic, 2);
   observations_sub_ = nh_.subscribe(hideseek_world::kHiderObservationsTopic, 2, &HiderNode::onObservations, this,
@@ -63,8 +71,9 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
 }
 
 void HiderNode::startTraining(const ros::NodeHandle& pnh, const std::string& variant, torch::Device device,
-                              const PrecisionChoice& precision) {
+                              const PrecisionChoice& precision, NetworkKind network) {
   TrainingOptions o;
+  o.network = network;
   o.variant = variant;
   o.precision = precision.precision;
   o.image_height = image_height_;
@@ -78,7 +87,8 @@ void HiderNode::startTraining(const ros::NodeHandle& pnh, const std::string& var
   // A resumed run restores its own generator state.
   torch::manual_seed(static_cast<uint64_t>(hideseek_world::readInt(pnh, "seed", 0, 0, 1 << 30)));
   training_ = std::make_unique<TrainingRun>(o, ppo, arenas, device);
-  ROS_INFO("hider: training %s PPO on %s in %s", variant.c_str(), device.str().c_str(), precision.reason.c_str());
+  ROS_INFO("hider: training %s PPO, network %s, on %s in %s", variant.c_str(), networkName(network),
+           device.str().c_str(), precision.reason.c_str());
   if (training_->totalSteps() != o.total_steps) {
     ROS_INFO("hider: %ld steps asked, training %ld: whole rollouts of %d arenas x %d steps, so that every sample "
              "collected is trained on", static_cast<long>(o.total_steps), static_cast<long>(training_->totalSteps()),

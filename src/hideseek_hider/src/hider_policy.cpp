@@ -29,7 +29,22 @@ std::vector<uint8_t> NetworkHiderPolicy::act(const std::vector<ArenaObservation>
   torch::Tensor images = torch::empty({n, h, w, 3}, torch::kUInt8);
   const size_t bytes = static_cast<size_t>(h * w * 3);
   for (int64_t i = 0; i < n; ++i) std::memcpy(images.data_ptr<uint8_t>() + i * bytes, batch[i].image, bytes);
-  const torch::Tensor probs = torch::softmax(net_->forward(images.to(device_)).logits, 1).to(torch::kCPU).contiguous();
+  torch::Tensor logits;
+  if (net_->recurrent()) {
+    if (!hidden_.defined() || hidden_.size(0) != n) {
+      hidden_ = net_->initialHidden(n);
+      seeds_.assign(n, 0);
+    }
+    torch::Tensor starts = torch::zeros({1, n});
+    for (int64_t i = 0; i < n; ++i) {
+      if (batch[i].step == 0 || batch[i].seed != seeds_[i]) starts[0][i] = 1.0;
+      seeds_[i] = batch[i].seed;
+    }
+    logits = net_->forwardSequence(images.to(device_).unsqueeze(0), hidden_, starts.to(device_), &hidden_).logits[0];
+  } else {
+    logits = net_->forward(images.to(device_)).logits;
+  }
+  const torch::Tensor probs = torch::softmax(logits, 1).to(torch::kCPU).contiguous();
   const float* p = probs.data_ptr<float>();
   std::vector<uint8_t> actions(n);
   for (int64_t i = 0; i < n; ++i) {

@@ -25,7 +25,13 @@ PpoOptions loadPpoOptions(const std::string& path) {
   o.entropy_coef = f.number("entropy_coef", o.entropy_coef, 0.0, 100.0);
   o.max_grad_norm = f.number("max_grad_norm", o.max_grad_norm, 1e-6, 1e6);
   o.normalize_advantages = f.boolean("normalize_advantages", o.normalize_advantages);
+  o.sequence_length = f.integer("sequence_length", o.sequence_length, 1, 100000);
   f.rejectUnknown();
+  if (o.rollout_steps % o.sequence_length != 0) {
+    throw hideseek_world::ConfigError(path, "sequence_length",
+                                      std::to_string(o.sequence_length) + " must divide rollout_steps (" +
+                                      std::to_string(o.rollout_steps) + ")");
+  }
   return o;
 }
 
@@ -73,6 +79,18 @@ PpoTrainer::PpoTrainer(HiderNet net, const PpoOptions& options, int num_arenas, 
     throw std::invalid_argument("PPO: rollout_steps x arenas (" + std::to_string(t * n) +
                                 ") must divide into minibatches (" + std::to_string(options.minibatches) + ")");
   }
+  if (net_->recurrent()) {
+    if (t % options.sequence_length != 0) {
+      throw std::invalid_argument("PPO: sequence_length (" + std::to_string(options.sequence_length) +
+                                  ") must divide rollout_steps (" + std::to_string(t) + ")");
+    }
+    const int64_t sequences = t / options.sequence_length * n;
+    if (sequences % options.minibatches != 0) {
+      throw std::invalid_argument("PPO: the " + std::to_string(sequences) + " sequences of a rollout (arenas x "
+                                  "rollout_steps / sequence_length) must divide into minibatches (" +
+                                  std::to_string(options.minibatches) + ")");
+    }
+  }
   const auto f = torch::TensorOptions().device(device).dtype(torch::kFloat32);
   observations_ = torch::zeros({t, n, net_->imageHeight(), net_->imageWidth(), 3},
                                torch::TensorOptions().device(device).dtype(torch::kUInt8));
@@ -81,12 +99,27 @@ PpoTrainer::PpoTrainer(HiderNet net, const PpoOptions& options, int num_arenas, 
   values_ = torch::zeros({t, n}, f);
   rewards_ = torch::zeros({t, n}, f);
   dones_ = torch::zeros({t, n}, f);
+  if (net_->recurrent()) {
+    hiddens_ = torch::zeros({t, n, kHidden}, f);
+    starts_ = torch::zeros({t, n}, f);
+    hidden_ = net_->initialHidden(n);
+    last_dones_ = torch::ones({n}, f);  // the first observation of every arena starts an episode
+  }
 }
 
 torch::Tensor PpoTrainer::act(const torch::Tensor& observations) {
   const torch::NoGradGuard no_grad;
   const torch::Tensor obs = observations.to(device_);
-  const HiderOutput out = net_->forward(obs);
+  HiderOutput out;
+  if (net_->recurrent()) {
+    hiddens_[step_].copy_(hidden_);
+    starts_[step_].copy_(last_dones_);
+    out = net_->forwardSequence(obs.unsqueeze(0), hidden_, last_dones_.unsqueeze(0), &hidden_);
+    out.logits = out.logits[0];
+    out.value = out.value[0];
+  } else {
+    out = net_->forward(obs);
+  }
   const torch::Tensor log_probs = torch::log_softmax(out.logits, 1);
   const torch::Tensor actions = torch::multinomial(log_probs.exp(), 1).squeeze(1);
   observations_[step_].copy_(obs);
@@ -99,6 +132,7 @@ torch::Tensor PpoTrainer::act(const torch::Tensor& observations) {
 bool PpoTrainer::record(const torch::Tensor& rewards, const torch::Tensor& dones) {
   rewards_[step_].copy_(rewards.to(device_));
   dones_[step_].copy_(dones.to(device_));
+  if (net_->recurrent()) last_dones_.copy_(dones_[step_]);
   samples_ += num_arenas_;
   return ++step_ == options_.rollout_steps;
 }
@@ -121,10 +155,104 @@ UpdateStats PpoTrainer::update(const torch::Tensor& next_observations) {
   torch::Tensor next_value;
   {
     const torch::NoGradGuard no_grad;
-    next_value = net_->forward(next_observations.to(device_)).value;
+    const torch::Tensor next = next_observations.to(device_);
+    next_value = net_->recurrent()
+                     ? net_->forwardSequence(next.unsqueeze(0), hidden_, last_dones_.unsqueeze(0)).value[0]
+                     : net_->forward(next).value;
   }
   const Gae gae = computeGae(rewards_, values_, dones_, next_value, options_.gamma, options_.gae_lambda);
+  return net_->recurrent() ? updateRecurrent(gae, learning_rate) : updateFeedForward(gae, learning_rate);
+}
 
+namespace {
+
+// Accumulates one minibatch's losses and diagnostics into stats.
+void accumulate(UpdateStats& stats, const torch::Tensor& policy_loss, const torch::Tensor& value_loss,
+                const torch::Tensor& entropy, const torch::Tensor& new_log_prob, const torch::Tensor& old_lp,
+                double clip) {
+  const torch::NoGradGuard no_grad;
+  const torch::Tensor log_ratio = new_log_prob - old_lp;
+  stats.policy_loss += policy_loss.item<double>();
+  stats.value_loss += value_loss.item<double>();
+  stats.entropy += entropy.item<double>();
+  stats.approx_kl += ((log_ratio.exp() - 1.0) - log_ratio).mean().item<double>();
+  stats.clip_fraction += ((log_ratio.exp() - 1.0).abs() > clip).to(torch::kFloat32).mean().item<double>();
+}
+
+void average(UpdateStats& stats, int count, double learning_rate) {
+  stats.policy_loss /= count;
+  stats.value_loss /= count;
+  stats.entropy /= count;
+  stats.approx_kl /= count;
+  stats.clip_fraction /= count;
+  stats.learning_rate = learning_rate;
+}
+
+}  // namespace
+
+// One minibatch's PPO step on samples flattened to [M]: the logits and values the network gives
+// for them now, and what the rollout stored.
+void PpoTrainer::optimiseMinibatch(const torch::Tensor& logits, const torch::Tensor& values, const torch::Tensor& actions,
+                                   const torch::Tensor& old_lp, const torch::Tensor& old_v, torch::Tensor adv,
+                                   const torch::Tensor& target, UpdateStats& stats) {
+  const torch::Tensor log_probs_all = torch::log_softmax(logits, 1);
+  const torch::Tensor new_log_prob = log_probs_all.gather(1, actions.unsqueeze(1)).squeeze(1);
+  const torch::Tensor entropy = -(log_probs_all.exp() * log_probs_all).sum(1).mean();
+  if (options_.normalize_advantages) adv = (adv - adv.mean()) / (adv.std() + 1e-8);
+  const torch::Tensor policy_loss = clippedPolicyLoss(new_log_prob, old_lp, adv, options_.clip);
+  torch::Tensor value_loss;
+  if (options_.clip_value_loss) {
+    const torch::Tensor clipped = old_v + (values - old_v).clamp(-options_.clip, options_.clip);
+    value_loss = 0.5 * torch::max((values - target).pow(2), (clipped - target).pow(2)).mean();
+  } else {
+    value_loss = 0.5 * (values - target).pow(2).mean();
+  }
+  const torch::Tensor loss = policy_loss - options_.entropy_coef * entropy + options_.value_coef * value_loss;
+  optimizer_.zero_grad();
+  loss.backward();
+  torch::nn::utils::clip_grad_norm_(net_->parameters(), options_.max_grad_norm);
+  optimizer_.step();
+  accumulate(stats, policy_loss, value_loss, entropy, new_log_prob, old_lp, options_.clip);
+}
+
+UpdateStats PpoTrainer::updateRecurrent(const Gae& gae, double learning_rate) {
+  // Sequences: arena n's rollout cut into C chunks of L steps; sequence s = c * N + n. Every
+  // per-step tensor [T, N, ...] becomes [L, C * N, ...], time first.
+  const int64_t steps = options_.rollout_steps, n = num_arenas_, length = options_.sequence_length;
+  const int64_t chunks = steps / length, sequences = chunks * n;
+  auto bySequence = [&](const torch::Tensor& x) {
+    std::vector<int64_t> shape{chunks, length, n};
+    for (int64_t d = 2; d < x.dim(); ++d) shape.push_back(x.size(d));
+    std::vector<int64_t> out{length, sequences};
+    for (int64_t d = 2; d < x.dim(); ++d) out.push_back(x.size(d));
+    return x.reshape(shape).transpose(0, 1).reshape(out);
+  };
+  const torch::Tensor obs = bySequence(observations_), actions = bySequence(actions_),
+                      old_log_probs = bySequence(log_probs_), old_values = bySequence(values_),
+                      advantages = bySequence(gae.advantages), returns = bySequence(gae.returns),
+                      starts = bySequence(starts_);
+  // The state each sequence starts from: the one stored at its first step.
+  const torch::Tensor h0 = bySequence(hiddens_)[0];  // [C * N, 512]
+  const int64_t per_minibatch = sequences / options_.minibatches;
+  UpdateStats stats;
+  int count = 0;
+  for (int epoch = 0; epoch < options_.epochs; ++epoch) {
+    const torch::Tensor order = torch::randperm(sequences, torch::TensorOptions().device(device_).dtype(torch::kInt64));
+    for (int64_t start = 0; start < sequences; start += per_minibatch) {
+      const torch::Tensor idx = order.slice(0, start, start + per_minibatch);
+      auto pick = [&](const torch::Tensor& x) { return x.index_select(1, idx).flatten(0, 1); };
+      const HiderOutput out = net_->forwardSequence(obs.index_select(1, idx), h0.index_select(0, idx),
+                                                    starts.index_select(1, idx));
+      optimiseMinibatch(out.logits.flatten(0, 1), out.value.flatten(0, 1), pick(actions), pick(old_log_probs),
+                        pick(old_values), pick(advantages), pick(returns), stats);
+      ++count;
+    }
+  }
+  average(stats, count, learning_rate);
+  return stats;
+}
+
+UpdateStats PpoTrainer::updateFeedForward(const Gae& gae, double learning_rate) {
   // Flatten time and arenas into one batch of samples.
   const int64_t batch = static_cast<int64_t>(options_.rollout_steps) * num_arenas_;
   const torch::Tensor obs = observations_.reshape({batch, net_->imageHeight(), net_->imageWidth(), 3});
@@ -142,47 +270,13 @@ UpdateStats PpoTrainer::update(const torch::Tensor& next_observations) {
     for (int64_t start = 0; start < batch; start += minibatch) {
       const torch::Tensor idx = order.slice(0, start, start + minibatch);
       const HiderOutput out = net_->forward(obs.index_select(0, idx));
-      const torch::Tensor log_probs_all = torch::log_softmax(out.logits, 1);
-      const torch::Tensor new_log_prob = log_probs_all.gather(1, actions.index_select(0, idx).unsqueeze(1)).squeeze(1);
-      const torch::Tensor entropy = -(log_probs_all.exp() * log_probs_all).sum(1).mean();
-
-      torch::Tensor adv = advantages.index_select(0, idx);
-      if (options_.normalize_advantages) adv = (adv - adv.mean()) / (adv.std() + 1e-8);
-      const torch::Tensor old_lp = old_log_probs.index_select(0, idx);
-      const torch::Tensor policy_loss = clippedPolicyLoss(new_log_prob, old_lp, adv, options_.clip);
-
-      const torch::Tensor target = returns.index_select(0, idx);
-      torch::Tensor value_loss;
-      if (options_.clip_value_loss) {
-        const torch::Tensor old_v = old_values.index_select(0, idx);
-        const torch::Tensor clipped = old_v + (out.value - old_v).clamp(-options_.clip, options_.clip);
-        value_loss = 0.5 * torch::max((out.value - target).pow(2), (clipped - target).pow(2)).mean();
-      } else {
-        value_loss = 0.5 * (out.value - target).pow(2).mean();
-      }
-
-      const torch::Tensor loss = policy_loss - options_.entropy_coef * entropy + options_.value_coef * value_loss;
-      optimizer_.zero_grad();
-      loss.backward();
-      torch::nn::utils::clip_grad_norm_(net_->parameters(), options_.max_grad_norm);
-      optimizer_.step();
-
-      const torch::NoGradGuard no_grad;
-      const torch::Tensor log_ratio = new_log_prob - old_lp;
-      stats.policy_loss += policy_loss.item<double>();
-      stats.value_loss += value_loss.item<double>();
-      stats.entropy += entropy.item<double>();
-      stats.approx_kl += ((log_ratio.exp() - 1.0) - log_ratio).mean().item<double>();
-      stats.clip_fraction += ((log_ratio.exp() - 1.0).abs() > options_.clip).to(torch::kFloat32).mean().item<double>();
+      optimiseMinibatch(out.logits, out.value, actions.index_select(0, idx), old_log_probs.index_select(0, idx),
+                        old_values.index_select(0, idx), advantages.index_select(0, idx),
+                        returns.index_select(0, idx), stats);
       ++count;
     }
   }
-  stats.policy_loss /= count;
-  stats.value_loss /= count;
-  stats.entropy /= count;
-  stats.approx_kl /= count;
-  stats.clip_fraction /= count;
-  stats.learning_rate = learning_rate;
+  average(stats, count, learning_rate);
   return stats;
 }
 

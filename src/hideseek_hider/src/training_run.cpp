@@ -24,7 +24,9 @@ bool exists(const std::string& path) {
 HiderNet startingNet(const TrainingOptions& o, bool* resumed) {
   const std::string path = o.output_dir + "/checkpoint.pt";
   *resumed = exists(path);
-  HiderNet net = *resumed ? loadCheckpoint(path, o.image_height, o.image_width) : HiderNet(o.image_height, o.image_width);
+  // A resumed run must be the network it was: a GRU checkpoint is not resumed as feed-forward.
+  HiderNet net = *resumed ? loadCheckpoint(path, o.image_height, o.image_width, nullptr, o.network)
+                          : HiderNet(o.image_height, o.image_width, o.network);
   net->setPrecision(o.precision);
   return net;
 }
@@ -177,7 +179,7 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
 
 void TrainingRun::saveCheckpoint() {
   const auto now = std::chrono::steady_clock::now();
-  CheckpointInfo info{kArchitecture, options_.image_height, options_.image_width, options_.variant,
+  CheckpointInfo info{trainer_.net()->architecture(), options_.image_height, options_.image_width, options_.variant,
                       trainer_.samplesSeen()};
   info.wall_s = start_wall_s_ + std::chrono::duration<double>(now - start_).count();
   info.episodes = episodes_;

@@ -1,9 +1,11 @@
-// The hider's network (SPEC section 5): a convolutional encoder to 512 mid-level features,
-// an actor head and a critic head.
+// The hider's network: a convolutional encoder to 512 mid-level features, an actor head and a
+// critic head; optionally (network gru) a GRU between the features and the heads, the hider's
+// memory.
 #pragma once
 
 #include <torch/torch.h>
 
+#include <optional>
 #include <string>
 
 #include "hideseek_hider/precision.h"
@@ -11,25 +13,52 @@
 namespace hideseek_hider {
 
 // Named outputs: index-free reading of what the network computed.
+// forward() gives [B, ...]; forwardSequence() gives [T, B, ...].
 struct HiderOutput {
   torch::Tensor logits;    // [B, 5]
   torch::Tensor value;     // [B]
   torch::Tensor features;  // [B, 512] mid-level features, what the probes read
+  torch::Tensor memory;    // [B, 512] the GRU's state after this step (network gru only)
 };
 
 constexpr int kFeatures = 512;
+constexpr int kHidden = 512;  // GRU state size
 constexpr int kActions = 5;
 // Written into every checkpoint; a checkpoint of another architecture is refused.
 constexpr char kArchitecture[] =
     "hideseek_hider/v1: conv8x8s4x32-conv4x4s2x64-conv3x3s1x64-fc512 | actor fc512-5 | critic fc512-1 | leaky_relu";
+constexpr char kArchitectureGru[] =
+    "hideseek_hider/v1-gru: conv8x8s4x32-conv4x4s2x64-conv3x3s1x64-fc512 | gru512 | actor fc512-5 | critic fc512-1 | "
+    "leaky_relu";
+
+// Feed-forward (the paper's network) or recurrent (a GRU of kHidden units before the heads).
+enum class NetworkKind { kFeedForward, kGru };
+const char* networkName(NetworkKind kind);  // "ff", "gru"
+// "ff" or "gru"; throws std::invalid_argument naming `what` (a parameter or field) otherwise.
+NetworkKind parseNetwork(const std::string& name, const std::string& what);
 
 class HiderNetImpl : public torch::nn::Module {
  public:
-  HiderNetImpl(int image_height, int image_width);
+  HiderNetImpl(int image_height, int image_width, NetworkKind network = NetworkKind::kFeedForward);
 
   // images: [B, H, W, 3] uint8 (as the world sends them), scaled to [0, 1] here. Runs in the
-  // network's precision; the outputs are always fp32.
+  // network's precision; the outputs are always fp32. Feed-forward networks only: a GRU needs
+  // its state (forwardSequence).
   HiderOutput forward(const torch::Tensor& images);
+
+  // Any network, over T steps of B arenas. images: [T, B, H, W, 3] uint8; hidden: [B, 512], the
+  // GRU state before step 0 (ignored by a feed-forward network); starts: [T, B], 1 where step t
+  // begins an episode, so that the state is zeroed before it. The encoder and heads run batched
+  // over all T x B images, the GRU cell step by step. The state after the last step goes to
+  // *hidden_out when given. The GRU runs in fp32 whatever the precision.
+  HiderOutput forwardSequence(const torch::Tensor& images, const torch::Tensor& hidden, const torch::Tensor& starts,
+                              torch::Tensor* hidden_out = nullptr);
+  // The state at an episode's start: zeros [batch, 512] on the network's device.
+  torch::Tensor initialHidden(int64_t batch) const;
+
+  NetworkKind network() const { return network_; }
+  bool recurrent() const { return network_ == NetworkKind::kGru; }
+  const char* architecture() const { return recurrent() ? kArchitectureGru : kArchitecture; }
 
   // bf16 autocasts every forward pass (and so its backward); the parameters stay fp32.
   void setPrecision(Precision precision) { precision_ = precision; }
@@ -39,9 +68,14 @@ class HiderNetImpl : public torch::nn::Module {
   int imageWidth() const { return image_width_; }
 
  private:
+  torch::Tensor encode(const torch::Tensor& images);  // [B, H, W, 3] uint8 -> [B, 512] in the precision
+  void heads(const torch::Tensor& x, HiderOutput& out);  // [B, 512] -> logits, value (fp32)
+
   int image_height_;
   int image_width_;
+  NetworkKind network_;
   Precision precision_ = Precision::kFp32;
+  torch::nn::GRUCell gru_{nullptr};
   torch::nn::Conv2d conv1_{nullptr}, conv2_{nullptr}, conv3_{nullptr};
   torch::nn::Linear features_{nullptr}, actor_hidden_{nullptr}, actor_out_{nullptr}, critic_hidden_{nullptr},
       critic_out_{nullptr};
@@ -58,6 +92,7 @@ struct CheckpointInfo {
   // Training progress, so that a resumed run's log continues where the checkpoint left it.
   double wall_s = 0.0;   // wall seconds of training up to this checkpoint, over all resumes
   int64_t episodes = 0;  // episodes finished up to this checkpoint
+  NetworkKind network = NetworkKind::kFeedForward;  // from the architecture
 };
 
 // Writes the network and its description to `path` atomically (temporary file, then rename).
@@ -70,9 +105,10 @@ void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo
 void loadTrainingState(const std::string& path, torch::optim::Optimizer& optimizer);
 // Reads only the description; throws std::runtime_error naming the file when unreadable.
 CheckpointInfo readCheckpointInfo(const std::string& path);
-// Builds the network a checkpoint describes and loads its weights. Throws std::runtime_error
-// saying what does not match (architecture, image size, tensor shapes) or that the file is
-// truncated or corrupt; never returns a half-loaded network.
-HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width, CheckpointInfo* info = nullptr);
+// Builds the network a checkpoint describes (feed-forward or GRU) and loads its weights. Throws
+// std::runtime_error saying what does not match (architecture, the network asked for, image size,
+// tensor shapes) or that the file is truncated or corrupt; never returns a half-loaded network.
+HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width, CheckpointInfo* info = nullptr,
+                        std::optional<NetworkKind> expected_network = std::nullopt);
 
 }  // namespace hideseek_hider

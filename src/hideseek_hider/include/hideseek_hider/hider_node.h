@@ -21,7 +21,7 @@ class HiderNode {
   void onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& msg);
 
   void startTraining(const ros::NodeHandle& pnh, const std::string& variant, torch::Device device,
-                     const PrecisionChoice& precision);
+                     const PrecisionChoice& precision, NetworkKind network);
 
   ros::NodeHandle nh_;
   std::unique_ptr<HiderPolicy> policy_;  // random and policy modes

@@ -28,16 +28,22 @@ class RandomHiderPolicy : public HiderPolicy {
   std::vector<uint8_t> act(const std::vector<ArenaObservation>& batch) override;
 };
 
-// Inference from a checkpoint: one batched forward pass per step, no autograd.
+// Inference from a checkpoint: one batched forward pass per step, no autograd. A GRU network
+// carries each arena's state from step to step and starts from zero at an episode's step 0 (a
+// new seed at any step, after a reset, also starts afresh).
 class NetworkHiderPolicy : public HiderPolicy {
  public:
   NetworkHiderPolicy(HiderNet net, torch::Device device, bool greedy);
   std::vector<uint8_t> act(const std::vector<ArenaObservation>& batch) override;
+  // GRU only: each arena's state after the last act() ([N, 512]); undefined before it.
+  const torch::Tensor& hidden() const { return hidden_; }
 
  private:
   HiderNet net_;
   torch::Device device_;
   bool greedy_;
+  torch::Tensor hidden_;
+  std::vector<uint32_t> seeds_;  // each arena's episode seed at the last act()
 };
 
 }  // namespace hideseek_hider

@@ -30,6 +30,10 @@ struct PpoOptions {
   double entropy_coef = 0.01;
   double max_grad_norm = 0.5;   // global gradient norm clip
   bool normalize_advantages = true;  // per minibatch
+  // GRU networks only: the rollout of each arena is cut into chunks of this many steps, the
+  // sequences that truncated backpropagation through time runs over; minibatches hold whole
+  // sequences. Must divide rollout_steps.
+  int sequence_length = 32;
 };
 
 // Reads config/ppo.yaml; throws hideseek_world::ConfigError naming the file and field.
@@ -62,6 +66,10 @@ struct UpdateStats {
 // Collects rollout_steps decision steps of every arena, then updates the network in place.
 // act() and record() alternate: act on the observations of step t, record the rewards and done
 // flags that step t produced. All tensors stay on the trainer's device; observations are uint8.
+// A GRU network is trained as in recurrent PPO (CleanRL's ppo_atari_lstm, SB3-contrib's
+// RecurrentPPO): the trainer carries each arena's state from step to step, zeroes it where an
+// episode starts, stores the state at every step, and the update re-runs whole sequences of
+// sequence_length steps from the state stored at each one's start.
 class PpoTrainer {
  public:
   PpoTrainer(HiderNet net, const PpoOptions& options, int num_arenas, torch::Device device);
@@ -83,6 +91,12 @@ class PpoTrainer {
   double currentLearningRate() const;
 
  private:
+  UpdateStats updateFeedForward(const Gae& gae, double learning_rate);
+  UpdateStats updateRecurrent(const Gae& gae, double learning_rate);
+  void optimiseMinibatch(const torch::Tensor& logits, const torch::Tensor& values, const torch::Tensor& actions,
+                         const torch::Tensor& old_lp, const torch::Tensor& old_v, torch::Tensor adv,
+                         const torch::Tensor& target, UpdateStats& stats);
+
   HiderNet net_;
   PpoOptions options_;
   int num_arenas_;
@@ -92,6 +106,10 @@ class PpoTrainer {
   int64_t samples_ = 0;
   int64_t total_samples_ = 0;
   torch::Tensor observations_, actions_, log_probs_, values_, rewards_, dones_;
+  // GRU only: the state before each step, and whether that step began an episode.
+  torch::Tensor hiddens_, starts_;
+  torch::Tensor hidden_;      // [N, 512] each arena's state before its next step
+  torch::Tensor last_dones_;  // [N] the last recorded done flags: the next step starts an episode
 };
 
 }  // namespace hideseek_hider

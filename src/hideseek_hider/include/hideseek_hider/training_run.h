@@ -24,6 +24,7 @@ struct TrainingOptions {
   int image_height = 84;
   int image_width = 84;
   Precision precision = Precision::kFp32;  // of the network's passes; weights stay fp32
+  NetworkKind network = NetworkKind::kFeedForward;
 };
 
 // The run's length: `requested` steps rounded up to whole rollouts of `rollout` samples.
