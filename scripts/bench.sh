@@ -25,6 +25,11 @@ echo "$default" | grep '^#'
 floor=$(echo "$default" | awk '/samples_per_s/ { print $2 }')
 echo "train_floor_samples_per_s $floor"
 echo "train_speedup $(awk -v a="$floor" -v b="$floor_fp32" 'BEGIN { printf "%.2f", a / b }')"
+echo "# recurrent training floor: the GRU network (network gru) and recurrent PPO over sequences, in process,"
+echo "# default precision; compare with train_floor_samples_per_s"
+gru=$(OPENBLAS_NUM_THREADS=1 devel/lib/hideseek_hider/train_floor_bench config/ppo.yaml "$ARENAS" 3 2 auto gru |
+  awk '/samples_per_s/ { print $2 }')
+echo "train_gru_samples_per_s $gru"
 echo "# training: PPO through the ROS graph (world, seeker, hider in train mode), $ARENAS arenas, 84x84, default precision"
 run=$(mktemp -d)
 roslaunch -p 11433 hideseek_world train.launch num_arenas:="$ARENAS" steps:=$((ARENAS * 64 * 7)) \

@@ -1,24 +1,27 @@
 #!/usr/bin/env bash
 # Trains one variant through train.launch (resuming when RUNS_DIR/<run> holds a checkpoint), then
 # ships what it produced: the exported policy, the training log and its learning curve.
-# usage: scripts/train_variant.sh VARIANT [SEED=0] [STEPS=2000000] [RUNS_DIR=~/hideseek_runs]
+# usage: scripts/train_variant.sh VARIANT [SEED=0] [STEPS=2000000] [RUNS_DIR=~/hideseek_runs] [NETWORK=ff]
 # Seed 0 ships as policies/<variant>.pt; other seeds as policies/<variant>_seed<S>.pt (the spread).
+# NETWORK gru trains the recurrent hider and ships policies/<variant>_gru.pt (_gru_seed<S> likewise).
 set -euo pipefail
 variant=$1
 seed=${2:-0}
 steps=${3:-2000000}
 runs=$(realpath -m "${4:-$HOME/hideseek_runs}")
+network=${5:-ff}
 cd "$(dirname "$0")/.."
 source scripts/env.sh
 name=$variant
-[ "$seed" = 0 ] || name=${variant}_seed$seed
+[ "$network" = ff ] || name=${name}_$network
+[ "$seed" = 0 ] || name=${name}_seed$seed
 run="$runs/$name"
-port=$((11700 + seed))
+port=$((11700 + seed + $([ "$network" = gru ] && echo 50 || echo 0)))
 export ROS_MASTER_URI=http://localhost:$port
 mkdir -p "$run"
-echo "train_variant: $name, $steps steps, into $run (log: $run/launch.log)"
+echo "train_variant: $name (network $network), $steps steps, into $run (log: $run/launch.log)"
 roslaunch -p "$port" hideseek_world train.launch variant:="$variant" seed:="$seed" steps:="$steps" \
-  output_dir:="$run" > "$run/launch.log" 2>&1
+  network:="$network" output_dir:="$run" > "$run/launch.log" 2>&1
 # roslaunch exits 0 even when the hider dies: ship only a run that trained all its steps.
 trained=$(tail -n 1 "$run/training_log.csv" | cut -d, -f2)
 if [ "${trained:-0}" -lt "$steps" ]; then
@@ -28,7 +31,7 @@ fi
 devel/lib/hideseek_hider/export_policy "$run/checkpoint.pt" "policies/$name.pt"
 cp "$run/training_log.csv" "docs/training_log_$name.csv"
 /usr/bin/python3 scripts/plot_learning_curve.py "docs/training_log_$name.csv" "docs/learning_curve_$name.png" \
-  "$variant, training seed $seed, $(tail -n 1 "$run/training_log.csv" | cut -d, -f2) steps"
+  "$variant, network $network, training seed $seed, $(tail -n 1 "$run/training_log.csv" | cut -d, -f2) steps"
 # Record what was shipped: steps and wall time of training up to the exported checkpoint.
 /usr/bin/python3 - "$name" "$seed" "$run/training_log.csv" "docs/training_log_$name.csv" <<'PY'
 import csv, sys

@@ -1,7 +1,8 @@
 // The floor of training speed: the hider network and PPO update in one process on synthetic
 // 84 x 84 observations (no ROS, no rendering).
-// Usage: train_floor_bench CONFIG ARENAS UPDATES THREADS PRECISION(auto|fp32|bf16)
-// Prints `# precision: <reason>` and `train_floor_<fp32|bf16>_samples_per_s N`.
+// Usage: train_floor_bench CONFIG ARENAS UPDATES THREADS PRECISION(auto|fp32|bf16) [NETWORK(ff|gru)]
+// Prints `# precision: <reason>` and `train_floor_<fp32|bf16>_samples_per_s N` (ff) or
+// `train_gru_<fp32|bf16>_samples_per_s N` (gru: recurrent PPO over sequences).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -15,12 +16,13 @@ int main(int argc, char** argv) {
   const int updates = argc > 3 ? std::atoi(argv[3]) : 3;
   const int threads = argc > 4 ? std::atoi(argv[4]) : 2;
   const std::string precision = argc > 5 ? argv[5] : "auto";
+  const hideseek_hider::NetworkKind network = hideseek_hider::parseNetwork(argc > 6 ? argv[6] : "ff", "NETWORK");
   torch::set_num_threads(threads);
   torch::manual_seed(0);
   const hideseek_hider::PrecisionChoice choice = hideseek_hider::choosePrecision(
       hideseek_hider::parsePrecision(precision, "PRECISION"), torch::kCPU, hideseek_hider::detectCpuBf16());
   const hideseek_hider::PpoOptions options = hideseek_hider::loadPpoOptions(config);
-  hideseek_hider::HiderNet net(84, 84);
+  hideseek_hider::HiderNet net(84, 84, network);
   net->setPrecision(choice.precision);
   hideseek_hider::PpoTrainer trainer(net, options, arenas, torch::kCPU);
   auto run = [&](int n) {
@@ -39,7 +41,8 @@ int main(int argc, char** argv) {
   run(updates);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("# precision: %s\n", choice.reason.c_str());
-  std::printf("train_floor_%s_samples_per_s %.0f\n", hideseek_hider::precisionName(choice.precision),
+  std::printf("%s_%s_samples_per_s %.0f\n", network == hideseek_hider::NetworkKind::kGru ? "train_gru" : "train_floor",
+              hideseek_hider::precisionName(choice.precision),
               (trainer.samplesSeen() - before) / seconds);
   return 0;
 }

@@ -14,8 +14,9 @@ int main(int argc, char** argv) {
     const hideseek_hider::CheckpointInfo info = hideseek_hider::readCheckpointInfo(argv[1]);
     hideseek_hider::HiderNet net = hideseek_hider::loadCheckpoint(argv[1], info.image_height, info.image_width);
     hideseek_hider::saveCheckpoint(argv[2], net, info);
-    std::printf("%s: %s policy, %dx%d images, %ld training steps\n", argv[2], info.variant.c_str(), info.image_height,
-                info.image_width, static_cast<long>(info.steps));
+    std::printf("%s: %s policy, network %s, %dx%d images, %ld training steps\n", argv[2], info.variant.c_str(),
+                hideseek_hider::networkName(info.network), info.image_height, info.image_width,
+                static_cast<long>(info.steps));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "export_policy: %s\n", e.what());
     return 1;
