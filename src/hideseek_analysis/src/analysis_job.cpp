@@ -37,6 +37,7 @@ void runAnalysis(const AnalysisJob& job) {
   const int h = job.variant.game.camera.height, w = job.variant.game.camera.width;
   hideseek_hider::CheckpointInfo info;
   hideseek_hider::HiderNet net = hideseek_hider::loadCheckpoint(job.policy, h, w, &info);
+  if (net->recurrent()) throw std::runtime_error(gruNotAnalysed(job.policy));
   std::printf("analysis: features of %ld images through %s (%ld training steps) and a random network (seed %u)\n",
               static_cast<long>(log.numImages()), job.policy.c_str(), static_cast<long>(info.steps),
               job.inputs.random_init_seed);
@@ -56,6 +57,12 @@ void runAnalysis(const AnalysisJob& job) {
   const int status = std::system(command.c_str());
   if (status != 0) throw std::runtime_error("the report (" + job.report_script + ") failed; see its output above");
   std::printf("analysis: report in %s (%.0f s in all)\n", job.report_dir.c_str(), elapsed());
+}
+
+std::string gruNotAnalysed(const std::string& policy) {
+  return "checkpoint " + policy +
+         " holds a recurrent (GRU) hider: its probes need the GRU state of every step, which the analysis bag does "
+         "not record yet; analyse a feed-forward (network ff) policy";
 }
 
 }  // namespace hideseek_analysis

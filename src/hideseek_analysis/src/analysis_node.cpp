@@ -13,6 +13,7 @@
 #include <string>
 
 #include "hideseek_analysis/analysis_job.h"
+#include "hideseek_hider/hider_net.h"
 #include "hideseek_world/params.h"
 #include "hideseek_world/topic_names.h"
 #include "hideseek_world/world_node_options.h"
@@ -96,6 +97,10 @@ int main(int argc, char** argv) {
       const int decisions = hideseek_world::readInt(pnh, "decisions", 0, 1, 1 << 24);
       if (!std::filesystem::is_regular_file(job.policy)) {
         throw std::runtime_error("parameter " + pnh.resolveName("policy") + ": no checkpoint at " + job.policy);
+      }
+      // Refused before recording, not after: the probes cannot read a GRU's state yet.
+      if (hideseek_hider::readCheckpointInfo(job.policy).network == hideseek_hider::NetworkKind::kGru) {
+        throw std::runtime_error(hideseek_analysis::gruNotAnalysed(job.policy));
       }
       recorder = std::make_unique<Recorder>(nh, job.bag, decisions);
       ROS_INFO("analysis: recording %d decisions of world/steps into %s", decisions, job.bag.c_str());

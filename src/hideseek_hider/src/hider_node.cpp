@@ -2,6 +2,7 @@
 
 #include <hideseek_msgs/ActionBatch.h>
 
+#include <fstream>
 #include <stdexcept>
 
 #include "hideseek_world/params.h"
@@ -62,8 +63,11 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
              precision.reason.c_str());
   } else {
     const torch::Device device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
-    startTraining(pnh, v.name, device, choosePrecision(precision_request, device, detectCpuBf16()),
-                  network.value_or(NetworkKind::kFeedForward));
+    // auto: a run resumed from a checkpoint keeps its network; a new run is feed-forward.
+    NetworkKind train_network = network.value_or(NetworkKind::kFeedForward);
+    const std::string resume_from = readString(pnh, "output_dir", "") + "/checkpoint.pt";
+    if (!network && std::ifstream(resume_from).good()) train_network = readCheckpointInfo(resume_from).network;
+    startTraining(pnh, v.name, device, choosePrecision(precision_request, device, detectCpuBf16()), train_network);
   }
   actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kHiderActionsTopic, 2);
   observations_sub_ = nh_.subscribe(hideseek_world::kHiderObservationsTopic, 2, &HiderNode::onObservations, this,

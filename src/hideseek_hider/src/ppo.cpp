@@ -27,11 +27,6 @@ PpoOptions loadPpoOptions(const std::string& path) {
   o.normalize_advantages = f.boolean("normalize_advantages", o.normalize_advantages);
   o.sequence_length = f.integer("sequence_length", o.sequence_length, 1, 100000);
   f.rejectUnknown();
-  if (o.rollout_steps % o.sequence_length != 0) {
-    throw hideseek_world::ConfigError(path, "sequence_length",
-                                      std::to_string(o.sequence_length) + " must divide rollout_steps (" +
-                                      std::to_string(o.rollout_steps) + ")");
-  }
   return o;
 }
 

@@ -94,7 +94,7 @@ TEST(GruNet, Bf16RunsAndStaysCloseToFp32) {
   net->setPrecision(Precision::kBf16);
   const HiderOutput bf16 = net->forwardSequence(images, net->initialHidden(2), starts);
   EXPECT_EQ(bf16.logits.scalar_type(), torch::kFloat32);
-  EXPECT_EQ(bf16.memory.scalar_type(), torch::kFloat32) << "the GRU state stays fp32";
+  EXPECT_EQ(bf16.memory.scalar_type(), torch::kFloat32);
   EXPECT_TRUE(bf16.logits.isfinite().all().item<bool>());
   EXPECT_LT((bf16.logits - fp32.logits).abs().max().item<double>(), 0.05);
 }
@@ -148,6 +148,46 @@ TEST(RecurrentPpo, UpdateReRunsEachSequenceExactlyAsTheRolloutRanIt) {
     EXPECT_LT(stats.approx_kl, 1e-9) << "rollout " << rollout;
     EXPECT_EQ(stats.clip_fraction, 0.0) << "rollout " << rollout;
   }
+}
+
+TEST(RecurrentPpo, TrainerStartsAFreshStateAfterAnEpisodeEnds) {
+  torch::manual_seed(8);
+  PpoOptions o;
+  o.rollout_steps = 4;
+  o.sequence_length = 4;
+  o.minibatches = 1;
+  PpoTrainer trainer(HiderNet(kSize, kSize, NetworkKind::kGru), o, 2, torch::kCPU);
+  const torch::Tensor a = randomImages({2}), b = randomImages({2});
+  trainer.act(a);
+  trainer.record(torch::zeros({2}), torch::tensor({1.0f, 0.0f}));  // arena 0's episode ended
+  trainer.act(b);
+  HiderNet& net = trainer.net();
+  const torch::NoGradGuard no_grad;
+  // Arena 0: b is the first step of a new episode, from a zero state.
+  const torch::Tensor fresh = net->forwardSequence(b.slice(0, 0, 1).unsqueeze(0), net->initialHidden(1), torch::zeros({1, 1})).memory[0];
+  expectClose(trainer.hidden().slice(0, 0, 1), fresh, "arena 0 after its episode ended");
+  // Arena 1: a then b in one episode.
+  const torch::Tensor carried =
+      net->forwardSequence(torch::stack({a.slice(0, 1, 2), b.slice(0, 1, 2)}), net->initialHidden(1), torch::zeros({2, 1})).memory[1];
+  expectClose(trainer.hidden().slice(0, 1, 2), carried, "arena 1 within its episode");
+}
+
+TEST(GruPolicy, StateStartsAfreshAtStepZeroAndAtANewSeed) {
+  torch::manual_seed(9);
+  HiderNet net(kSize, kSize, NetworkKind::kGru);
+  NetworkHiderPolicy policy(net, torch::kCPU, true);
+  const torch::Tensor img = randomImages({1}).contiguous();
+  const torch::Tensor fresh = net->forwardSequence(img.unsqueeze(0), net->initialHidden(1), torch::zeros({1, 1})).memory[0];
+  auto act = [&](uint32_t seed, uint32_t step) { policy.act({{img.data_ptr<uint8_t>(), seed, step}}); };
+  act(5, 0);
+  expectClose(policy.hidden(), fresh, "first step");
+  act(5, 1);
+  EXPECT_GT((policy.hidden() - fresh).abs().max().item<double>(), 1e-4) << "the state carries within an episode";
+  act(5, 0);  // a reset re-plays step 0
+  expectClose(policy.hidden(), fresh, "step 0 again");
+  act(5, 1);
+  act(6, 2);  // another episode's seed mid-way (a reset to another seed)
+  expectClose(policy.hidden(), fresh, "a new seed");
 }
 
 TEST(RecurrentPpo, SequencesMustDivideTheRolloutAndTheMinibatches) {

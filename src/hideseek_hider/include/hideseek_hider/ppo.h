@@ -84,6 +84,8 @@ class PpoTrainer {
   HiderNet& net() { return net_; }
   torch::optim::Adam& optimizer() { return optimizer_; }
   int64_t samplesSeen() const { return samples_; }
+  // GRU only: each arena's state after the last act() ([N, 512]).
+  const torch::Tensor& hidden() const { return hidden_; }
   void setSamplesSeen(int64_t samples) { samples_ = samples; }
   // The run's length in samples, which the annealed learning rate decays over (0: no annealing).
   void setTotalSamples(int64_t total) { total_samples_ = total; }
