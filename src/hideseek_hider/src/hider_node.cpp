@@ -27,76 +27,80 @@ torch::Device deviceFrom(const std::string& name, const std::string& param) {
 
 }  // namespace
 
-HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
-  const hideseek_world::VariantConfig v = hideseek_world::loadVariantParams(pnh);
-  image_height_ = v.game.camera.height;
-  image_width_ = v.game.camera.width;
-  using hideseek_world::readBool;
+HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   using hideseek_world::readString;
-  const std::string policy = readString(pnh, "policy", "random");
+  HiderNodeOptions o;
+  o.variant = hideseek_world::loadVariantParams(pnh);
+  o.policy = readString(pnh, "policy", "random");
   const std::string mode =
-      hideseek_world::readChoice(pnh, "mode", policy == "random" ? "random" : "policy", {"random", "policy", "train"});
-  const int threads = hideseek_world::readInt(pnh, "threads", 2, 1, 64);
-  // Measured on the 2-core reference machine: 2 intra-op threads train 1.5x faster than 1.
-  torch::set_num_threads(threads);
+      hideseek_world::readChoice(pnh, "mode", o.policy == "random" ? "random" : "policy", {"random", "policy", "train"});
+  o.mode = mode == "random" ? HiderMode::kRandom : mode == "policy" ? HiderMode::kPolicy : HiderMode::kTrain;
+  o.threads = hideseek_world::readInt(pnh, "threads", 2, 1, 64);
   // Parsed in every mode, so that a typo is refused even where the network is not used.
-  const PrecisionRequest precision_request =
-      parsePrecision(readString(pnh, "precision", "auto"), pnh.resolveName("precision"));
-  // ff or gru; auto: what the checkpoint holds (policy mode), ff (train mode). A checkpoint of the
-  // other kind than asked is refused, naming both.
-  const std::string network_name = hideseek_world::readChoice(pnh, "network", "auto", {"auto", "ff", "gru"});
-  const std::optional<NetworkKind> network =
-      network_name == "auto" ? std::nullopt
-                             : std::optional<NetworkKind>(parseNetwork(network_name, pnh.resolveName("network")));
-  if (mode == "random") {
+  o.precision = parsePrecision(readString(pnh, "precision", "auto"), pnh.resolveName("precision"));
+  const std::string network = hideseek_world::readChoice(pnh, "network", "auto", {"auto", "ff", "gru"});
+  if (network != "auto") o.network = parseNetwork(network, pnh.resolveName("network"));
+  if (o.mode == HiderMode::kRandom) return o;
+  o.device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
+  o.greedy = hideseek_world::readBool(pnh, "greedy", true);
+  if (o.mode == HiderMode::kPolicy) return o;
+  TrainingOptions& t = o.training;
+  t.variant = o.variant.name;
+  t.image_height = o.variant.game.camera.height;
+  t.image_width = o.variant.game.camera.width;
+  t.output_dir = hideseek_world::requireString(pnh, "output_dir", "a folder, in train mode");
+  // A double: launch files write large step counts as 2e6.
+  t.total_steps = static_cast<int64_t>(hideseek_world::readDouble(pnh, "total_steps", 1e6, 1.0, 1e12));
+  t.checkpoint_interval_s = hideseek_world::readDouble(pnh, "checkpoint_interval", 300.0, 1e-3, 1e6);
+  o.ppo = loadPpoOptions(hideseek_world::requireString(pnh, "ppo_config", "a file path, in train mode"));
+  o.num_arenas = hideseek_world::readInt(pnh, "num_arenas", 16, 1, 64);
+  o.seed = hideseek_world::readInt(pnh, "seed", 0, 0, 1 << 30);
+  return o;
+}
+
+HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
+  const HiderNodeOptions o = loadHiderNodeOptions(pnh);
+  image_height_ = o.variant.game.camera.height;
+  image_width_ = o.variant.game.camera.width;
+  // Measured on the 2-core reference machine: 2 intra-op threads train 1.5x faster than 1.
+  torch::set_num_threads(o.threads);
+  if (o.mode == HiderMode::kRandom) {
     policy_ = std::make_unique<RandomHiderPolicy>();
     ROS_INFO("hider: uniformly random policy");
-  } else if (mode == "policy") {
-    const torch::Device device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
-    const PrecisionChoice precision = choosePrecision(precision_request, device, detectCpuBf16());
+  } else if (o.mode == HiderMode::kPolicy) {
+    const PrecisionChoice precision = choosePrecision(o.precision, o.device, detectCpuBf16());
     CheckpointInfo info;
-    HiderNet net = loadCheckpoint(policy, image_height_, image_width_, &info, network);
+    HiderNet net = loadCheckpoint(o.policy, image_height_, image_width_, &info, o.network);
     net->setPrecision(precision.precision);
-    policy_ = std::make_unique<NetworkHiderPolicy>(net, device, readBool(pnh, "greedy", true));
-    ROS_INFO("hider: policy %s (variant '%s', network %s, %ld training steps) on %s in %s", policy.c_str(),
-             info.variant.c_str(), networkName(info.network), static_cast<long>(info.steps), device.str().c_str(),
+    policy_ = std::make_unique<NetworkHiderPolicy>(net, o.device, o.greedy);
+    ROS_INFO("hider: policy %s (variant '%s', network %s, %ld training steps) on %s in %s", o.policy.c_str(),
+             info.variant.c_str(), networkName(info.network), static_cast<long>(info.steps), o.device.str().c_str(),
              precision.reason.c_str());
   } else {
-    const torch::Device device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
-    // auto: a run resumed from a checkpoint keeps its network; a new run is feed-forward.
-    NetworkKind train_network = network.value_or(NetworkKind::kFeedForward);
-    const std::string resume_from = readString(pnh, "output_dir", "") + "/checkpoint.pt";
-    if (!network && std::ifstream(resume_from).good()) train_network = readCheckpointInfo(resume_from).network;
-    startTraining(pnh, v.name, device, choosePrecision(precision_request, device, detectCpuBf16()), train_network);
+    startTraining(o);
   }
   actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kHiderActionsTopic, 2);
   observations_sub_ = nh_.subscribe(hideseek_world::kHiderObservationsTopic, 2, &HiderNode::onObservations, this,
                                     ros::TransportHints().tcpNoDelay());
 }
 
-void HiderNode::startTraining(const ros::NodeHandle& pnh, const std::string& variant, torch::Device device,
-                              const PrecisionChoice& precision, NetworkKind network) {
-  TrainingOptions o;
-  o.network = network;
-  o.variant = variant;
+void HiderNode::startTraining(const HiderNodeOptions& options) {
+  const PrecisionChoice precision = choosePrecision(options.precision, options.device, detectCpuBf16());
+  TrainingOptions o = options.training;
   o.precision = precision.precision;
-  o.image_height = image_height_;
-  o.image_width = image_width_;
-  o.output_dir = hideseek_world::requireString(pnh, "output_dir", "a folder, in train mode");
-  // A double: launch files write large step counts as 2e6.
-  o.total_steps = static_cast<int64_t>(hideseek_world::readDouble(pnh, "total_steps", 1e6, 1.0, 1e12));
-  o.checkpoint_interval_s = hideseek_world::readDouble(pnh, "checkpoint_interval", 300.0, 1e-3, 1e6);
-  const PpoOptions ppo = loadPpoOptions(hideseek_world::requireString(pnh, "ppo_config", "a file path, in train mode"));
-  const int arenas = hideseek_world::readInt(pnh, "num_arenas", 16, 1, 64);
+  // auto: a run resumed from a checkpoint keeps its network; a new run is feed-forward.
+  o.network = options.network.value_or(NetworkKind::kFeedForward);
+  const std::string resume_from = o.output_dir + "/checkpoint.pt";
+  if (!options.network && std::ifstream(resume_from).good()) o.network = readCheckpointInfo(resume_from).network;
   // A resumed run restores its own generator state.
-  torch::manual_seed(static_cast<uint64_t>(hideseek_world::readInt(pnh, "seed", 0, 0, 1 << 30)));
-  training_ = std::make_unique<TrainingRun>(o, ppo, arenas, device);
-  ROS_INFO("hider: training %s PPO, network %s, on %s in %s", variant.c_str(), networkName(network),
-           device.str().c_str(), precision.reason.c_str());
+  torch::manual_seed(static_cast<uint64_t>(options.seed));
+  training_ = std::make_unique<TrainingRun>(o, options.ppo, options.num_arenas, options.device);
+  ROS_INFO("hider: training %s PPO, network %s, on %s in %s", o.variant.c_str(), networkName(o.network),
+           options.device.str().c_str(), precision.reason.c_str());
   if (training_->totalSteps() != o.total_steps) {
     ROS_INFO("hider: %ld steps asked, training %ld: whole rollouts of %d arenas x %d steps, so that every sample "
              "collected is trained on", static_cast<long>(o.total_steps), static_cast<long>(training_->totalSteps()),
-             arenas, ppo.rollout_steps);
+             options.num_arenas, options.ppo.rollout_steps);
   }
   ROS_INFO("hider: %s at step %ld of %ld, into %s", training_->resumed() ? "resumed" : "started",
            static_cast<long>(training_->steps()), static_cast<long>(training_->totalSteps()), o.output_dir.c_str());

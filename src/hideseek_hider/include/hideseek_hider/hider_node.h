@@ -6,12 +6,36 @@
 #include <ros/ros.h>
 
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_hider/training_run.h"
+#include "hideseek_world/world_node_options.h"
 
 namespace hideseek_hider {
+
+enum class HiderMode { kRandom, kPolicy, kTrain };
+
+// Everything the hider node reads from the parameter server, read once and validated: a bad value
+// throws before the node publishes, naming the parameter (or the file and field).
+struct HiderNodeOptions {
+  hideseek_world::VariantConfig variant;
+  HiderMode mode = HiderMode::kRandom;
+  std::string policy = "random";            // checkpoint path (policy mode)
+  int threads = 2;                          // intra-op threads of the network
+  PrecisionRequest precision = PrecisionRequest::kAuto;
+  std::optional<NetworkKind> network;       // empty: auto (the checkpoint's; a new training run: ff)
+  torch::Device device = torch::kCPU;       // policy and train modes
+  bool greedy = true;                       // policy mode
+  // Train mode only.
+  TrainingOptions training;                 // output_dir, total_steps, checkpoint_interval_s, image size, variant
+  PpoOptions ppo;
+  int num_arenas = 16;
+  int seed = 0;
+};
+HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh);
 
 class HiderNode {
  public:
@@ -20,8 +44,7 @@ class HiderNode {
  private:
   void onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& msg);
 
-  void startTraining(const ros::NodeHandle& pnh, const std::string& variant, torch::Device device,
-                     const PrecisionChoice& precision, NetworkKind network);
+  void startTraining(const HiderNodeOptions& o);
 
   ros::NodeHandle nh_;
   std::unique_ptr<HiderPolicy> policy_;  // random and policy modes
