@@ -4,6 +4,7 @@
 # (evaluate.launch), beside the paper's figures (config/paper_reference.yaml).
 # Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/). Writes table2.md, table2.csv
 # and, per evaluation, OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv.
+# A shipped GRU hider (policies/<variant>_gru.pt) is evaluated too, as <variant>_gru_trained.
 set -euo pipefail
 out=$(realpath -m "${1:-$(dirname "$0")/../docs}")
 cd "$(dirname "$0")/.."
@@ -14,11 +15,14 @@ variants=(basic fasterhider visibilityreward_faster stochasticseeker stochasticm
 rm -rf "$out/evaluations"
 mkdir -p "$out/evaluations"
 for v in "${variants[@]}"; do
-  for p in random trained; do
+  for p in random trained gru_trained; do
     policy=random
     if [ "$p" = trained ]; then
       policy="$PWD/policies/$v.pt"
       [ -f "$policy" ] || { echo "evaluate_all: $v: no shipped policy"; continue; }
+    elif [ "$p" = gru_trained ]; then
+      policy="$PWD/policies/${v}_gru.pt"
+      [ -f "$policy" ] || continue
     fi
     dir="$out/evaluations/${v}_$p"
     rm -rf "$dir"

@@ -3,7 +3,8 @@
 
 usage: table2.py PAPER_REFERENCE.yaml EVALUATIONS_DIR OUTPUT_STEM POLICIES_DIR
 Reads EVALUATIONS_DIR/<variant>_{trained,random}/evaluation.csv and POLICIES_DIR/policies.yaml (each
-shipped policy's training steps and wall time), writes OUTPUT_STEM.md and .csv.
+shipped policy's training steps and wall time), writes OUTPUT_STEM.md and .csv. A GRU hider evaluated
+into EVALUATIONS_DIR/<variant>_gru_trained gets its own row, <variant>_gru, beside the same random hider.
 """
 import csv
 import os
@@ -35,10 +36,12 @@ def main(paper_file, evaluations, stem, policies):
         with open(os.path.join(policies, "policies.yaml")) as f:
             shipped = yaml.safe_load(f) or {}
     rows = []
-    for v in VARIANTS:
-        p = paper["variants"][v]
+    names = [(v, v) for v in VARIANTS]
+    names += [(v + "_gru", v) for v in VARIANTS if os.path.isdir(os.path.join(evaluations, v + "_gru_trained"))]
+    for v, base in names:
+        p = paper["variants"][base]
         trained = evaluation(os.path.join(evaluations, v + "_trained"))
-        random = evaluation(os.path.join(evaluations, v + "_random"))
+        random = evaluation(os.path.join(evaluations, base + "_random"))
         rows.append({
             "variant": v,
             "living_trained": "%.1f" % trained[0] if trained else "",
@@ -59,7 +62,9 @@ def main(paper_file, evaluations, stem, policies):
         "Average living steps and success rate over the evaluation seeds 0..99 (at most 1000 steps), "
         "trained policy (`%s/<variant>.pt`, greedy) / uniformly random hider, beside the paper's "
         "(trained for %d steps). Training: the steps and wall hours of the shipped checkpoint's run on this "
-        "2-core machine (fp32). An empty cell: no policy shipped for that variant yet." % (policies, paper["training_steps"]),
+        "2-core machine (fp32). An empty cell: no policy shipped for that variant yet. Rows `<variant>_gru`: "
+        "the recurrent hider (`%s/<variant>_gru.pt`), beside the paper's feed-forward numbers." %
+        (policies, paper["training_steps"], policies),
         "",
         "| variant | living steps, trained / random | paper | success %, trained / random | paper | training steps | wall h |",
         "| --- | --- | --- | --- | --- | --- | --- |",

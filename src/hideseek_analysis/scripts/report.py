@@ -9,9 +9,11 @@ INPUT_DIR holds
   features.csv                          one row per probed step: episode,step,S,H (the labels)
   features_trained.npy                  [rows, 512] float32 mid-level features of the trained network
   features_random.npy                   the same rows through a randomly initialised network
+  memory_trained.npy, memory_random.npy GRU policies only: the GRU state [rows, 512] after each
+                                        probed step, of the trained and of the random-init network
   layouts.csv                           obstacles of the episodes drawn top-down:
                                         episode,half_extent,x,y,size_x,size_y,yaw
-OUTPUT_DIR receives probes.csv/.md, tsne_S.png, tsne_H.png, state_frequencies.csv/.png,
+OUTPUT_DIR receives probes.csv/.md (features, and the GRU state where there is one), tsne_S.png, tsne_H.png, state_frequencies.csv/.png,
 transitions.csv/.png, distance_time.png; every figure is labelled with variant, policy and
 training steps.
 """
@@ -65,16 +67,19 @@ def write_table(stem, header, rows):
             f.write("| " + " | ".join(("%.4f" % v) if isinstance(v, float) else str(v) for v in r) + " |\n")
 
 
-def probes(labels, features, out, tag):
+def probes(labels, representations, out):
+    """representations: {"features": {"trained": X, "random_init": X}, optionally "gru_state": ...}."""
     rows = []
-    for target in ("S", "H"):
-        for network in ("trained", "random_init"):
-            r = ha.probe(features[network], labels[target].astype(int), labels["episode"])
-            rows.append([target, network, r["accuracy"], r["balanced_accuracy"], r["majority_accuracy"],
-                         r["positive_prior"], r["train_samples"], r["test_samples"], r["test_episodes"]])
+    for representation, arrays in representations.items():
+        for target in ("S", "H"):
+            for network in ("trained", "random_init"):
+                r = ha.probe(arrays[network], labels[target].astype(int), labels["episode"])
+                rows.append([target, network, r["accuracy"], r["balanced_accuracy"], r["majority_accuracy"],
+                             r["positive_prior"], r["train_samples"], r["test_samples"], r["test_episodes"],
+                             representation])
     write_table(os.path.join(out, "probes"), ["label", "network", "test_accuracy", "balanced_accuracy",
                                               "majority_class_accuracy", "positive_prior", "train_samples",
-                                              "test_samples", "test_episodes"], rows)
+                                              "test_samples", "test_episodes", "representation"], rows)
     return rows
 
 
@@ -200,11 +205,17 @@ def main():
     os.makedirs(a.output, exist_ok=True)
     title = "%s, %s, %d training steps" % (a.variant, a.policy, a.steps)
     labels = read_csv(os.path.join(a.input, "features.csv"))
-    features = {n: np.load(os.path.join(a.input, "features_%s.npy" % f)) for n, f in
-                (("trained", "trained"), ("random_init", "random"))}
-    for name, f in features.items():
-        if len(f) != len(labels["episode"]):
-            raise SystemExit("report: features_%s.npy has %d rows, features.csv %d" % (name, len(f), len(labels["episode"])))
+    representations = {}
+    for representation, stem in (("features", "features"), ("gru_state", "memory")):
+        if representation == "gru_state" and not os.path.exists(os.path.join(a.input, "memory_trained.npy")):
+            continue  # a feed-forward policy has no memory
+        representations[representation] = {n: np.load(os.path.join(a.input, "%s_%s.npy" % (stem, f))) for n, f in
+                                           (("trained", "trained"), ("random_init", "random"))}
+        for name, f in representations[representation].items():
+            if len(f) != len(labels["episode"]):
+                raise SystemExit("report: %s_%s.npy has %d rows, features.csv %d" %
+                                 (stem, name, len(f), len(labels["episode"])))
+    features = representations["features"]
     trained = read_csv(os.path.join(a.input, "steps_trained.csv"))
     random = read_csv(os.path.join(a.input, "steps_random.csv"))
     # State statistics over whole episodes only, on both sides.
@@ -212,8 +223,8 @@ def main():
     print("report: state statistics over %d whole episodes (%d steps) of the policy, %d (%d steps) of the random "
           "policy" % (len(set(trained_whole["episode"])), len(trained_whole["episode"]),
                       len(set(random_whole["episode"])), len(random_whole["episode"])))
-    print("report: probes")
-    probes(labels, features, a.output, title)
+    print("report: probes of the %s" % " and the ".join(r.replace("_", " ") for r in representations))
+    probes(labels, representations, a.output)
     print("report: t-SNE of %d samples" % min(a.tsne_samples, len(labels["episode"])))
     tsne(features["trained"], labels, a.output, title, a.tsne_samples)
     print("report: state frequencies and transitions")

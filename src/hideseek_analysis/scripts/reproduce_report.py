@@ -3,9 +3,11 @@
 
 usage: reproduce_report.py REPORT_DIR --paper config/paper_reference.yaml
 
-REPORT_DIR holds table2.csv (scripts/evaluate_all.sh) and one folder per analysed variant
-(analyze.launch report_dir:=REPORT_DIR/<variant>). Writes into REPORT_DIR:
-  table3.csv/.md                    probe accuracy, trained / random-init network, beside the paper's
+REPORT_DIR holds table2.csv (scripts/evaluate_all.sh) and one folder per analysed policy
+(analyze.launch report_dir:=REPORT_DIR/<variant>, and REPORT_DIR/<variant>_gru for a GRU hider).
+Writes into REPORT_DIR:
+  table3.csv/.md                    probe accuracy, trained / random-init network, beside the paper's;
+                                    a GRU hider has a second row, the probes of its GRU state
   state_frequencies_variants.png    trained minus random state frequencies, every variant
   transitions_variants.png          transition probabilities, every variant
   survival_vs_representation.png    self-visibility (H) probe balanced accuracy against average living
@@ -48,11 +50,18 @@ def markdown(header, table):
     return "\n".join(lines) + "\n"
 
 
-def probe_accuracies(folder):
-    """{(label, network): (accuracy %, balanced accuracy %, positive prior %)} of one variant's probes.csv."""
+def probe_accuracies(folder, representation="features"):
+    """{(label, network): (accuracy %, balanced accuracy %, positive prior %)} of one variant's probes.csv,
+    for the features or (a GRU hider) the GRU state; {} when the folder has no such probes."""
     return {(r["label"], r["network"]): (100 * float(r["test_accuracy"]), 100 * float(r["balanced_accuracy"]),
                                          100 * float(r["positive_prior"]))
-            for r in rows(os.path.join(folder, "probes.csv"))}
+            for r in rows(os.path.join(folder, "probes.csv"))
+            if r.get("representation", "features") == representation}
+
+
+def base_variant(name):
+    """The variant a policy folder plays: basic_gru plays basic."""
+    return name[:-len("_gru")] if name.endswith("_gru") else name
 
 
 WEAKER = ["slowerhider", "stochasticseeker", "visibilityreward"]  # the paper's moderate weaknesses
@@ -93,25 +102,31 @@ def main():
         paper = yaml.safe_load(f)
     ref = paper["variants"]
     table2 = {r["variant"]: r for r in rows(os.path.join(a.report, "table2.csv"))}
-    analysed = [v for v in ORDER if os.path.isfile(os.path.join(a.report, v, "probes.csv"))]
+    analysed = [v for base in ORDER for v in (base, base + "_gru")
+                if os.path.isfile(os.path.join(a.report, v, "probes.csv"))]
     if not analysed:
         raise SystemExit("reproduce_report: no variant folder with probes.csv in %s" % a.report)
     probes = {v: probe_accuracies(os.path.join(a.report, v)) for v in analysed}
+    memory_probes = {v: probe_accuracies(os.path.join(a.report, v), "gru_state") for v in analysed}
 
     # Table 3: probe accuracy beside the paper's.
     header = ["variant", "S: trained / random-init", "paper S", "H: trained / random-init", "paper H",
               "balanced S: trained / random-init", "balanced H: trained / random-init", "prior S=1 / H=1"]
     t3 = []
     for v in analysed:
-        p = probes[v]
-        t3.append([v,
-                   "%.1f / %.1f" % (p["S", "trained"][0], p["S", "random_init"][0]),
-                   "%.2f / %.2f" % (ref[v]["probe_S_trained"], ref[v]["probe_S_random"]),
-                   "%.1f / %.1f" % (p["H", "trained"][0], p["H", "random_init"][0]),
-                   "%.2f / %.2f" % (ref[v]["probe_H_trained"], ref[v]["probe_H_random"]),
-                   "%.1f / %.1f" % (p["S", "trained"][1], p["S", "random_init"][1]),
-                   "%.1f / %.1f" % (p["H", "trained"][1], p["H", "random_init"][1]),
-                   "%.1f / %.1f" % (p["S", "trained"][2], p["H", "trained"][2])])
+        r = ref[base_variant(v)]
+        for name, p in ((v, probes[v]), (v + ": GRU state", memory_probes[v])):
+            if not p:
+                continue
+            # The paper's network is feed-forward: its numbers stand beside ours for comparison only.
+            t3.append([name,
+                       "%.1f / %.1f" % (p["S", "trained"][0], p["S", "random_init"][0]),
+                       "%.2f / %.2f" % (r["probe_S_trained"], r["probe_S_random"]),
+                       "%.1f / %.1f" % (p["H", "trained"][0], p["H", "random_init"][0]),
+                       "%.2f / %.2f" % (r["probe_H_trained"], r["probe_H_random"]),
+                       "%.1f / %.1f" % (p["S", "trained"][1], p["S", "random_init"][1]),
+                       "%.1f / %.1f" % (p["H", "trained"][1], p["H", "random_init"][1]),
+                       "%.1f / %.1f" % (p["S", "trained"][2], p["H", "trained"][2])])
     write_table(os.path.join(a.report, "table3"), header, t3)
 
     # State frequencies and transitions across variants.
@@ -149,13 +164,19 @@ def main():
     plt.close(fig)
 
     # Survival against representation: one point per variant with a policy and an analysis.
+    # GRU hiders are drawn apart and left out of the fit, which is over the paper's network.
     points = [(probes[v]["H", "trained"][1], float(table2[v]["living_trained"]), v) for v in analysed
               if v in table2 and table2[v]["living_trained"] not in ("", None)]
     fig, ax = plt.subplots(figsize=(6, 4.5))
     for x, y, v in points:
-        ax.plot(x, y, "o", color="tab:blue")
+        gru = v.endswith("_gru")
+        ax.plot(x, y, "s" if gru else "o", color="tab:green" if gru else "tab:blue")
         ax.annotate(v, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=8)
-    fit_note = "fewer than 3 variants: no parabolic fit"
+    if any(p[2].endswith("_gru") for p in points):
+        ax.plot([], [], "s", color="tab:green", label="GRU hider (not in the fit)")
+        ax.legend(fontsize=8, loc="lower right")
+    points = [p for p in points if not p[2].endswith("_gru")]
+    fit_note = "fewer than 3 feed-forward variants: no parabolic fit"
     if len(points) >= 3:
         xs, ys = np.array([p[0] for p in points]), np.array([p[1] for p in points])
         coefficients = np.polyfit(xs, ys, 2)
@@ -178,7 +199,9 @@ def main():
              "CSV: [table2.csv](table2.csv); per evaluation: [evaluations/](evaluations/)", "",
              "## Table 3: linear probes of the 512 mid-level features", "",
              "Test accuracy in % on episodes held out from the probe's fit; the balanced accuracy (mean recall of "
-             "both classes) is 50 % for any probe that ignores its input.", "", markdown(header, t3).strip(), "",
+             "both classes) is 50 % for any probe that ignores its input. A GRU hider (`<variant>_gru`) has a "
+             "second row, the probes of its 512-unit GRU state after the step; the paper's columns there are its "
+             "feed-forward network's, for comparison.", "", markdown(header, t3).strip(), "",
              "CSV: [table3.csv](table3.csv)", "",
              "### Weaknesses against advantages", "", weakness_finding(probes), "",
              "## Across variants", "",

@@ -68,6 +68,23 @@ def test_transitions_do_not_cross_episodes_and_unvisited_states_are_nan():
 
 
 def test_report_writes_every_file_from_synthetic_inputs(tmp_path):
+    rows = run_report_on_synthetic_inputs(tmp_path, with_memory=False)
+    trained_s = [r for r in rows if r["label"] == "S" and r["network"] == "trained"][0]
+    assert float(trained_s["balanced_accuracy"]) > 0.9
+    assert {r["representation"] for r in rows} == {"features"}
+
+
+def test_report_probes_the_gru_state_of_a_recurrent_policy(tmp_path):
+    rows = run_report_on_synthetic_inputs(tmp_path, with_memory=True)
+    got = {(r["representation"], r["label"], r["network"]): float(r["balanced_accuracy"]) for r in rows}
+    assert len(got) == 8 and len(rows) == 8
+    # The synthetic GRU state carries H, the features do not: each probe reads its own array.
+    assert got["gru_state", "H", "trained"] > 0.9
+    assert got["features", "H", "trained"] < 0.7
+    assert got["gru_state", "H", "random_init"] < 0.7
+
+
+def run_report_on_synthetic_inputs(tmp_path, with_memory):
     import subprocess
     import sys
     import os
@@ -93,6 +110,11 @@ def test_report_writes_every_file_from_synthetic_inputs(tmp_path):
     features[:, :8] += 3.0 * s[:, None]  # the label shows in a few directions
     np.save(inp / "features_trained.npy", features)
     np.save(inp / "features_random.npy", rng.normal(size=(len(episodes), 512)).astype(np.float32))
+    if with_memory:
+        memory = rng.normal(size=(len(episodes), 512)).astype(np.float32)
+        memory[:, :8] += 3.0 * h[:, None]
+        np.save(inp / "memory_trained.npy", memory)
+        np.save(inp / "memory_random.npy", rng.normal(size=(len(episodes), 512)).astype(np.float32))
     here = os.path.dirname(os.path.abspath(__file__))
     subprocess.run([sys.executable, os.path.join(here, "report.py"), str(inp), str(out), "--variant", "basic",
                     "--policy", "synthetic", "--steps", "0", "--tsne-samples", "200"], check=True, cwd=here)
@@ -101,9 +123,7 @@ def test_report_writes_every_file_from_synthetic_inputs(tmp_path):
                  "distance_time.png"):
         assert (out / name).stat().st_size > 0, name
     with open(out / "probes.csv") as f:
-        rows = list(csv_rows(f))
-    trained_s = [r for r in rows if r["label"] == "S" and r["network"] == "trained"][0]
-    assert float(trained_s["balanced_accuracy"]) > 0.9
+        return list(csv_rows(f))
 
 
 def csv_rows(f):

@@ -9,6 +9,7 @@
 
 #include "hideseek_seeker/random_hider_game.h"
 #include "hideseek_world/arena.h"
+#include "hideseek_world/renderer.h"
 
 namespace hideseek_analysis {
 
@@ -56,7 +57,11 @@ torch::Tensor extractFeatures(hideseek_hider::HiderNet& net, const uint8_t* imag
     const int64_t b = std::min<int64_t>(batch, count - first);
     const torch::Tensor x =
         torch::from_blob(const_cast<uint8_t*>(images + first * bytes), {b, height, width, 3}, torch::kUInt8);
-    parts.push_back(net->forward(x).features.to(torch::kFloat32).contiguous());
+    const torch::Tensor f =
+        net->recurrent()
+            ? net->forwardSequence(x.unsqueeze(0), net->initialHidden(b), torch::zeros({1, b})).features[0]
+            : net->forward(x).features;
+    parts.push_back(f.to(torch::kFloat32).contiguous());
   }
   if (parts.empty()) return torch::zeros({0, hideseek_hider::kFeatures});
   return torch::cat(parts).contiguous();
@@ -79,6 +84,93 @@ void writeNpy(const std::string& path, const float* data, int64_t rows, int64_t 
   out << header;
   out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(rows * cols * sizeof(float)));
   if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+MemoryReplay replayMemory(const StepLog& log, const std::vector<hideseek_hider::HiderNet*>& nets,
+                          const hw::VariantConfig& variant, std::shared_ptr<const hw::MapSpec> map, int tolerance,
+                          int render_threads) {
+  for (auto* net : nets) {
+    if (!(*net)->recurrent()) throw std::invalid_argument("replayMemory: a feed-forward network has no memory");
+  }
+  const int n = log.numArenas();
+  const int h = variant.game.camera.height, w = variant.game.camera.width;
+  if (log.numImages() > 0 && (log.imageHeight() != h || log.imageWidth() != w)) {
+    throw std::runtime_error("the recorded images are " + std::to_string(log.imageHeight()) + "x" +
+                             std::to_string(log.imageWidth()) + ", variant '" + variant.name + "' renders " +
+                             std::to_string(h) + "x" + std::to_string(w));
+  }
+  hw::RendererOptions r;
+  r.camera = variant.game.camera;
+  r.max_views = n;
+  r.agent_radius = variant.game.agent_radius;
+  r.agent_height = variant.game.agent_height;
+  r.colors = map->colors;
+  r.render_threads = render_threads;
+  hw::Renderer renderer(r);
+  std::vector<hw::Arena> arenas;
+  for (int i = 0; i < n; ++i) arenas.emplace_back(variant.game, map);
+
+  torch::NoGradGuard no_grad;
+  MemoryReplay out;
+  std::vector<torch::Tensor> hidden;
+  for (auto* net : nets) {
+    (*net)->eval();
+    hidden.push_back((*net)->initialHidden(n));
+    out.memory.push_back(torch::zeros({log.numImages(), hideseek_hider::kHidden}));
+  }
+  const size_t bytes = static_cast<size_t>(h) * w * 3;
+  std::vector<uint8_t> rendered(bytes * n);
+  std::vector<hw::ViewRequest> views(n);
+  const auto& records = log.records();
+  for (size_t d = 0; d < log.decisions(); ++d) {
+    torch::Tensor starts = torch::zeros({1, n});
+    for (int i = 0; i < n; ++i) {
+      const ArenaStepRecord& rec = records[d * n + i];
+      if (d == 0 && rec.step != 0) {
+        throw std::runtime_error("arena " + std::to_string(i) + " is logged from step " + std::to_string(rec.step) +
+                                 " of episode " + std::to_string(rec.seed) +
+                                 ", not from its start: its GRU state before that step is unknown");
+      }
+      if (rec.step == 0) {
+        arenas[i].reset(rec.seed);
+        renderer.setScene(i, arenas[i].layout());
+        starts[0][i] = 1.0;
+      }
+      views[i].scene = i;
+      views[i].viewer.position = {rec.hider_x, rec.hider_y};
+      views[i].viewer.yaw = rec.hider_yaw;
+      views[i].other.position = {rec.seeker_x, rec.seeker_y};
+      views[i].other.yaw = rec.seeker_yaw;
+      views[i].other_is_hider = false;
+    }
+    renderer.render(views, hw::RenderMode::kColor, rendered.data());
+    for (int i = 0; i < n; ++i) {
+      const ArenaStepRecord& rec = records[d * n + i];
+      if (rec.image < 0) continue;
+      const uint8_t* recorded = log.images().data() + static_cast<size_t>(rec.image) * bytes;
+      const uint8_t* again = rendered.data() + static_cast<size_t>(i) * bytes;
+      int worst = 0;
+      for (size_t k = 0; k < bytes; ++k) worst = std::max(worst, std::abs(int(recorded[k]) - int(again[k])));
+      out.max_pixel_difference = std::max(out.max_pixel_difference, worst);
+      ++out.images_compared;
+      if (worst > tolerance) {
+        throw std::runtime_error("the hider image of episode " + std::to_string(rec.seed) + ", step " +
+                                 std::to_string(rec.step) + " (arena " + std::to_string(i) + ", decision " +
+                                 std::to_string(rec.decision) + ") rendered again from the recorded poses differs " +
+                                 "from the recorded one by " + std::to_string(worst) + " in a pixel (tolerance " +
+                                 std::to_string(tolerance) + "): was it recorded with another variant or map?");
+      }
+    }
+    const torch::Tensor images = torch::from_blob(rendered.data(), {1, n, h, w, 3}, torch::kUInt8);
+    for (size_t k = 0; k < nets.size(); ++k) {
+      const torch::Tensor memory = (*nets[k])->forwardSequence(images, hidden[k], starts, &hidden[k]).memory[0];
+      for (int i = 0; i < n; ++i) {
+        const ArenaStepRecord& rec = records[d * n + i];
+        if (rec.image >= 0) out.memory[k][rec.image].copy_(memory[i]);
+      }
+    }
+  }
+  return out;
 }
 
 AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::HiderNet& trained,
@@ -117,11 +209,20 @@ AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::Hi
              << r.obstacle_in_view << '\n';
     }
     torch::manual_seed(options.random_init_seed);
-    hideseek_hider::HiderNet random_init(h, w);
+    hideseek_hider::HiderNet random_init(h, w, trained->network());
     for (auto [name, net] : {std::pair<const char*, hideseek_hider::HiderNet*>{"trained", &trained},
                              std::pair<const char*, hideseek_hider::HiderNet*>{"random", &random_init}}) {
       const torch::Tensor f = extractFeatures(*net, log.images().data(), summary.images, h, w, options.batch);
       writeNpy(dir + "/features_" + name + ".npy", f.data_ptr<float>(), f.size(0), f.size(1));
+    }
+    if (trained->recurrent()) {
+      const MemoryReplay replay = replayMemory(log, {&trained, &random_init}, variant, map, options.pixel_tolerance);
+      summary.memory_images_compared = replay.images_compared;
+      summary.max_pixel_difference = replay.max_pixel_difference;
+      for (auto [name, k] : {std::pair<const char*, size_t>{"trained", 0}, std::pair<const char*, size_t>{"random", 1}}) {
+        const torch::Tensor m = replay.memory[k].contiguous();
+        writeNpy(dir + "/memory_" + name + ".npy", m.data_ptr<float>(), m.size(0), m.size(1));
+      }
     }
   }
 

@@ -37,15 +37,21 @@ void runAnalysis(const AnalysisJob& job) {
   const int h = job.variant.game.camera.height, w = job.variant.game.camera.width;
   hideseek_hider::CheckpointInfo info;
   hideseek_hider::HiderNet net = hideseek_hider::loadCheckpoint(job.policy, h, w, &info);
-  if (net->recurrent()) throw std::runtime_error(gruNotAnalysed(job.policy));
-  std::printf("analysis: features of %ld images through %s (%ld training steps) and a random network (seed %u)\n",
-              static_cast<long>(log.numImages()), job.policy.c_str(), static_cast<long>(info.steps),
-              job.inputs.random_init_seed);
+  std::printf("analysis: features of %ld images through %s (network %s, %ld training steps) and a random network "
+              "(seed %u)%s\n",
+              static_cast<long>(log.numImages()), job.policy.c_str(), hideseek_hider::networkName(net->network()),
+              static_cast<long>(info.steps), job.inputs.random_init_seed,
+              net->recurrent() ? "; GRU states of every step, re-rendered from the recorded poses" : "");
   std::fflush(stdout);
   const AnalysisInputsSummary s = writeAnalysisInputs(log, net, job.variant,
                                                       std::make_shared<const hideseek_world::MapSpec>(
                                                           hideseek_world::loadMapFile(job.variant.map_file)),
                                                       job.inputs, job.inputs_dir);
+  if (net->recurrent()) {
+    std::printf("analysis: GRU states replayed; %ld recorded images match their re-rendering (largest pixel "
+                "difference %d)\n",
+                static_cast<long>(s.memory_images_compared), s.max_pixel_difference);
+  }
   std::printf("analysis: %zu episodes; random policy: %zu steps in %zu episodes; inputs in %s (%.0f s)\n", s.episodes,
               s.random_steps, s.random_episodes, job.inputs_dir.c_str(), elapsed());
   std::fflush(stdout);
@@ -57,12 +63,6 @@ void runAnalysis(const AnalysisJob& job) {
   const int status = std::system(command.c_str());
   if (status != 0) throw std::runtime_error("the report (" + job.report_script + ") failed; see its output above");
   std::printf("analysis: report in %s (%.0f s in all)\n", job.report_dir.c_str(), elapsed());
-}
-
-std::string gruNotAnalysed(const std::string& policy) {
-  return "checkpoint " + policy +
-         " holds a recurrent (GRU) hider: its probes need the GRU state of every step, which the analysis bag does "
-         "not record yet; analyse a feed-forward (network ff) policy";
 }
 
 }  // namespace hideseek_analysis

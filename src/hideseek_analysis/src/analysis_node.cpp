@@ -98,10 +98,8 @@ int main(int argc, char** argv) {
       if (!std::filesystem::is_regular_file(job.policy)) {
         throw std::runtime_error("parameter " + pnh.resolveName("policy") + ": no checkpoint at " + job.policy);
       }
-      // Refused before recording, not after: the probes cannot read a GRU's state yet.
-      if (hideseek_hider::readCheckpointInfo(job.policy).network == hideseek_hider::NetworkKind::kGru) {
-        throw std::runtime_error(hideseek_analysis::gruNotAnalysed(job.policy));
-      }
+      // Read before recording, not after: a file that is no checkpoint stops the launch at once.
+      hideseek_hider::readCheckpointInfo(job.policy);
       recorder = std::make_unique<Recorder>(nh, job.bag, decisions);
       ROS_INFO("analysis: recording %d decisions of world/steps into %s", decisions, job.bag.c_str());
     } catch (const std::exception& e) {

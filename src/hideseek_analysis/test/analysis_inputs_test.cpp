@@ -66,8 +66,10 @@ TEST(ExtractFeatures, GivesTheNetworksFeaturesWhateverTheBatch) {
 }
 
 // A short rollout of the random hider on two rendered arenas, logged as the world node does:
-// the state before each decision (image every 5th decision), then the actions and results.
-StepLog rollout(const hw::VariantConfig& v, std::shared_ptr<const hw::MapSpec> map, int decisions) {
+// the state before each decision (image every 5th decision), then the actions and results. The
+// log starts at decision `first`; `all_images`, when given, receives every decision's images.
+StepLog rollout(const hw::VariantConfig& v, std::shared_ptr<const hw::MapSpec> map, int decisions, int first = 0,
+                std::vector<std::vector<uint8_t>>* all_images = nullptr) {
   const int n = 2;
   hw::World world(v.game, map, n, 10000, true, 1);
   std::vector<hideseek_seeker::SeekerPolicy> seekers;
@@ -79,6 +81,7 @@ StepLog rollout(const hw::VariantConfig& v, std::shared_ptr<const hw::MapSpec> m
   StepLog log;
   for (int d = 0; d < decisions; ++d) {
     world.renderHiderViews(images.data());
+    if (all_images && d >= first) all_images->push_back(images);
     DecisionRecord r;
     r.decision = static_cast<uint64_t>(d);
     if (d % 5 == 0) {
@@ -95,6 +98,8 @@ StepLog rollout(const hw::VariantConfig& v, std::shared_ptr<const hw::MapSpec> m
       s.hider_y = a.hider().position.y;
       s.seeker_x = a.seeker().position.x;
       s.seeker_y = a.seeker().position.y;
+      s.hider_yaw = a.hider().yaw;
+      s.seeker_yaw = a.seeker().yaw;
       s.hider_sees_seeker = a.labels().hider_sees_seeker;
       s.seeker_sees_hider = a.labels().seeker_sees_hider;
       const auto hider = static_cast<hw::Action>(hw::hashAction(a.seed(), s.step, hw::kSaltRandomHider));
@@ -104,7 +109,7 @@ StepLog rollout(const hw::VariantConfig& v, std::shared_ptr<const hw::MapSpec> m
       if (step.finished) seekers[i].reset(world.arena(i).layout(), world.arena(i).seed());
       r.arenas.push_back(s);
     }
-    log.append(r);
+    if (d >= first) log.append(r);
   }
   return log;
 }
@@ -150,6 +155,97 @@ TEST(WriteAnalysisInputs, RefusesARecordingOfAnotherMap) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("another variant or map"), std::string::npos) << e.what();
   }
+}
+
+// The GRU state of every recorded image, replayed from the log, is the state the network reaches
+// when it runs over every image of the rollout step by step (as the hider node does), with its
+// state zeroed at each episode start; and every recorded image is re-rendered exactly.
+TEST(ReplayMemory, GivesTheStateOfAStepByStepRunOverEveryImage) {
+  const auto v = variant("basic");
+  const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(v.map_file));
+  std::vector<std::vector<uint8_t>> all;
+  const StepLog log = rollout(v, map, 150, 0, &all);
+  torch::manual_seed(5);
+  hideseek_hider::HiderNet net(v.game.camera.height, v.game.camera.width, hideseek_hider::NetworkKind::kGru);
+  const MemoryReplay replay = replayMemory(log, {&net}, v, map, 0, 1);
+  EXPECT_EQ(replay.images_compared, 60);
+  EXPECT_EQ(replay.max_pixel_difference, 0);
+  ASSERT_EQ(replay.memory.size(), 1u);
+  ASSERT_EQ(replay.memory[0].sizes(), (std::vector<int64_t>{60, hideseek_hider::kHidden}));
+
+  torch::NoGradGuard no_grad;
+  const int n = log.numArenas(), h = v.game.camera.height, w = v.game.camera.width;
+  torch::Tensor hidden = net->initialHidden(n);
+  size_t episode_starts_inside = 0;
+  for (size_t d = 0; d < log.decisions(); ++d) {
+    torch::Tensor starts = torch::zeros({1, n});
+    for (int i = 0; i < n; ++i) {
+      if (log.records()[d * n + i].step == 0) {
+        starts[0][i] = 1.0;
+        episode_starts_inside += d > 0;
+      }
+    }
+    const torch::Tensor images = torch::from_blob(all[d].data(), {1, n, h, w, 3}, torch::kUInt8);
+    const torch::Tensor memory = net->forwardSequence(images, hidden, starts, &hidden).memory[0];
+    for (int i = 0; i < n; ++i) {
+      const int64_t image = log.records()[d * n + i].image;
+      if (image >= 0) {
+        ASSERT_TRUE(torch::allclose(replay.memory[0][image], memory[i], 1e-5, 1e-5)) << "decision " << d << ", arena " << i;
+      }
+    }
+  }
+  EXPECT_GT(episode_starts_inside, 0u);  // random hiders are caught: states were reset inside the log
+  // The state carries memory: it is not the state a fresh episode would have for the same image.
+  const torch::Tensor fresh = net->forwardSequence(torch::from_blob(all[149].data(), {1, n, h, w, 3}, torch::kUInt8),
+                                                   net->initialHidden(n), torch::ones({1, n}))
+                                  .memory[0];
+  EXPECT_FALSE(torch::allclose(hidden, fresh, 1e-3, 1e-3));
+}
+
+TEST(ReplayMemory, RefusesARecordingOfAnotherMap) {
+  const auto basic = variant("basic");
+  const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(basic.map_file));
+  const StepLog log = rollout(basic, map, 30);
+  const auto other = variant("stochasticmaps");
+  const auto other_map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(other.map_file));
+  hideseek_hider::HiderNet net(basic.game.camera.height, basic.game.camera.width, hideseek_hider::NetworkKind::kGru);
+  try {
+    replayMemory(log, {&net}, other, other_map, 0, 1);
+    FAIL() << "a recording of the deterministic map was replayed in the stochastic maps";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("rendered again from the recorded poses differs"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(ReplayMemory, RefusesALogThatStartsInsideAnEpisode) {
+  const auto v = variant("basic");
+  const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(v.map_file));
+  const StepLog log = rollout(v, map, 30, 10);
+  hideseek_hider::HiderNet net(v.game.camera.height, v.game.camera.width, hideseek_hider::NetworkKind::kGru);
+  try {
+    replayMemory(log, {&net}, v, map, 0, 1);
+    FAIL() << "a log starting at step 10 was replayed as if the GRU state were known";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("is logged from step 10"), std::string::npos) << e.what();
+  }
+}
+
+TEST(WriteAnalysisInputs, WritesTheGruStatesOfARecurrentPolicy) {
+  TempDir dir;
+  const auto v = variant("basic");
+  const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(v.map_file));
+  const StepLog log = rollout(v, map, 50);
+  torch::manual_seed(2);
+  hideseek_hider::HiderNet net(v.game.camera.height, v.game.camera.width, hideseek_hider::NetworkKind::kGru);
+  const auto s = writeAnalysisInputs(log, net, v, map, {}, dir.path.string());
+  EXPECT_EQ(s.memory_images_compared, 20);
+  const std::string d = dir.path.string() + "/";
+  for (const char* f : {"features_trained.npy", "features_random.npy", "memory_trained.npy", "memory_random.npy"}) {
+    EXPECT_NE(slurp(d + f).find("'shape': (20, 512)"), std::string::npos) << f;
+  }
+  EXPECT_NE(slurp(d + "memory_trained.npy"), slurp(d + "memory_random.npy"));
+  EXPECT_NE(slurp(d + "memory_trained.npy"), slurp(d + "features_trained.npy"));
 }
 
 }  // namespace

@@ -24,7 +24,4 @@ struct AnalysisJob {
 // std::runtime_error otherwise) with a message that names the file at fault.
 void runAnalysis(const AnalysisJob& job);
 
-// Why a GRU policy cannot be analysed yet (its probes need the state, which the bag does not hold).
-std::string gruNotAnalysed(const std::string& policy);
-
 }  // namespace hideseek_analysis
