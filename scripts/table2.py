@@ -36,8 +36,8 @@ def main(paper_file, evaluations, stem, policies):
         with open(os.path.join(policies, "policies.yaml")) as f:
             shipped = yaml.safe_load(f) or {}
     rows = []
-    names = [(v, v) for v in VARIANTS]
-    names += [(v + "_gru", v) for v in VARIANTS if os.path.isdir(os.path.join(evaluations, v + "_gru_trained"))]
+    names = [(name, v) for v in VARIANTS for name in (v, v + "_gru")
+             if name == v or os.path.isdir(os.path.join(evaluations, name + "_trained"))]
     for v, base in names:
         p = paper["variants"][base]
         trained = evaluation(os.path.join(evaluations, v + "_trained"))

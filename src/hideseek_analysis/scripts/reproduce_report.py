@@ -165,15 +165,16 @@ def main():
 
     # Survival against representation: one point per variant with a policy and an analysis.
     # GRU hiders are drawn apart and left out of the fit, which is over the paper's network.
-    points = [(probes[v]["H", "trained"][1], float(table2[v]["living_trained"]), v) for v in analysed
-              if v in table2 and table2[v]["living_trained"] not in ("", None)]
+    # A GRU hider's point reads the probe of its GRU state, what its heads act on.
+    points = [((memory_probes[v] or probes[v])["H", "trained"][1], float(table2[v]["living_trained"]), v)
+              for v in analysed if v in table2 and table2[v]["living_trained"] not in ("", None)]
     fig, ax = plt.subplots(figsize=(6, 4.5))
     for x, y, v in points:
         gru = v.endswith("_gru")
         ax.plot(x, y, "s" if gru else "o", color="tab:green" if gru else "tab:blue")
         ax.annotate(v, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=8)
     if any(p[2].endswith("_gru") for p in points):
-        ax.plot([], [], "s", color="tab:green", label="GRU hider (not in the fit)")
+        ax.plot([], [], "s", color="tab:green", label="GRU hider: probe of its GRU state (not in the fit)")
         ax.legend(fontsize=8, loc="lower right")
     points = [p for p in points if not p[2].endswith("_gru")]
     fit_note = "fewer than 3 feed-forward variants: no parabolic fit"

@@ -91,6 +91,8 @@ int main(int argc, char** argv) {
       job.bag = hideseek_world::readString(pnh, "bag", job.inputs_dir + "/rollout.bag");
       job.inputs.random_init_seed = static_cast<uint32_t>(hideseek_world::readInt(pnh, "random_init_seed", 0, 0, 1 << 30));
       job.tsne_samples = hideseek_world::readInt(pnh, "tsne_samples", 3000, 100, 100000);
+      job.inputs.pixel_tolerance = hideseek_world::readInt(pnh, "pixel_tolerance", 0, 0, 255);
+      const std::string precision = hideseek_world::readString(pnh, "precision", "fp32");
       if (!pnh.hasParam("decisions")) {
         throw std::runtime_error("parameter " + pnh.resolveName("decisions") + " is required (decision steps to record)");
       }
@@ -99,7 +101,12 @@ int main(int argc, char** argv) {
         throw std::runtime_error("parameter " + pnh.resolveName("policy") + ": no checkpoint at " + job.policy);
       }
       // Read before recording, not after: a file that is no checkpoint stops the launch at once.
-      hideseek_hider::readCheckpointInfo(job.policy);
+      if (hideseek_hider::readCheckpointInfo(job.policy).network == hideseek_hider::NetworkKind::kGru &&
+          precision != "fp32") {
+        throw std::runtime_error("parameter " + pnh.resolveName("precision") + " is '" + precision +
+                                 "': a GRU policy is analysed in fp32 only, because its state is replayed in fp32 "
+                                 "and would drift from the state a " + precision + " hider acted on; set precision:=fp32");
+      }
       recorder = std::make_unique<Recorder>(nh, job.bag, decisions);
       ROS_INFO("analysis: recording %d decisions of world/steps into %s", decisions, job.bag.c_str());
     } catch (const std::exception& e) {

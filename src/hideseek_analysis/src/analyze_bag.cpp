@@ -1,7 +1,9 @@
 // Analyses an existing recording (one made by analyze.launch, or any bag holding world/steps),
 // without a ROS master.
 // usage: analyze_bag VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]
+//   HIDESEEK_PIXEL_TOLERANCE (GRU policies): see analyze.launch's pixel_tolerance.
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <string>
 
@@ -23,6 +25,8 @@ int main(int argc, char** argv) {
     job.inputs_dir = argv[4];
     job.report_dir = argc > 5 ? argv[5] : job.inputs_dir + "/report";
     job.report_script = HIDESEEK_REPORT_SCRIPT;
+    // GRU policies: a bag recorded with another Mesa may differ from its re-rendering by a level or two.
+    if (const char* tolerance = std::getenv("HIDESEEK_PIXEL_TOLERANCE")) job.inputs.pixel_tolerance = std::atoi(tolerance);
     hideseek_analysis::runAnalysis(job);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "analyze_bag: %s\n", e.what());

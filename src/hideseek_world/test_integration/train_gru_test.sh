@@ -4,7 +4,8 @@
 # relaunched on that folder with network:=ff it is refused with a message naming both networks,
 # with network:=gru it resumes from the checkpoint's step, and with network:=auto (the default)
 # it resumes as gru too. analyze.launch then analyses the GRU policy: every recorded image matches
-# its re-rendering from the recorded poses, and the probes read the GRU state as well as the features.
+# its re-rendering from the recorded poses, and the probes read the GRU state as well as the features;
+# with precision:=bf16 (its state could not be replayed) it is refused before recording.
 # Writes an xunit result. usage: train_gru_test.sh XUNIT_OUTPUT
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -41,6 +42,12 @@ train auto 1536
 grep -q "network gru" "$run/launch_auto_1536.log" && grep -q "resumed at step 1024" "$run/launch_auto_1536.log" ||
   failures+=("network:=auto did not resume the GRU run as gru at step 1024")
 
+timeout -s INT 120 roslaunch -p "$port" hideseek_world analyze.launch variant:=tiny_basic \
+  variant_config:="$here/data/tiny_basic.yaml" policy:="$run/policy.pt" steps:=160 num_arenas:=1 precision:=bf16 \
+  output_dir:="$run/analysis_bf16" > "$run/analyze_bf16.log" 2>&1
+grep -F "[FATAL]" "$run/analyze_bf16.log" | grep -q "a GRU policy is analysed in fp32 only" ||
+  failures+=("analyze.launch precision:=bf16 did not refuse the GRU policy with a clear message")
+[ ! -e "$run/analysis_bf16/rollout.bag" ] || failures+=("analyze.launch recorded a bf16 GRU rollout it cannot replay")
 timeout -s INT 300 roslaunch -p "$port" hideseek_world analyze.launch variant:=tiny_basic \
   variant_config:="$here/data/tiny_basic.yaml" policy:="$run/policy.pt" steps:=1600 num_arenas:=4 image_every:=2 \
   tsne_samples:=200 output_dir:="$run/analysis" > "$run/analyze.log" 2>&1
