@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Trains, one after the other, every run of the paper's set that has no shipped policy yet: the
+# feed-forward hider of each variant (training seed 0), basic with training seeds 1 and 2 (the
+# spread), and the GRU hider on basic, slowerhider and stochasticmaps. Each run goes through
+# scripts/train_variant.sh, so a run stopped part way (a session ended, a machine rebooted)
+# resumes from RUNS_DIR/<run>/checkpoint.pt when this script is started again, and a finished
+# one ships its policy, log and learning curve. Runs whose policy exists are skipped.
+# usage: scripts/train_pending.sh [RUNS_DIR=~/hideseek_runs] [STEPS=2000000]
+#   HIDESEEK_LIST=1 only prints what is pending.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+runs=${1:-$HOME/hideseek_runs}
+steps=${2:-2000000}
+# variant seed network policy-file
+plan=(
+  "fasterhider 0 ff fasterhider"
+  "stochasticseeker 0 ff stochasticseeker"
+  "stochasticmaps 0 ff stochasticmaps"
+  "visibilityreward 0 ff visibilityreward"
+  "visibilityreward_faster 0 ff visibilityreward_faster"
+  "basic 1 ff basic_seed1"
+  "basic 2 ff basic_seed2"
+  "basic 0 gru basic_gru"
+  "slowerhider 0 gru slowerhider_gru"
+  "stochasticmaps 0 gru stochasticmaps_gru"
+)
+pending=()
+for entry in "${plan[@]}"; do
+  read -r variant seed network name <<< "$entry"
+  [ -f "policies/$name.pt" ] || pending+=("$entry")
+done
+echo "train_pending: ${#pending[@]} of ${#plan[@]} runs pending:"
+for entry in "${pending[@]}"; do
+  read -r variant seed network name <<< "$entry"
+  note=""
+  [ -f "$runs/$name/checkpoint.pt" ] && note=" (resumes from $runs/$name, at $(tail -n 1 "$runs/$name/training_log.csv" 2>/dev/null | cut -d, -f2 || true) steps)"
+  echo "  $name: $variant, training seed $seed, network $network$note"
+done
+[ -z "${HIDESEEK_LIST:-}" ] || exit 0
+for entry in "${pending[@]}"; do
+  read -r variant seed network name <<< "$entry"
+  echo "train_pending: $name, started $(date '+%F %T')"
+  scripts/train_variant.sh "$variant" "$seed" "$steps" "$runs" "$network"
+done
+echo "train_pending: nothing left to train"
