@@ -29,6 +29,8 @@ if [ "${trained:-0}" -lt "$steps" ]; then
   exit 1
 fi
 devel/lib/hideseek_hider/export_policy "$run/checkpoint.pt" "policies/$name.pt"
+# A partial export committed while the run was unfinished is superseded.
+rm -f "policies/${name}_partial.pt" "docs/training_log_${name}_partial.csv" "docs/learning_curve_${name}_partial.png"
 cp "$run/training_log.csv" "docs/training_log_$name.csv"
 /usr/bin/python3 scripts/plot_learning_curve.py "docs/training_log_$name.csv" "docs/learning_curve_$name.png" \
   "$variant, network $network, training seed $seed, $(tail -n 1 "$run/training_log.csv" | cut -d, -f2) steps"
