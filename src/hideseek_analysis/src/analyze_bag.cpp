@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 #include "hideseek_analysis/analysis_job.h"
@@ -26,7 +27,15 @@ int main(int argc, char** argv) {
     job.report_dir = argc > 5 ? argv[5] : job.inputs_dir + "/report";
     job.report_script = HIDESEEK_REPORT_SCRIPT;
     // GRU policies: a bag recorded with another Mesa may differ from its re-rendering by a level or two.
-    if (const char* tolerance = std::getenv("HIDESEEK_PIXEL_TOLERANCE")) job.inputs.pixel_tolerance = std::atoi(tolerance);
+    if (const char* tolerance = std::getenv("HIDESEEK_PIXEL_TOLERANCE")) {
+      char* end = nullptr;
+      const long value = std::strtol(tolerance, &end, 10);
+      if (end == tolerance || *end != '\0' || value < 0 || value > 255) {
+        throw std::runtime_error(std::string("HIDESEEK_PIXEL_TOLERANCE is '") + tolerance +
+                                 "': it must be a whole number from 0 to 255");
+      }
+      job.inputs.pixel_tolerance = static_cast<int>(value);
+    }
     hideseek_analysis::runAnalysis(job);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "analyze_bag: %s\n", e.what());

@@ -21,6 +21,10 @@ hw::VariantConfig variant(const std::string& name) {
   return hw::loadVariantConfig(kConfig + "/game.yaml", kConfig + "/variants/" + name + ".yaml");
 }
 
+std::shared_ptr<const hw::MapSpec> mapOf(const hw::VariantConfig& v) {
+  return std::make_shared<const hw::MapSpec>(hw::loadMapFile(v.map_file));
+}
+
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), {});
@@ -117,7 +121,7 @@ StepLog rollout(const hw::VariantConfig& v, std::shared_ptr<const hw::MapSpec> m
 TEST(WriteAnalysisInputs, WritesEveryArrayTheReportReads) {
   TempDir dir;
   const auto v = variant("basic");
-  const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(v.map_file));
+  const auto map = mapOf(v);
   const StepLog log = rollout(v, map, 150);
   torch::manual_seed(1);
   hideseek_hider::HiderNet net(v.game.camera.height, v.game.camera.width);
@@ -144,10 +148,10 @@ TEST(WriteAnalysisInputs, WritesEveryArrayTheReportReads) {
 TEST(WriteAnalysisInputs, RefusesARecordingOfAnotherMap) {
   TempDir dir;
   const auto basic = variant("basic");
-  const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(basic.map_file));
+  const auto map = mapOf(basic);
   const StepLog log = rollout(basic, map, 150);
   const auto other = variant("stochasticmaps");
-  const auto other_map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(other.map_file));
+  const auto other_map = mapOf(other);
   hideseek_hider::HiderNet net(basic.game.camera.height, basic.game.camera.width);
   try {
     writeAnalysisInputs(log, net, other, other_map, {}, dir.path.string());
@@ -162,7 +166,7 @@ TEST(WriteAnalysisInputs, RefusesARecordingOfAnotherMap) {
 // state zeroed at each episode start; and every recorded image is re-rendered exactly.
 TEST(ReplayMemory, GivesTheStateOfAStepByStepRunOverEveryImage) {
   const auto v = variant("basic");
-  const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(v.map_file));
+  const auto map = mapOf(v);
   std::vector<std::vector<uint8_t>> all;
   const StepLog log = rollout(v, map, 150, 0, &all);
   torch::manual_seed(5);
@@ -204,10 +208,10 @@ TEST(ReplayMemory, GivesTheStateOfAStepByStepRunOverEveryImage) {
 
 TEST(ReplayMemory, RefusesARecordingOfAnotherMap) {
   const auto basic = variant("basic");
-  const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(basic.map_file));
+  const auto map = mapOf(basic);
   const StepLog log = rollout(basic, map, 30);
   const auto other = variant("stochasticmaps");
-  const auto other_map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(other.map_file));
+  const auto other_map = mapOf(other);
   hideseek_hider::HiderNet net(basic.game.camera.height, basic.game.camera.width, hideseek_hider::NetworkKind::kGru);
   try {
     replayMemory(log, {&net}, other, other_map, 0, 1);
@@ -220,7 +224,7 @@ TEST(ReplayMemory, RefusesARecordingOfAnotherMap) {
 
 TEST(ReplayMemory, RefusesALogThatStartsInsideAnEpisode) {
   const auto v = variant("basic");
-  const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(v.map_file));
+  const auto map = mapOf(v);
   const StepLog log = rollout(v, map, 30, 10);
   hideseek_hider::HiderNet net(v.game.camera.height, v.game.camera.width, hideseek_hider::NetworkKind::kGru);
   try {
@@ -234,7 +238,7 @@ TEST(ReplayMemory, RefusesALogThatStartsInsideAnEpisode) {
 TEST(WriteAnalysisInputs, WritesTheGruStatesOfARecurrentPolicy) {
   TempDir dir;
   const auto v = variant("basic");
-  const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(v.map_file));
+  const auto map = mapOf(v);
   const StepLog log = rollout(v, map, 50);
   torch::manual_seed(2);
   hideseek_hider::HiderNet net(v.game.camera.height, v.game.camera.width, hideseek_hider::NetworkKind::kGru);
