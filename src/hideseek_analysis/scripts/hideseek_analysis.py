@@ -17,37 +17,52 @@ from sklearn.preprocessing import StandardScaler
 STATE_NAMES = ["S%d H%d O%d" % ((i >> 2) & 1, (i >> 1) & 1, i & 1) for i in range(8)]
 
 
-def probe(features, labels, groups, test_size=0.3, seed=0):
-    """Fits a logistic-regression probe on a train split and scores it on a test split.
+def probe(features, labels, groups, test_size=0.3, seed=0, splits=5):
+    """Fits a logistic-regression probe on a train split and scores it on a test split, over
+    `splits` random splits, and returns the mean scores with the spread of the balanced accuracy.
+    The splits depend on the groups and the seed only, so two probes of the same steps (trained and
+    random-init features) see the same splits and their per-split scores pair up.
 
-    The split is by group (episode), so that no episode lends steps to both sides. Returns the
+    Each split is by group (episode), so that no episode lends steps to both sides. Returns the
     test accuracy with what a probe that always predicts the majority class would score, the
     positive class's prior, and the balanced accuracy (mean recall over both classes: 0.5 for
-    any constant predictor), so a majority-class probe never looks good.
+    any constant predictor), so a majority-class probe never looks good. Where one class is rare
+    the test split holds few of its samples and one split's score moves by points: the standard
+    deviation over splits says how far a difference between two probes can be trusted.
     """
+    if splits < 1:
+        raise ValueError("probe: splits must be at least 1, not %d" % splits)
     features = np.asarray(features, dtype=np.float64)
     labels = np.asarray(labels).astype(int)
     groups = np.asarray(groups)
-    split = GroupShuffleSplit(n_splits=1, test_size=test_size, random_state=seed)
-    train, test = next(split.split(features, labels, groups))
-    if len(np.unique(labels[train])) < 2:
-        raise ValueError("probe: the train split holds one class only; record more episodes")
-    # Classes weighted by their inverse frequency: in a policy's own games one class can be rare
-    # (a hider that is almost always in the seeker's view), and an unweighted fit would mostly
-    # learn the prior. Balanced accuracy is then the score to read.
-    model = make_pipeline(StandardScaler(), LogisticRegression(max_iter=2000, C=1.0, class_weight="balanced"))
-    model.fit(features[train], labels[train])
-    predicted = model.predict(features[test])
-    prior = float(labels[test].mean())
-    return {
-        "accuracy": float(accuracy_score(labels[test], predicted)),
-        "balanced_accuracy": float(balanced_accuracy_score(labels[test], predicted)),
-        "majority_accuracy": max(prior, 1.0 - prior),
-        "positive_prior": prior,
-        "train_samples": int(len(train)),
-        "test_samples": int(len(test)),
-        "test_episodes": int(len(np.unique(groups[test]))),
-    }
+    scores = []
+    for train, test in GroupShuffleSplit(n_splits=splits, test_size=test_size, random_state=seed).split(
+            features, labels, groups):
+        if len(np.unique(labels[train])) < 2:
+            raise ValueError("probe: the train split holds one class only; record more episodes")
+        # Classes weighted by their inverse frequency: in a policy's own games one class can be rare
+        # (a hider that is almost always in the seeker's view), and an unweighted fit would mostly
+        # learn the prior. Balanced accuracy is then the score to read.
+        model = make_pipeline(StandardScaler(), LogisticRegression(max_iter=2000, C=1.0, class_weight="balanced"))
+        model.fit(features[train], labels[train])
+        predicted = model.predict(features[test])
+        prior = float(labels[test].mean())
+        scores.append({
+            "accuracy": float(accuracy_score(labels[test], predicted)),
+            "balanced_accuracy": float(balanced_accuracy_score(labels[test], predicted)),
+            "majority_accuracy": max(prior, 1.0 - prior),
+            "positive_prior": prior,
+            "train_samples": len(train),
+            "test_samples": len(test),
+            "test_episodes": len(np.unique(groups[test])),
+        })
+    result = {k: float(np.mean([s[k] for s in scores])) for k in scores[0]}
+    for k in ("train_samples", "test_samples", "test_episodes"):
+        result[k] = int(round(result[k]))
+    result["balanced_accuracy_per_split"] = [s["balanced_accuracy"] for s in scores]
+    result["balanced_accuracy_std"] = float(np.std(result["balanced_accuracy_per_split"]))
+    result["splits"] = splits
+    return result
 
 
 def state_index(s, h, o):

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes one variant's analysis report from the arrays the C++ extractor wrote.
 
-usage: report.py INPUT_DIR OUTPUT_DIR --variant V --policy P --steps N [--tsne-samples K]
+usage: report.py INPUT_DIR OUTPUT_DIR --variant V --policy P --steps N [--tsne-samples K] [--probe-splits N]
 
 INPUT_DIR holds
   steps_trained.csv, steps_random.csv   one row per step of the trained and of the random policy's
@@ -13,7 +13,8 @@ INPUT_DIR holds
                                         probed step, of the trained and of the random-init network
   layouts.csv                           obstacles of the episodes drawn top-down:
                                         episode,half_extent,x,y,size_x,size_y,yaw
-OUTPUT_DIR receives probes.csv/.md (features, and the GRU state where there is one), tsne_S.png, tsne_H.png, state_frequencies.csv/.png,
+OUTPUT_DIR receives probes.csv/.md (features, and the GRU state where there is one; mean and spread
+over --probe-splits splits by episode), probe_splits.csv (every split's score), tsne_S.png, tsne_H.png, state_frequencies.csv/.png,
 transitions.csv/.png, distance_time.png; every figure is labelled with variant, policy and
 training steps.
 """
@@ -67,19 +68,28 @@ def write_table(stem, header, rows):
             f.write("| " + " | ".join(("%.4f" % v) if isinstance(v, float) else str(v) for v in r) + " |\n")
 
 
-def probes(labels, representations, out):
-    """representations: {"features": {"trained": X, "random_init": X}, optionally "gru_state": ...}."""
-    rows = []
+def probes(labels, representations, out, splits=5):
+    """representations: {"features": {"trained": X, "random_init": X}, optionally "gru_state": ...}.
+    Writes probes.csv/.md (means over the splits) and probe_splits.csv (the balanced accuracy of every
+    split: the same splits for every probe, so trained and random-init pair up split by split)."""
+    rows, per_split = [], []
     for representation, arrays in representations.items():
         for target in ("S", "H"):
             for network in ("trained", "random_init"):
-                r = ha.probe(arrays[network], labels[target].astype(int), labels["episode"])
+                r = ha.probe(arrays[network], labels[target].astype(int), labels["episode"], splits=splits)
                 rows.append([target, network, r["accuracy"], r["balanced_accuracy"], r["majority_accuracy"],
                              r["positive_prior"], r["train_samples"], r["test_samples"], r["test_episodes"],
-                             representation])
+                             representation, r["balanced_accuracy_std"], r["splits"]])
+                per_split += [[target, network, representation, k, b]
+                              for k, b in enumerate(r["balanced_accuracy_per_split"])]
     write_table(os.path.join(out, "probes"), ["label", "network", "test_accuracy", "balanced_accuracy",
                                               "majority_class_accuracy", "positive_prior", "train_samples",
-                                              "test_samples", "test_episodes", "representation"], rows)
+                                              "test_samples", "test_episodes", "representation",
+                                              "balanced_accuracy_std", "splits"], rows)
+    with open(os.path.join(out, "probe_splits.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["label", "network", "representation", "split", "balanced_accuracy"])
+        w.writerows(per_split)
     return rows
 
 
@@ -201,6 +211,8 @@ def main():
     parser.add_argument("--policy", required=True)
     parser.add_argument("--steps", required=True, type=int, help="training steps of the policy")
     parser.add_argument("--tsne-samples", type=int, default=3000)
+    parser.add_argument("--probe-splits", type=int, default=5,
+                        help="random train/test splits by episode each probe is scored over (mean and spread)")
     a = parser.parse_args()
     os.makedirs(a.output, exist_ok=True)
     title = "%s, %s, %d training steps" % (a.variant, a.policy, a.steps)
@@ -223,8 +235,11 @@ def main():
     print("report: state statistics over %d whole episodes (%d steps) of the policy, %d (%d steps) of the random "
           "policy" % (len(set(trained_whole["episode"])), len(trained_whole["episode"]),
                       len(set(random_whole["episode"])), len(random_whole["episode"])))
-    print("report: probes of the %s" % " and the ".join(r.replace("_", " ") for r in representations))
-    probes(labels, representations, a.output)
+    if a.probe_splits < 1:
+        raise SystemExit("report: --probe-splits must be at least 1, not %d" % a.probe_splits)
+    print("report: probes of the %s, %d splits by episode" %
+          (" and the ".join(r.replace("_", " ") for r in representations), a.probe_splits))
+    probes(labels, representations, a.output, a.probe_splits)
     print("report: t-SNE of %d samples" % min(a.tsne_samples, len(labels["episode"])))
     tsne(features["trained"], labels, a.output, title, a.tsne_samples)
     print("report: state frequencies and transitions")

@@ -51,12 +51,36 @@ def markdown(header, table):
 
 
 def probe_accuracies(folder, representation="features"):
-    """{(label, network): (accuracy %, balanced accuracy %, positive prior %)} of one variant's probes.csv,
-    for the features or (a GRU hider) the GRU state; {} when the folder has no such probes."""
+    """{(label, network): (accuracy %, balanced accuracy %, positive prior %, spread of the balanced
+    accuracy over the splits %)} of one variant's probes.csv, for the features or (a GRU hider) the
+    GRU state; {} when the folder has no such probes."""
     return {(r["label"], r["network"]): (100 * float(r["test_accuracy"]), 100 * float(r["balanced_accuracy"]),
-                                         100 * float(r["positive_prior"]))
+                                         100 * float(r["positive_prior"]),
+                                         100 * float(r.get("balanced_accuracy_std") or 0.0))
             for r in rows(os.path.join(folder, "probes.csv"))
             if r.get("representation", "features") == representation}
+
+
+def paired_gains(folder, representation="features"):
+    """{label: (mean, std, splits)} of trained minus random-init balanced accuracy (%), split by split:
+    both probes are scored on the same splits, so the difference is free of the splits' own noise.
+    {} when the folder has no probe_splits.csv."""
+    path = os.path.join(folder, "probe_splits.csv")
+    if not os.path.isfile(path):
+        return {}
+    score = {(r["label"], r["network"], int(r["split"])): 100 * float(r["balanced_accuracy"])
+             for r in rows(path) if r["representation"] == representation}
+    gains = {}
+    for label in ("S", "H"):
+        d = [score[label, "trained", k] - score[label, "random_init", k]
+             for (l, n, k) in sorted(score) if l == label and n == "trained" and (label, "random_init", k) in score]
+        if d:
+            gains[label] = (float(np.mean(d)), float(np.std(d)), len(d))
+    return gains
+
+
+def pm(mean, std):
+    return "%.1f ± %.1f" % (mean, std)
 
 
 def base_variant(name):
@@ -77,17 +101,24 @@ def weakness_finding(probes):
             "advantage (%s). Here, balanced accuracy of the H probe on the trained features:" %
             (", ".join(WEAKER), ", ".join(STRONGER)), ""]
     for v, acc in weaker + stronger:
-        text.append("- %s: %.1f %% (random-init network: %.1f %%)" % (v, acc, probes[v]["H", "random_init"][1]))
+        text.append("- %s: %s %% (random-init network: %s %%)" %
+                    (v, pm(acc, probes[v]["H", "trained"][3]), pm(*probes[v]["H", "random_init"][1:4:2])))
     missing = [v for v in WEAKER + STRONGER if v not in probes]
     if missing:
         text.append("")
         text.append("Not analysed yet (no shipped policy): %s." % ", ".join(missing))
     text.append("")
     if weaker and stronger:
-        w = max(a for _, a in weaker)
-        s = max(a for _, a in stronger)
-        text.append("On these numbers the best weaker variant %s the advantaged one (%.1f against %.1f %%)." %
-                    ("beats" if w > s else "does not beat", w, s))
+        (wv, w), (sv, s) = max(weaker, key=lambda p: p[1]), max(stronger, key=lambda p: p[1])
+        spread = max(probes[wv]["H", "trained"][3], probes[sv]["H", "trained"][3])
+        verdict = "beats" if w > s else "does not beat"
+        text.append("On these numbers the best weaker variant, %s, %s the advantaged one, %s (%.1f against %.1f %%)." %
+                    (wv, verdict, sv, w, s))
+        if spread > 0 and abs(w - s) <= spread:
+            text.append("The gap (%.1f points) is within one standard deviation over the probe's splits (%.1f), "
+                        "so these numbers do not decide the question." % (abs(w - s), spread))
+        above = [v for v, a in weaker if a > s]
+        text.append("%d of the %d weaker variants analysed score above %s." % (len(above), len(weaker), sv))
     else:
         text.append("The comparison needs both sides analysed; it cannot be made yet.")
     return "\n".join(text)
@@ -111,21 +142,24 @@ def main():
 
     # Table 3: probe accuracy beside the paper's.
     header = ["variant", "S: trained / random-init", "paper S", "H: trained / random-init", "paper H",
-              "balanced S: trained / random-init", "balanced H: trained / random-init", "prior S=1 / H=1"]
+              "balanced S: trained / random-init", "balanced H: trained / random-init",
+              "balanced gain S / H (paired)", "prior S=1 / H=1"]
     t3 = []
     for v in analysed:
         r = ref[base_variant(v)]
-        for name, p in ((v, probes[v]), (v + ": GRU state", memory_probes[v])):
+        for name, p, representation in ((v, probes[v], "features"), (v + ": GRU state", memory_probes[v], "gru_state")):
             if not p:
                 continue
+            g = paired_gains(os.path.join(a.report, v), representation)
             # The paper's network is feed-forward: its numbers stand beside ours for comparison only.
             t3.append([name,
                        "%.1f / %.1f" % (p["S", "trained"][0], p["S", "random_init"][0]),
                        "%.2f / %.2f" % (r["probe_S_trained"], r["probe_S_random"]),
                        "%.1f / %.1f" % (p["H", "trained"][0], p["H", "random_init"][0]),
                        "%.2f / %.2f" % (r["probe_H_trained"], r["probe_H_random"]),
-                       "%.1f / %.1f" % (p["S", "trained"][1], p["S", "random_init"][1]),
-                       "%.1f / %.1f" % (p["H", "trained"][1], p["H", "random_init"][1]),
+                       "%s / %s" % (pm(*p["S", "trained"][1:4:2]), pm(*p["S", "random_init"][1:4:2])),
+                       "%s / %s" % (pm(*p["H", "trained"][1:4:2]), pm(*p["H", "random_init"][1:4:2])),
+                       " / ".join("%+.1f ± %.1f" % g[k][:2] if k in g else "-" for k in ("S", "H")),
                        "%.1f / %.1f" % (p["S", "trained"][2], p["H", "trained"][2])])
     write_table(os.path.join(a.report, "table3"), header, t3)
 
@@ -166,12 +200,14 @@ def main():
     # Survival against representation: one point per variant with a policy and an analysis.
     # GRU hiders are drawn apart and left out of the fit, which is over the paper's network.
     # A GRU hider's point reads the probe of its GRU state, what its heads act on.
-    points = [((memory_probes[v] or probes[v])["H", "trained"][1], float(table2[v]["living_trained"]), v)
+    points = [((memory_probes[v] or probes[v])["H", "trained"][1], float(table2[v]["living_trained"]), v,
+               (memory_probes[v] or probes[v])["H", "trained"][3])
               for v in analysed if v in table2 and table2[v]["living_trained"] not in ("", None)]
     fig, ax = plt.subplots(figsize=(6, 4.5))
-    for x, y, v in points:
+    for x, y, v, spread in points:
         gru = v.endswith("_gru")
-        ax.plot(x, y, "s" if gru else "o", color="tab:green" if gru else "tab:blue")
+        ax.errorbar(x, y, xerr=spread, fmt="s" if gru else "o", color="tab:green" if gru else "tab:blue",
+                    capsize=3, lw=0.8)
         ax.annotate(v, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=8)
     if any(p[2].endswith("_gru") for p in points):
         ax.plot([], [], "s", color="tab:green", label="GRU hider: probe of its GRU state (not in the fit)")
@@ -184,7 +220,8 @@ def main():
         grid = np.linspace(xs.min() - 1, xs.max() + 1, 100)
         ax.plot(grid, np.polyval(coefficients, grid), color="tab:orange", lw=1)
         fit_note = "parabolic fit: %.3g x^2 + %.3g x + %.3g" % tuple(coefficients)
-    ax.set_xlabel("self-visibility (H) probe, balanced accuracy of the trained features, %")
+    ax.set_xlabel("self-visibility (H) probe, balanced accuracy of the trained features, %\n"
+                  "(mean ± standard deviation over the probe's splits by episode)", fontsize=9)
     ax.set_ylabel("average living steps (seeds 0-99, greedy)")
     ax.set_title("Survival against representation\n" + fit_note, fontsize=9)
     fig.tight_layout()
@@ -200,7 +237,9 @@ def main():
              "CSV: [table2.csv](table2.csv); per evaluation: [evaluations/](evaluations/)", "",
              "## Table 3: linear probes of the 512 mid-level features", "",
              "Test accuracy in % on episodes held out from the probe's fit; the balanced accuracy (mean recall of "
-             "both classes) is 50 % for any probe that ignores its input. A GRU hider (`<variant>_gru`) has a "
+             "both classes) is 50 % for any probe that ignores its input. Every probe is scored on several random "
+             "splits by episode (analyze.launch probe_splits): the mean ± the standard deviation over the splits; "
+             "the paired gain is trained minus random-init on the same splits, split by split. A GRU hider (`<variant>_gru`) has a "
              "second row, the probes of its 512-unit GRU state after the step; the paper's columns there are its "
              "feed-forward network's, for comparison.", "", markdown(header, t3).strip(), "",
              "CSV: [table3.csv](table3.csv)", "",

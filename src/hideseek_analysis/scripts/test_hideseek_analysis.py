@@ -39,6 +39,23 @@ def test_probe_splits_by_episode():
     assert r["train_samples"] + r["test_samples"] == len(labels)
 
 
+def test_probe_scores_several_splits_and_gives_their_spread():
+    features, labels, groups = synthetic(separable=False, seed=3)
+    r = ha.probe(features, labels, groups, splits=4)
+    per_split = r["balanced_accuracy_per_split"]
+    assert r["splits"] == 4 and len(per_split) == 4
+    assert r["balanced_accuracy"] == pytest.approx(np.mean(per_split))
+    assert r["balanced_accuracy_std"] == pytest.approx(np.std(per_split))
+    # Different splits of noise score differently: a spread of zero would mean one split scored four times.
+    assert r["balanced_accuracy_std"] > 0
+    # The splits depend on the episodes and the seed only: another array over the same steps
+    # (the random-init network's) is scored on the same splits, so the two pair up split by split.
+    one = ha.probe(features, labels, groups, splits=1)
+    assert one["balanced_accuracy"] == pytest.approx(per_split[0])
+    with pytest.raises(ValueError, match="splits"):
+        ha.probe(features, labels, groups, splits=0)
+
+
 def test_state_index_and_frequencies():
     assert list(ha.state_index([0, 0, 1, 1], [0, 1, 0, 1], [1, 0, 0, 1])) == [1, 2, 4, 7]
     f = ha.state_frequencies([0, 0, 7, 3])
@@ -72,6 +89,64 @@ def test_report_writes_every_file_from_synthetic_inputs(tmp_path):
     trained_s = [r for r in rows if r["label"] == "S" and r["network"] == "trained"][0]
     assert float(trained_s["balanced_accuracy"]) > 0.9
     assert {r["representation"] for r in rows} == {"features"}
+    # probes.csv holds the mean over the splits, probe_splits.csv every split's score.
+    with open(tmp_path / "out" / "probe_splits.csv") as f:
+        splits = list(csv_rows(f))
+    assert len(splits) == 4 * 3  # S and H, trained and random-init, 3 splits
+    for r in rows:
+        mine = [float(x["balanced_accuracy"]) for x in splits
+                if (x["label"], x["network"], x["representation"]) == (r["label"], r["network"], r["representation"])]
+        assert int(r["splits"]) == len(mine) == 3
+        assert float(r["balanced_accuracy"]) == pytest.approx(np.mean(mine))
+        assert float(r["balanced_accuracy_std"]) == pytest.approx(np.std(mine))
+
+
+def test_reproduce_report_pairs_the_splits_and_weighs_weaknesses_against_advantages(tmp_path):
+    import os
+    import shutil
+    import subprocess
+    import sys
+    run_report_on_synthetic_inputs(tmp_path, with_memory=False)
+    report = tmp_path / "report"
+    report.mkdir()
+    # Two variants from the same synthetic report; the advantaged one's trained H probe is set to
+    # score far above the weakened one's, so the paper's finding must come out as not reproduced.
+    for v in ("slowerhider", "fasterhider"):
+        shutil.copytree(tmp_path / "out", report / v)
+    path = report / "fasterhider" / "probe_splits.csv"
+    lines = path.read_text().splitlines()
+    path.write_text("\n".join(lines[:1] + [l.rsplit(",", 1)[0] + ",0.99" if l.startswith("H,trained,") else l
+                                          for l in lines[1:]]) + "\n")
+    probes_csv = report / "fasterhider" / "probes.csv"
+    lines = probes_csv.read_text().splitlines()
+    head = lines[0].split(",")
+    fixed = []
+    for l in lines[1:]:
+        cells = l.split(",")
+        if cells[0] == "H" and cells[1] == "trained":
+            cells[head.index("balanced_accuracy")] = "0.99"
+            cells[head.index("balanced_accuracy_std")] = "0.0"
+        fixed.append(",".join(cells))
+    probes_csv.write_text("\n".join([lines[0]] + fixed) + "\n")
+    (report / "table2.csv").write_text(
+        "variant,living_trained,living_random\nslowerhider,60,38\nfasterhider,500,38\n")
+    (report / "table2.md").write_text("| variant |\n| --- |\n")
+    here = os.path.dirname(os.path.abspath(__file__))
+    paper = os.path.join(here, "..", "..", "hideseek_world", "config", "paper_reference.yaml")
+    subprocess.run([sys.executable, os.path.join(here, "reproduce_report.py"), str(report), "--paper", paper],
+                   check=True, cwd=here)
+    with open(report / "table3.csv") as f:
+        table3 = {r["variant"]: r for r in csv_rows(f)}
+    # The paired gain is the mean of trained minus random-init over the same splits.
+    with open(report / "fasterhider" / "probe_splits.csv") as f:
+        split_rows = list(csv_rows(f))
+    random_h = [float(r["balanced_accuracy"]) for r in split_rows if r["label"] == "H" and r["network"] == "random_init"]
+    gain_h = table3["fasterhider"]["balanced gain S / H (paired)"].split(" / ")[1]
+    assert float(gain_h.split(" ± ")[0]) == pytest.approx(100 * np.mean([0.99 - x for x in random_h]), abs=0.051)
+    index = (report / "index.md").read_text()
+    assert "the best weaker variant, slowerhider, does not beat the advantaged one, fasterhider" in index
+    assert "0 of the 1 weaker variants analysed score above fasterhider" in index
+    assert (report / "survival_vs_representation.png").stat().st_size > 0
 
 
 def test_report_probes_the_gru_state_of_a_recurrent_policy(tmp_path):
@@ -117,7 +192,8 @@ def run_report_on_synthetic_inputs(tmp_path, with_memory):
         np.save(inp / "memory_random.npy", rng.normal(size=(len(episodes), 512)).astype(np.float32))
     here = os.path.dirname(os.path.abspath(__file__))
     subprocess.run([sys.executable, os.path.join(here, "report.py"), str(inp), str(out), "--variant", "basic",
-                    "--policy", "synthetic", "--steps", "0", "--tsne-samples", "200"], check=True, cwd=here)
+                    "--policy", "synthetic", "--steps", "0", "--tsne-samples", "200",
+                    "--probe-splits", "3"], check=True, cwd=here)
     for name in ("probes.csv", "probes.md", "tsne_S.png", "tsne_H.png", "state_frequencies.csv",
                  "state_frequencies.md", "state_frequencies.png", "transitions.csv", "transitions.png",
                  "distance_time.png"):

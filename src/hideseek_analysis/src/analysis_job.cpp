@@ -59,7 +59,8 @@ void runAnalysis(const AnalysisJob& job) {
   const std::string command = "/usr/bin/python3 " + quoted(job.report_script) + " " + quoted(job.inputs_dir) + " " +
                               quoted(job.report_dir) + " --variant " + quoted(job.variant.name) + " --policy " +
                               quoted(std::filesystem::path(job.policy).filename().string()) + " --steps " +
-                              std::to_string(info.steps) + " --tsne-samples " + std::to_string(job.tsne_samples);
+                              std::to_string(info.steps) + " --tsne-samples " + std::to_string(job.tsne_samples) +
+                              " --probe-splits " + std::to_string(job.probe_splits);
   const int status = std::system(command.c_str());
   if (status != 0) throw std::runtime_error("the report (" + job.report_script + ") failed; see its output above");
   std::printf("analysis: report in %s (%.0f s in all)\n", job.report_dir.c_str(), elapsed());

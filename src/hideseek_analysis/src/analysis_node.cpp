@@ -91,6 +91,7 @@ int main(int argc, char** argv) {
       job.bag = hideseek_world::readString(pnh, "bag", job.inputs_dir + "/rollout.bag");
       job.inputs.random_init_seed = static_cast<uint32_t>(hideseek_world::readInt(pnh, "random_init_seed", 0, 0, 1 << 30));
       job.tsne_samples = hideseek_world::readInt(pnh, "tsne_samples", 3000, 100, 100000);
+      job.probe_splits = hideseek_world::readInt(pnh, "probe_splits", 5, 1, 100);
       job.inputs.pixel_tolerance = hideseek_world::readInt(pnh, "pixel_tolerance", 0, 0, 255);
       const std::string precision = hideseek_world::readString(pnh, "precision", "fp32");
       if (!pnh.hasParam("decisions")) {

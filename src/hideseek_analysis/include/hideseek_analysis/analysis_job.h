@@ -18,6 +18,7 @@ struct AnalysisJob {
   hideseek_world::VariantConfig variant;
   AnalysisInputsOptions inputs;
   int tsne_samples = 3000;
+  int probe_splits = 5;  // train/test splits by episode each probe is scored over
 };
 
 // Runs the job, printing progress; throws (MissingStepsError for a recording with a hole,
