@@ -5,6 +5,8 @@
 # Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/). Writes table2.md, table2.csv
 # and, per evaluation, OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv.
 # A shipped GRU hider (policies/<variant>_gru.pt) is evaluated too, as <variant>_gru_trained.
+# HIDESEEK_VARIANTS="v1 v2" evaluates those variants only and keeps the other evaluations already in
+# OUTPUT_DIR/evaluations (made by the same code: use it after training a policy, not after changing the game).
 set -euo pipefail
 out=$(realpath -m "${1:-$(dirname "$0")/../docs}")
 cd "$(dirname "$0")/.."
@@ -12,7 +14,15 @@ source scripts/env.sh
 port=${HIDESEEK_PORT:-11477}
 export ROS_MASTER_URI=http://localhost:$port
 variants=(basic fasterhider visibilityreward_faster stochasticseeker stochasticmaps visibilityreward slowerhider)
-rm -rf "$out/evaluations"
+if [ -n "${HIDESEEK_VARIANTS:-}" ]; then
+  for v in $HIDESEEK_VARIANTS; do
+    [[ " ${variants[*]} " == *" $v "* ]] || { echo "evaluate_all: HIDESEEK_VARIANTS names '$v', which is not one of: ${variants[*]}" >&2; exit 2; }
+  done
+  read -r -a variants <<< "$HIDESEEK_VARIANTS"
+  echo "evaluate_all: evaluating ${variants[*]} only; keeping the other evaluations in $out/evaluations"
+else
+  rm -rf "$out/evaluations"
+fi
 mkdir -p "$out/evaluations"
 for v in "${variants[@]}"; do
   for p in random trained gru_trained; do

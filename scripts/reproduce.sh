@@ -7,6 +7,9 @@
 # usage: scripts/reproduce.sh [REPORT_DIR=docs/report] [WORK_DIR=~/.ros/hideseek_reproduce]
 #   WORK_DIR receives the bags and feature arrays (large; not part of the report).
 #   HIDESEEK_ANALYSIS_STEPS overrides the 50,000 steps per variant (a quick look: 5000).
+#   HIDESEEK_VARIANTS="v1 v2" evaluates and analyses those variants only (with their GRU hiders) and
+#   keeps what REPORT_DIR already holds for the others, then remakes the tables and figures across
+#   variants: for a newly trained policy. After a change to the game, run it all.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 report=$(realpath -m "${1:-docs/report}")
@@ -21,7 +24,7 @@ echo "reproduce: [1/3] Table 2: every shipped policy and the random hider, seeds
 HIDESEEK_PORT=$port scripts/evaluate_all.sh "$report"
 # Every shipped policy: <variant>.pt, and <variant>_gru.pt for a GRU hider (analysed into <variant>_gru/).
 variants=()
-for v in basic fasterhider visibilityreward_faster stochasticseeker stochasticmaps visibilityreward slowerhider; do
+for v in ${HIDESEEK_VARIANTS:-basic fasterhider visibilityreward_faster stochasticseeker stochasticmaps visibilityreward slowerhider}; do
   for name in "$v" "${v}_gru"; do
     [ -f "policies/$name.pt" ] && variants+=("$name")
   done
