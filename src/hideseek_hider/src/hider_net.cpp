@@ -141,6 +141,11 @@ void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo
   archive.write("steps", c10::IValue(info.steps));
   archive.write("wall_s", c10::IValue(info.wall_s));
   archive.write("episodes", c10::IValue(info.episodes));
+  if (info.recent_lengths.size() != info.recent_returns.size()) {
+    throw std::invalid_argument("saveCheckpoint: recent_lengths and recent_returns differ in size");
+  }
+  archive.write("recent_lengths", torch::tensor(info.recent_lengths, torch::kInt64));
+  archive.write("recent_returns", torch::tensor(info.recent_returns, torch::kFloat64));
   torch::serialize::OutputArchive weights;
   net->save(weights);
   archive.write("model", weights);
@@ -185,6 +190,14 @@ CheckpointInfo infoOf(torch::serialize::InputArchive& archive, const std::string
   // Progress entries are younger than the format: a checkpoint without them starts from zero.
   if (archive.try_read("wall_s", v)) info.wall_s = v.toDouble();
   if (archive.try_read("episodes", v)) info.episodes = v.toInt();
+  torch::Tensor lengths, returns;
+  if (archive.try_read("recent_lengths", lengths) && archive.try_read("recent_returns", returns) &&
+      lengths.numel() == returns.numel()) {
+    lengths = lengths.to(torch::kInt64).contiguous();
+    returns = returns.to(torch::kFloat64).contiguous();
+    info.recent_lengths.assign(lengths.data_ptr<int64_t>(), lengths.data_ptr<int64_t>() + lengths.numel());
+    info.recent_returns.assign(returns.data_ptr<double>(), returns.data_ptr<double>() + returns.numel());
+  }
   return info;
 }
 

@@ -106,6 +106,10 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
     trainer_.setSamplesSeen(info.steps);
     start_wall_s_ = info.wall_s;
     episodes_ = info.episodes;
+    for (size_t i = 0; i < info.recent_lengths.size(); ++i) {
+      recent_.emplace_back(info.recent_lengths[i], info.recent_returns[i]);
+    }
+    while (recent_.size() > kRecentEpisodes) recent_.pop_front();
     dropped_log_rows_ = truncateLogAfter(logPath(), info.steps);
   } else {
     // A log without a checkpoint belongs to a run killed before its first checkpoint: none of
@@ -183,6 +187,10 @@ void TrainingRun::saveCheckpoint() {
                       trainer_.samplesSeen()};
   info.wall_s = start_wall_s_ + std::chrono::duration<double>(now - start_).count();
   info.episodes = episodes_;
+  for (const auto& [length, ret] : recent_) {
+    info.recent_lengths.push_back(length);
+    info.recent_returns.push_back(ret);
+  }
   hideseek_hider::saveCheckpoint(checkpointPath(), trainer_.net(), info, &trainer_.optimizer());
   last_checkpoint_ = std::chrono::steady_clock::now();
 }

@@ -48,12 +48,12 @@ TrainingOptions tinyRun(const std::string& dir, int64_t steps) {
   return o;
 }
 
-// Feeds batches until `updates` more updates have run; every third step ends both episodes.
-void feed(TrainingRun& run, int updates) {
+// Feeds batches until `updates` more updates have run; every `period`-th step ends both episodes.
+void feed(TrainingRun& run, int updates, int period = 3) {
   const std::vector<uint8_t> images(kArenas * kSize * kSize * 3, 128);
   int done_updates = 0;
   for (int step = 0; done_updates < updates && !run.finished(); ++step) {
-    const uint8_t end = step % 3 == 2;
+    const uint8_t end = step % period == period - 1;
     std::optional<UpdateReport> report;
     run.step(images.data(), std::vector<float>(kArenas, 0.001f), std::vector<uint8_t>(kArenas, end), &report);
     if (report) ++done_updates;
@@ -117,6 +117,32 @@ TEST(TrainingRun, ResumedLogContinuesWithoutDuplicatesAndKeepsWallTimeAndEpisode
   EXPECT_GE(std::stod(column(log[4], 2)), wall_at_checkpoint);
   EXPECT_GT(std::stoll(column(log[4], 4)), episodes_at_checkpoint);
   EXPECT_GE(std::stod(column(log[5], 2)), std::stod(column(log[4], 2)));
+}
+
+TEST(TrainingRun, ResumedLogAveragesOverTheEpisodesBeforeTheCheckpointToo) {
+  const std::string dir = testing::TempDir() + "run_resume_window";
+  std::remove((dir + "/checkpoint.pt").c_str());
+  std::remove((dir + "/training_log.csv").c_str());
+  torch::manual_seed(0);
+  {
+    TrainingRun run(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
+    // Episodes end at steps 4 and 9 (the first step only acts): lengths 4 and 5 in both arenas.
+    feed(run, 3, 5);
+    run.saveCheckpoint();
+    const CheckpointInfo info = readCheckpointInfo(run.checkpointPath());
+    EXPECT_EQ(info.recent_lengths, (std::vector<int64_t>{4, 4, 5, 5}));
+    ASSERT_EQ(info.recent_returns.size(), 4u);
+    EXPECT_NEAR(info.recent_returns[3], 5 * 0.001, 1e-6);
+  }
+  TrainingRun resumed(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
+  ASSERT_TRUE(resumed.resumed());
+  // Short episodes after the resume (lengths 1 and 2) join the four before it: the average is
+  // 3, where a window restarted at the resume would read 1.5, a dip the run never had.
+  feed(resumed, 1, 2);
+  const auto log = lines(resumed.logPath());
+  ASSERT_EQ(log.size(), 1u + 4u);
+  EXPECT_NEAR(std::stod(column(log.back(), 5)), 3.0, 1e-9);
+  EXPECT_NEAR(std::stod(column(log.back(), 6)), 0.003, 1e-6);
 }
 
 TEST(TrainingRun, RestartAfterAKillBeforeTheFirstCheckpointStartsAFreshLog) {

@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "hideseek_hider/precision.h"
 
@@ -92,6 +93,10 @@ struct CheckpointInfo {
   // Training progress, so that a resumed run's log continues where the checkpoint left it.
   double wall_s = 0.0;   // wall seconds of training up to this checkpoint, over all resumes
   int64_t episodes = 0;  // episodes finished up to this checkpoint
+  // Length and return of the last finished episodes (the log's mean_length and mean_return), so a
+  // resumed log does not restart its average from the first, necessarily short, episodes to end.
+  std::vector<int64_t> recent_lengths{};
+  std::vector<double> recent_returns{};
   NetworkKind network = NetworkKind::kFeedForward;  // from the architecture
 };
 
