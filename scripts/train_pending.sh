@@ -33,7 +33,11 @@ echo "train_pending: ${#pending[@]} of ${#plan[@]} runs pending:"
 for entry in "${pending[@]}"; do
   read -r variant seed network name <<< "$entry"
   note=""
-  [ -f "$runs/$name/checkpoint.pt" ] && note=" (resumes from $runs/$name, at $(tail -n 1 "$runs/$name/training_log.csv" 2>/dev/null | cut -d, -f2 || true) steps)"
+  if [ -f "$runs/$name/checkpoint.pt" ]; then
+    # The checkpoint's own step count: the log may run past it (rows a resume drops).
+    at=$(devel/lib/hideseek_hider/export_policy --info "$runs/$name/checkpoint.pt" 2>&1 | cut -d' ' -f3) || at="unreadable checkpoint"
+    note=" (resumes from $runs/$name/checkpoint.pt, at $at steps)"
+  fi
   echo "  $name: $variant, training seed $seed, network $network$note"
 done
 [ -z "${HIDESEEK_LIST:-}" ] || exit 0
