@@ -92,9 +92,11 @@ WEAKER = ["slowerhider", "stochasticseeker", "visibilityreward"]  # the paper's 
 STRONGER = ["fasterhider"]                                         # the paper's advantage
 
 
-def weakness_finding(probes):
+def weakness_finding(probes, gains):
     """The paper's claim, on what was analysed: do moderate weaknesses give better self-visibility
-    (H) features than an advantage? Balanced accuracy, trained features."""
+    (H) features than an advantage? Balanced accuracy, trained features; then what training added
+    (the paired gain over the random-init network), since how hard H is to read from an image
+    depends on the games each policy plays, trained or not."""
     have = lambda vs: [(v, probes[v]["H", "trained"][1]) for v in vs if v in probes]  # noqa: E731
     weaker, stronger = have(WEAKER), have(STRONGER)
     text = ["The paper finds that moderate weaknesses (%s) give better self-visibility features than an "
@@ -118,7 +120,26 @@ def weakness_finding(probes):
             text.append("The gap (%.1f points) is within one standard deviation over the probe's splits (%.1f), "
                         "so these numbers do not decide the question." % (abs(w - s), spread))
         above = [v for v, a in weaker if a > s]
-        text.append("%d of the %d weaker variants analysed score above %s." % (len(above), len(weaker), sv))
+        text.append("%d of the %d weaker variants analysed %s above %s." %
+                    (len(above), len(weaker), "scores" if len(weaker) == 1 else "score", sv))
+        paired = [(v, gains[v]["H"]) for v, _ in weaker + stronger if "H" in gains.get(v, {})]
+        if paired:
+            text.append("")
+            text.append("The random-init network reads H from the same images too, and how well depends on the "
+                        "games the policy plays (where the seeker is when it looks). What training added, trained "
+                        "minus random-init on the same splits:")
+            text.append("")
+            for v, (mean, std, n) in paired:
+                text.append("- %s: %+.1f ± %.1f points (%d splits)" % (v, mean, std, n))
+            wg = [g for v, g in paired if v in WEAKER]
+            sg = [g for v, g in paired if v in STRONGER]
+            if wg and sg:
+                best_w, best_s = max(wg, key=lambda g: g[0]), max(sg, key=lambda g: g[0])
+                text.append("")
+                text.append("On the gain the best weaker variant %s the advantaged one (%+.1f against %+.1f)%s." %
+                            ("beats" if best_w[0] > best_s[0] else "does not beat", best_w[0], best_s[0],
+                             "; the gap is within one standard deviation" if abs(best_w[0] - best_s[0]) <=
+                             max(best_w[1], best_s[1]) else ""))
     else:
         text.append("The comparison needs both sides analysed; it cannot be made yet.")
     return "\n".join(text)
@@ -139,6 +160,7 @@ def main():
         raise SystemExit("reproduce_report: no variant folder with probes.csv in %s" % a.report)
     probes = {v: probe_accuracies(os.path.join(a.report, v)) for v in analysed}
     memory_probes = {v: probe_accuracies(os.path.join(a.report, v), "gru_state") for v in analysed}
+    gains = {v: paired_gains(os.path.join(a.report, v)) for v in analysed}
 
     # Table 3: probe accuracy beside the paper's.
     header = ["variant", "S: trained / random-init", "paper S", "H: trained / random-init", "paper H",
@@ -243,7 +265,7 @@ def main():
              "second row, the probes of its 512-unit GRU state after the step; the paper's columns there are its "
              "feed-forward network's, for comparison.", "", markdown(header, t3).strip(), "",
              "CSV: [table3.csv](table3.csv)", "",
-             "### Weaknesses against advantages", "", weakness_finding(probes), "",
+             "### Weaknesses against advantages", "", weakness_finding(probes, gains), "",
              "## Across variants", "",
              "![state frequencies](state_frequencies_variants.png)", "",
              "![transitions](transitions_variants.png)", "",

@@ -145,7 +145,9 @@ def test_reproduce_report_pairs_the_splits_and_weighs_weaknesses_against_advanta
     assert float(gain_h.split(" ± ")[0]) == pytest.approx(100 * np.mean([0.99 - x for x in random_h]), abs=0.051)
     index = (report / "index.md").read_text()
     assert "the best weaker variant, slowerhider, does not beat the advantaged one, fasterhider" in index
-    assert "0 of the 1 weaker variants analysed score above fasterhider" in index
+    assert "0 of the 1 weaker variants analysed scores above fasterhider" in index
+    # What training added: the advantaged hider's trained H probe scores 99 % on every split.
+    assert "On the gain the best weaker variant does not beat the advantaged one" in index
     assert (report / "survival_vs_representation.png").stat().st_size > 0
 
 
