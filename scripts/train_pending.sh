@@ -35,8 +35,11 @@ for entry in "${pending[@]}"; do
   note=""
   if [ -f "$runs/$name/checkpoint.pt" ]; then
     # The checkpoint's own step count: the log may run past it (rows a resume drops).
-    at=$(devel/lib/hideseek_hider/export_policy --info "$runs/$name/checkpoint.pt" 2>&1 | cut -d' ' -f3) || at="unreadable checkpoint"
-    note=" (resumes from $runs/$name/checkpoint.pt, at $at steps)"
+    if info=$(devel/lib/hideseek_hider/export_policy --info "$runs/$name/checkpoint.pt" 2>/dev/null); then
+      note=" (resumes from $runs/$name/checkpoint.pt, at $(cut -d' ' -f3 <<< "$info") steps)"
+    else
+      note=" (has $runs/$name/checkpoint.pt, which export_policy --info cannot read: is the workspace built?)"
+    fi
   fi
   echo "  $name: $variant, training seed $seed, network $network$note"
 done

@@ -214,6 +214,8 @@ def main():
     parser.add_argument("--probe-splits", type=int, default=5,
                         help="random train/test splits by episode each probe is scored over (mean and spread)")
     a = parser.parse_args()
+    if a.probe_splits < 1:
+        raise SystemExit("report: --probe-splits must be at least 1, not %d" % a.probe_splits)
     os.makedirs(a.output, exist_ok=True)
     title = "%s, %s, %d training steps" % (a.variant, a.policy, a.steps)
     labels = read_csv(os.path.join(a.input, "features.csv"))
@@ -235,8 +237,6 @@ def main():
     print("report: state statistics over %d whole episodes (%d steps) of the policy, %d (%d steps) of the random "
           "policy" % (len(set(trained_whole["episode"])), len(trained_whole["episode"]),
                       len(set(random_whole["episode"])), len(random_whole["episode"])))
-    if a.probe_splits < 1:
-        raise SystemExit("report: --probe-splits must be at least 1, not %d" % a.probe_splits)
     print("report: probes of the %s, %d splits by episode" %
           (" and the ".join(r.replace("_", " ") for r in representations), a.probe_splits))
     probes(labels, representations, a.output, a.probe_splits)

@@ -56,7 +56,9 @@ def probe_accuracies(folder, representation="features"):
     GRU state; {} when the folder has no such probes."""
     return {(r["label"], r["network"]): (100 * float(r["test_accuracy"]), 100 * float(r["balanced_accuracy"]),
                                          100 * float(r["positive_prior"]),
-                                         100 * float(r.get("balanced_accuracy_std") or 0.0))
+                                         # a report made before the splits has no spread: None, shown as "-"
+                                         100 * float(r["balanced_accuracy_std"]) if r.get("balanced_accuracy_std")
+                                         else None)
             for r in rows(os.path.join(folder, "probes.csv"))
             if r.get("representation", "features") == representation}
 
@@ -80,7 +82,7 @@ def paired_gains(folder, representation="features"):
 
 
 def pm(mean, std):
-    return "%.1f ± %.1f" % (mean, std)
+    return "%.1f" % mean if std is None else "%.1f ± %.1f" % (mean, std)
 
 
 def base_variant(name):
@@ -112,7 +114,7 @@ def weakness_finding(probes, gains):
     text.append("")
     if weaker and stronger:
         (wv, w), (sv, s) = max(weaker, key=lambda p: p[1]), max(stronger, key=lambda p: p[1])
-        spread = max(probes[wv]["H", "trained"][3], probes[sv]["H", "trained"][3])
+        spread = max(probes[wv]["H", "trained"][3] or 0.0, probes[sv]["H", "trained"][3] or 0.0)
         verdict = "beats" if w > s else "does not beat"
         text.append("On these numbers the best weaker variant, %s, %s the advantaged one, %s (%.1f against %.1f %%)." %
                     (wv, verdict, sv, w, s))
@@ -228,7 +230,7 @@ def main():
     fig, ax = plt.subplots(figsize=(6, 4.5))
     for x, y, v, spread in points:
         gru = v.endswith("_gru")
-        ax.errorbar(x, y, xerr=spread, fmt="s" if gru else "o", color="tab:green" if gru else "tab:blue",
+        ax.errorbar(x, y, xerr=spread or 0.0, fmt="s" if gru else "o", color="tab:green" if gru else "tab:blue",
                     capsize=3, lw=0.8)
         ax.annotate(v, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=8)
     if any(p[2].endswith("_gru") for p in points):
