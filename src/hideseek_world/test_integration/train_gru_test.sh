@@ -63,7 +63,7 @@ for f in probes.csv distance_time.png tsne_H.png; do
 done
 for label in S H; do
   for network in trained random_init; do
-    tr -d '\r' < "$run/analysis/report/probes.csv" 2>/dev/null | grep -q "^$label,$network,.*,gru_state$" ||
+    tr -d '\r' < "$run/analysis/report/probes.csv" 2>/dev/null | grep -q "^$label,$network,.*,gru_state," ||
       failures+=("probes.csv has no $label probe of the $network network's GRU state")
   done
 done
