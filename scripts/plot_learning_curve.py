@@ -2,6 +2,10 @@
 """Plots a training run's learning curve from its training_log.csv.
 
 usage: scripts/plot_learning_curve.py RUN_DIR/training_log.csv [OUTPUT.png] [TITLE]
+
+A row whose episode window is empty (mean_length 0: no episode has ended since the run started,
+or since a resume from a checkpoint written before checkpoints kept the window) is left as a gap
+in the length and return curves rather than drawn as a fall to 0.
 """
 import csv
 import sys
@@ -22,10 +26,14 @@ def main():
     if not rows:
         sys.exit("%s: no updates logged yet" % path)
     steps = [int(r["steps"]) for r in rows]
+    empty = [float(r["mean_length"]) <= 0.0 for r in rows]
     fig, axes = plt.subplots(1, 3, figsize=(13, 3.6))
     for ax, key, label in zip(axes, ["mean_length", "mean_return", "entropy"],
                               ["episode length (steps, last 100)", "episode return (last 100)", "policy entropy"]):
-        ax.plot(steps, [float(r[key]) for r in rows], lw=1.2)
+        values = [float(r[key]) for r in rows]
+        if key != "entropy":
+            values = [float("nan") if e else v for v, e in zip(values, empty)]
+        ax.plot(steps, values, lw=1.2)
         ax.set_xlabel("environment steps")
         ax.set_title(label)
         ax.grid(alpha=0.3)

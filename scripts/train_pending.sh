@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Trains, one after the other, every run of the paper's set that has no shipped policy yet: the
 # feed-forward hider of each variant (training seed 0), basic with training seeds 1 and 2 (the
-# spread), and the GRU hider on basic, slowerhider and stochasticmaps. Each run goes through
-# scripts/train_variant.sh, so a run stopped part way (a session ended, a machine rebooted)
-# resumes from RUNS_DIR/<run>/checkpoint.pt when this script is started again, and a finished
+# spread), basic's seed-0 run carried on to the full 2M steps (basic_seed0_2m: the shipped basic
+# policy is an earlier checkpoint of that run, and the GRU comparison needs the feed-forward hider
+# at the GRU's seed and steps), and the GRU hider on basic, slowerhider and stochasticmaps. Each
+# run goes through scripts/train_variant.sh, so a run stopped part way (a session ended, a machine
+# rebooted) resumes from RUNS_DIR/<run>/checkpoint.pt when this script is started again, and a finished
 # one ships its policy, log and learning curve. Runs whose policy exists are skipped.
 # usage: scripts/train_pending.sh [RUNS_DIR=~/hideseek_runs] [STEPS=2000000]
 #   HIDESEEK_LIST=1 only prints what is pending.
@@ -20,6 +22,7 @@ plan=(
   "visibilityreward_faster 0 ff visibilityreward_faster"
   "basic 1 ff basic_seed1"
   "basic 2 ff basic_seed2"
+  "basic 0 ff basic_seed0_2m"
   "basic 0 gru basic_gru"
   "slowerhider 0 gru slowerhider_gru"
   "stochasticmaps 0 gru stochasticmaps_gru"
@@ -47,6 +50,6 @@ done
 for entry in "${pending[@]}"; do
   read -r variant seed network name <<< "$entry"
   echo "train_pending: $name, started $(date '+%F %T')"
-  scripts/train_variant.sh "$variant" "$seed" "$steps" "$runs" "$network"
+  scripts/train_variant.sh "$variant" "$seed" "$steps" "$runs" "$network" "$name"
 done
 echo "train_pending: nothing left to train"

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Trains one variant through train.launch (resuming when RUNS_DIR/<run> holds a checkpoint), then
 # ships what it produced: the exported policy, the training log and its learning curve.
-# usage: scripts/train_variant.sh VARIANT [SEED=0] [STEPS=2000000] [RUNS_DIR=~/hideseek_runs] [NETWORK=ff]
+# usage: scripts/train_variant.sh VARIANT [SEED=0] [STEPS=2000000] [RUNS_DIR=~/hideseek_runs] [NETWORK=ff] [NAME]
 # Seed 0 ships as policies/<variant>.pt; other seeds as policies/<variant>_seed<S>.pt (the spread).
 # NETWORK gru trains the recurrent hider and ships policies/<variant>_gru.pt (_gru_seed<S> likewise).
+# NAME overrides the run's name (its folder in RUNS_DIR and its policy file).
 set -euo pipefail
 variant=$1
 seed=${2:-0}
@@ -15,6 +16,7 @@ source scripts/env.sh
 name=$variant
 [ "$network" = ff ] || name=${name}_$network
 [ "$seed" = 0 ] || name=${name}_seed$seed
+name=${6:-$name}
 run="$runs/$name"
 port=$((11700 + seed + $([ "$network" = gru ] && echo 50 || echo 0)))
 export ROS_MASTER_URI=http://localhost:$port
