@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
 """Loads every launch file of a folder with roslaunch's own loader (arguments, includes,
-substitutions) and checks that each node's package and executable exist, and that every
-argument a user can set carries a doc= (roslaunch --ros-args lists it). Writes an xunit
-result. The agents' packages cannot be declared as dependencies of hideseek_world (they depend
+substitutions) and checks that each node's package and executable exist, that every
+argument a user can set carries a doc= (roslaunch --ros-args lists it), and that a `policy`
+argument of a variant's launch file defaults to `random` or to a policy file that exists, and to
+policies/<variant>.pt wherever that is shipped (a trained variant whose launch file still plays
+the random hider).
+Writes an xunit result. The agents' packages cannot be declared as dependencies of hideseek_world (they depend
 on it), so roslaunch-check's dependency test does not apply; this checks what it would run.
 
 usage: check_launch_files.py LAUNCH_DIR XUNIT_OUTPUT
@@ -14,6 +17,7 @@ import xml.etree.ElementTree as ET
 from xml.sax.saxutils import escape
 
 import roslaunch.config
+import roslaunch.substitution_args
 import roslaunch.xmlloader
 import rospkg
 from roslib.packages import find_node
@@ -25,8 +29,28 @@ def undocumented_arguments(path):
             if a.get("value") is None and a.get("doc") is None]
 
 
+def policy_default_problems(path):
+    """A variant launch file's `policy` default: random or an existing file; the shipped policy
+    if there is one."""
+    package = rospkg.RosPack().get_path("hideseek_world")
+    variant = os.path.basename(path)[:-len(".launch")]
+    if not path.endswith(".launch") or not os.path.isfile(os.path.join(package, "config", "variants", variant + ".yaml")):
+        return []
+    defaults = [a.get("default") for a in ET.parse(path).getroot().iter("arg") if a.get("name") == "policy"]
+    if not defaults or defaults[0] is None:
+        return ["a variant launch file without a 'policy' argument"]
+    value = roslaunch.substitution_args.resolve_args(defaults[0])
+    shipped = os.path.join(package, "policies", variant + ".pt")
+    if value != "random" and not os.path.isfile(value):
+        return ["argument 'policy' defaults to %s, which does not exist" % value]
+    if value == "random" and os.path.isfile(shipped):
+        return ["argument 'policy' defaults to random although %s is shipped" % shipped]
+    return []
+
+
 def check(path):
     problems = ["argument '%s' has no doc=" % name for name in undocumented_arguments(path)]
+    problems += policy_default_problems(path)
     if path.endswith(".launch.xml"):
         return problems  # an include: its required arguments come from the files that load it
     config = roslaunch.config.ROSLaunchConfig()
