@@ -204,8 +204,13 @@ def main():
     fig.savefig(os.path.join(a.report, "state_frequencies_variants.png"), dpi=90)
     plt.close(fig)
 
-    fig, axes = plt.subplots(1, len(analysed), figsize=(3.3 * len(analysed), 3.6), squeeze=False)
-    for ax, v in zip(axes[0], analysed):
+    # At most four panels a row; state names on the first column's rows only, so none overlaps.
+    ncols = min(4, len(analysed))
+    nrows = (len(analysed) + ncols - 1) // ncols
+    fig, axes = plt.subplots(nrows, ncols, figsize=(2.9 * ncols + 1.6, 3.3 * nrows), squeeze=False)
+    for ax in axes.flat[len(analysed):]:
+        ax.set_visible(False)
+    for k, (ax, v) in enumerate(zip(axes.flat, analysed)):
         p = np.full((8, 8), np.nan)
         for r in rows(os.path.join(a.report, v, "transitions.csv")):
             if r["probability"] != "":
@@ -214,9 +219,9 @@ def main():
         ax.set_xticks(range(8))
         ax.set_yticks(range(8))
         ax.set_xticklabels(STATE_NAMES, rotation=90, fontsize=6)
-        ax.set_yticklabels(STATE_NAMES, fontsize=6)
+        ax.set_yticklabels(STATE_NAMES if k % ncols == 0 else [], fontsize=6)
         ax.set_title(v, fontsize=9)
-    fig.colorbar(image, ax=list(axes[0]), label="P(to | a change out of from)")
+    fig.colorbar(image, ax=list(axes.flat), label="P(to | a change out of from)")
     fig.suptitle("Transitions between distinct states (rows: from, columns: to)", fontsize=10)
     fig.savefig(os.path.join(a.report, "transitions_variants.png"), dpi=80, bbox_inches="tight")
     plt.close(fig)
