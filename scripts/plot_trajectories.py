@@ -5,6 +5,9 @@ usage: plot_trajectories.py EPISODES.csv MAP.yaml OUTPUT.png TITLE
 One column per episode: above, the arena from above with its obstacles, the hider's path (blue)
 and the seeker's (red) from their start (circle) to the end (cross: capture); below, the distance
 between the agents against the step, shaded where the seeker sees the hider.
+Beside the figure, OUTPUT.md gets the same episodes in numbers: outcome, steps, the first step
+at which the seeker sees the hider, how often each agent sees the other, the distance, and how
+often the hider took each action.
 """
 import csv
 import math
@@ -23,6 +26,33 @@ def box_corners(center, size, yaw):
     c, s = math.cos(yaw), math.sin(yaw)
     hx, hy = size[0] / 2.0, size[1] / 2.0
     return [(center[0] + c * x - s * y, center[1] + s * x + c * y) for x, y in ((-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy))]
+
+
+ACTIONS = ["stay", "forward", "backward", "left", "right"]
+
+
+def episode_table(episodes, title):
+    """Markdown: one row per episode, with what the figure shows in numbers."""
+    lines = ["# " + title, "",
+             "S: the hider sees the seeker; H: the seeker sees the hider; distances in m, the last"
+             " column over the steps from 100 on (the chase once under way). Actions in % of the"
+             " episode's steps.", "",
+             "| seed | outcome | steps | first step with H | H % | S % | distance mean / min | "
+             "from step 100: mean / min | " + " | ".join(ACTIONS) + " |",
+             "| --- " * (8 + len(ACTIONS)) + "|"]
+    for seed in sorted(episodes):
+        rows = episodes[seed]
+        n = len(rows)
+        dist = [float(r["distance"]) for r in rows]
+        late = dist[100:]
+        first_h = next((int(r["step"]) for r in rows if r["H"] == "1"), None)
+        counts = [sum(1 for r in rows if int(r["hider_action"]) == a) for a in range(len(ACTIONS))]
+        lines.append("| %d | %s | %d | %s | %.1f | %.1f | %.2f / %.2f | %s | %s |" % (
+            seed, rows[-1]["outcome"] or "running", n, "-" if first_h is None else first_h,
+            100.0 * sum(r["H"] == "1" for r in rows) / n, 100.0 * sum(r["S"] == "1" for r in rows) / n,
+            sum(dist) / n, min(dist), "%.2f / %.2f" % (sum(late) / len(late), min(late)) if late else "-",
+            " | ".join("%.1f" % (100.0 * c / n) for c in counts)))
+    return "\n".join(lines) + "\n"
 
 
 def main(rows_file, map_file, out, title):
@@ -73,6 +103,10 @@ def main(rows_file, map_file, out, title):
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=80)
+    table = out.rsplit(".", 1)[0] + ".md"
+    with open(table, "w") as f:
+        f.write(episode_table(episodes, title))
+    print("wrote", out, "and", table)
 
 
 if __name__ == "__main__":
