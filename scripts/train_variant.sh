@@ -17,6 +17,9 @@ name=$variant
 [ "$network" = ff ] || name=${name}_$network
 [ "$seed" = 0 ] || name=${name}_seed$seed
 name=${6:-$name}
+case "$name" in
+  ''|*/*|.*) echo "train_variant: NAME '$name' must be a plain file name (no '/', not starting with '.')" >&2; exit 2 ;;
+esac
 run="$runs/$name"
 port=$((11700 + seed + $([ "$network" = gru ] && echo 50 || echo 0)))
 export ROS_MASTER_URI=http://localhost:$port

@@ -32,19 +32,27 @@ def undocumented_arguments(path):
 def policy_default_problems(path):
     """A variant launch file's `policy` default: random or an existing file; the shipped policy
     if there is one."""
+    if not path.endswith(".launch"):
+        return []
     package = rospkg.RosPack().get_path("hideseek_world")
     variant = os.path.basename(path)[:-len(".launch")]
-    if not path.endswith(".launch") or not os.path.isfile(os.path.join(package, "config", "variants", variant + ".yaml")):
+    if not os.path.isfile(os.path.join(package, "config", "variants", variant + ".yaml")):
         return []
-    defaults = [a.get("default") for a in ET.parse(path).getroot().iter("arg") if a.get("name") == "policy"]
+    defaults = [a.get("default") for a in ET.parse(path).getroot().findall("arg") if a.get("name") == "policy"]
     if not defaults or defaults[0] is None:
-        return ["a variant launch file without a 'policy' argument"]
-    value = roslaunch.substitution_args.resolve_args(defaults[0])
+        return ["a variant launch file without a 'policy' argument with a default"]
+    try:
+        value = roslaunch.substitution_args.resolve_args(defaults[0])
+    except Exception as e:  # an $(arg ...) or an unset $(env ...): not a default a user can rely on
+        return ["argument 'policy' default %s does not resolve: %s" % (defaults[0], e)]
     shipped = os.path.join(package, "policies", variant + ".pt")
+    if value != "random" and not os.path.isabs(value):
+        return ["argument 'policy' defaults to the relative path %s (it would depend on where roslaunch "
+                "starts; use $(find hideseek_world)/policies/...)" % value]
     if value != "random" and not os.path.isfile(value):
         return ["argument 'policy' defaults to %s, which does not exist" % value]
-    if value == "random" and os.path.isfile(shipped):
-        return ["argument 'policy' defaults to random although %s is shipped" % shipped]
+    if os.path.isfile(shipped) and (value == "random" or os.path.realpath(value) != os.path.realpath(shipped)):
+        return ["argument 'policy' defaults to %s although %s is shipped" % (value, shipped)]
     return []
 
 
