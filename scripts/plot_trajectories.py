@@ -5,12 +5,15 @@ usage: plot_trajectories.py EPISODES.csv MAP.yaml OUTPUT.png TITLE
 One column per episode: above, the arena from above with its obstacles, the hider's path (blue)
 and the seeker's (red) from their start (circle) to the end (cross: capture); below, the distance
 between the agents against the step, shaded where the seeker sees the hider.
-Beside the figure, OUTPUT.md gets the same episodes in numbers: outcome, steps, the first step
+Obstacles come from EPISODES_layouts.yaml, which play_episodes writes beside its CSV with each
+episode's own layout (stochastic maps draw new boxes every episode), or, for a CSV without one,
+from MAP.yaml. Beside the figure, OUTPUT.md gets the same episodes in numbers: outcome, steps, the first step
 at which the seeker sees the hider, how often each agent sees the other, the distance, and how
 often the hider took each action.
 """
 import csv
 import math
+import os
 import sys
 from collections import defaultdict
 
@@ -62,14 +65,23 @@ def main(rows_file, map_file, out, title):
             episodes[int(r["seed"])].append(r)
     with open(map_file) as f:
         spec = yaml.safe_load(f)
-    half = float(spec.get("half_extent", 7.0))
+    layouts = {}
+    layouts_file = (rows_file[:-4] if rows_file.endswith(".csv") else rows_file) + "_layouts.yaml"
+    if os.path.isfile(layouts_file):
+        with open(layouts_file) as f:
+            layouts = {int(e["seed"]): e for e in yaml.safe_load(f)["episodes"]}
+    elif spec.get("type", "fixed") != "fixed":
+        print("plot_trajectories: %s draws a new layout every episode and %s is missing: the obstacles drawn "
+              "are the map's fixed ones only" % (map_file, layouts_file), file=sys.stderr)
     seeds = sorted(episodes)
     fig, axes = plt.subplots(2, len(seeds), figsize=(3.2 * len(seeds), 6.2), squeeze=False,
                              gridspec_kw={"height_ratios": [3, 1.4]})
     for col, seed in enumerate(seeds):
         rows = episodes[seed]
         ax = axes[0][col]
-        for ob in spec.get("obstacles", []):
+        layout = layouts.get(seed, spec)
+        half = float(layout.get("half_extent", 7.0))
+        for ob in layout.get("obstacles") or []:
             ax.add_patch(Polygon(box_corners(ob["center"], ob["size"], float(ob.get("yaw", 0.0))), closed=True,
                                  facecolor=(0.80, 0.62, 0.30), edgecolor="none"))
         ax.plot([-half, half, half, -half, -half], [-half, -half, half, half, -half], color="0.3", lw=2)

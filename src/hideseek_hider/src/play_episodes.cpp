@@ -4,7 +4,9 @@
 // usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled]
 //   POLICY: a checkpoint, or "random". Columns: seed,step,hider_x,hider_y,hider_yaw,seeker_x,
 //   seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome (outcome on the last step of an
-//   episode: captured or survived; empty before).
+//   episode: captured or survived; empty before). Beside it, OUTPUT_layouts.yaml (OUTPUT's name
+//   without .csv) holds each episode's obstacles and arena size, which differ per episode on
+//   stochastic maps; plot_trajectories.py draws them.
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -51,6 +53,26 @@ int main(int argc, char** argv) {
     }
     std::ofstream out(argv[5]);
     if (!out) throw std::runtime_error(std::string("cannot write ") + argv[5]);
+    std::string layouts_path = argv[5];
+    if (layouts_path.size() > 4 && layouts_path.compare(layouts_path.size() - 4, 4, ".csv") == 0) {
+      layouts_path.resize(layouts_path.size() - 4);
+    }
+    layouts_path += "_layouts.yaml";
+    std::ofstream layouts(layouts_path);
+    if (!layouts) throw std::runtime_error("cannot write " + layouts_path);
+    layouts << "# play_episodes: the layout of each episode in " << argv[5] << " (variant " << variant_name << ")\n"
+            << "episodes:\n";
+    for (int i = 0; i < n; ++i) {
+      const hw::Layout& l = world.arena(i).layout();
+      layouts << "  - seed: " << world.arena(i).seed() << "\n    half_extent: " << l.half_extent << "\n    obstacles:";
+      if (l.obstacles.empty()) layouts << " []";
+      layouts << "\n";
+      for (const auto& b : l.obstacles) {
+        layouts << "      - {center: [" << b.center.x << ", " << b.center.y << "], size: [" << b.size.x << ", " << b.size.y
+                << "], yaw: " << b.yaw << "}\n";
+      }
+    }
+    layouts.close();
     out << "seed,step,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome\n";
     std::vector<uint8_t> images(world.imageBytes() * n);
     std::vector<bool> playing(n, true);
