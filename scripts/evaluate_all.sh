@@ -4,7 +4,9 @@
 # (evaluate.launch), beside the paper's figures (config/paper_reference.yaml).
 # Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/). Writes table2.md, table2.csv
 # and, per evaluation, OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv.
-# A shipped GRU hider (policies/<variant>_gru.pt) is evaluated too, as <variant>_gru_trained.
+# A shipped GRU hider (policies/<variant>_gru.pt) is evaluated too, as <variant>_gru_trained, and so is
+# every other run of the variant listed in policies/policies.yaml (another training seed, a longer run):
+# policies/<run>.pt as <run>_trained.
 # HIDESEEK_VARIANTS="v1 v2" evaluates those variants only and keeps the other evaluations already in
 # OUTPUT_DIR/evaluations (made by the same code: use it after training a policy, not after changing the game).
 set -euo pipefail
@@ -24,8 +26,21 @@ else
   rm -rf "$out/evaluations"
 fi
 mkdir -p "$out/evaluations"
+# The variant's other runs in policies.yaml (not <variant> or <variant>_gru, evaluated above them).
+other_runs() {
+  /usr/bin/python3 - "$1" <<'PY'
+import os, sys, yaml
+v = sys.argv[1]
+entries = yaml.safe_load(open("policies/policies.yaml")) or {}
+for name, e in entries.items():
+    if (e or {}).get("variant") == v and name not in (v, v + "_gru") and os.path.exists("policies/%s.pt" % name):
+        print(name)
+PY
+}
 for v in "${variants[@]}"; do
-  for p in random trained gru_trained; do
+  policies_of_v=(random trained gru_trained)
+  for run in $(other_runs "$v"); do policies_of_v+=("${run}_trained"); done
+  for p in "${policies_of_v[@]}"; do
     policy=random
     if [ "$p" = trained ]; then
       policy="$PWD/policies/$v.pt"
@@ -33,8 +48,11 @@ for v in "${variants[@]}"; do
     elif [ "$p" = gru_trained ]; then
       policy="$PWD/policies/${v}_gru.pt"
       [ -f "$policy" ] || continue
+    elif [ "$p" != random ]; then
+      policy="$PWD/policies/${p%_trained}.pt"
     fi
     dir="$out/evaluations/${v}_$p"
+    [[ "$p" == random || "$p" == trained || "$p" == gru_trained ]] || dir="$out/evaluations/$p"
     rm -rf "$dir"
     mkdir -p "$dir"
     start=$(date +%s)

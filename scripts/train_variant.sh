@@ -40,16 +40,16 @@ cp "$run/training_log.csv" "docs/training_log_$name.csv"
 /usr/bin/python3 scripts/plot_learning_curve.py "docs/training_log_$name.csv" "docs/learning_curve_$name.png" \
   "$variant, network $network, training seed $seed, $(tail -n 1 "$run/training_log.csv" | cut -d, -f2) steps"
 # Record what was shipped: steps and wall time of training up to the exported checkpoint.
-/usr/bin/python3 - "$name" "$seed" "$run/training_log.csv" "docs/training_log_$name.csv" <<'PY'
+/usr/bin/python3 - "$name" "$seed" "$run/training_log.csv" "docs/training_log_$name.csv" "$variant" "$network" <<'PY'
 import csv, sys
 import yaml
-name, seed, log, shipped_log = sys.argv[1:]
+name, seed, log, shipped_log, variant, network = sys.argv[1:]
 last = list(csv.DictReader(open(log)))[-1]
 path = "policies/policies.yaml"
 text = open(path).read()
 header = "".join(l for l in text.splitlines(True) if l.startswith("#"))
 entries = yaml.safe_load(text) or {}
-entries[name] = {"training_seed": int(seed), "steps": int(last["steps"]), "wall_s": round(float(last["wall_s"])),
+entries[name] = {"variant": variant, "network": network, "training_seed": int(seed), "steps": int(last["steps"]), "wall_s": round(float(last["wall_s"])),
                  "log": shipped_log}
 with open(path, "w") as f:
     f.write(header + yaml.safe_dump(entries, sort_keys=False))
