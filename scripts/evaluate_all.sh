@@ -26,43 +26,44 @@ else
   rm -rf "$out/evaluations"
 fi
 mkdir -p "$out/evaluations"
-# The variant's other runs in policies.yaml (not <variant> or <variant>_gru, evaluated above them).
+# evaluate VARIANT LABEL POLICY DIR: one evaluation through evaluate.launch into DIR.
+evaluate() {
+  local v=$1 label=$2 policy=$3 dir=$4 start
+  rm -rf "$dir"
+  mkdir -p "$dir"
+  start=$(date +%s)
+  # roslaunch exits 0 even when a required node dies: the evaluator's files are the verdict.
+  roslaunch -p "$port" hideseek_world evaluate.launch variant:="$v" policy:="$policy" output_dir:="$dir" \
+    > "$dir/launch.log" 2>&1 || true
+  [ -s "$dir/evaluation.csv" ] || { echo "evaluate_all: $v $label failed, see $dir/launch.log"; exit 1; }
+  rm -f "$dir/launch.log"
+  echo "evaluate_all: $v $label: $(tail -n 1 "$dir/evaluation.csv" | cut -d, -f4,5 | tr , ' ') ($(($(date +%s) - start)) s)"
+}
+# The variant's other runs in policies.yaml, one per line (not <variant> or <variant>_gru: those are
+# evaluated as trained and gru_trained). table2.py lists the same runs.
 other_runs() {
   /usr/bin/python3 - "$1" <<'PY'
 import os, sys, yaml
 v = sys.argv[1]
-entries = yaml.safe_load(open("policies/policies.yaml")) or {}
-for name, e in entries.items():
+entries = yaml.safe_load(open("policies/policies.yaml")) if os.path.exists("policies/policies.yaml") else {}
+for name, e in (entries or {}).items():
     if (e or {}).get("variant") == v and name not in (v, v + "_gru") and os.path.exists("policies/%s.pt" % name):
         print(name)
 PY
 }
 for v in "${variants[@]}"; do
-  policies_of_v=(random trained gru_trained)
-  for run in $(other_runs "$v"); do policies_of_v+=("${run}_trained"); done
-  for p in "${policies_of_v[@]}"; do
-    policy=random
-    if [ "$p" = trained ]; then
-      policy="$PWD/policies/$v.pt"
-      [ -f "$policy" ] || { echo "evaluate_all: $v: no shipped policy"; continue; }
-    elif [ "$p" = gru_trained ]; then
-      policy="$PWD/policies/${v}_gru.pt"
-      [ -f "$policy" ] || continue
-    elif [ "$p" != random ]; then
-      policy="$PWD/policies/${p%_trained}.pt"
-    fi
-    dir="$out/evaluations/${v}_$p"
-    [[ "$p" == random || "$p" == trained || "$p" == gru_trained ]] || dir="$out/evaluations/$p"
-    rm -rf "$dir"
-    mkdir -p "$dir"
-    start=$(date +%s)
-    # roslaunch exits 0 even when a required node dies: the evaluator's files are the verdict.
-    roslaunch -p "$port" hideseek_world evaluate.launch variant:="$v" policy:="$policy" output_dir:="$dir" \
-      > "$dir/launch.log" 2>&1 || true
-    [ -s "$dir/evaluation.csv" ] || { echo "evaluate_all: $v $p failed, see $dir/launch.log"; exit 1; }
-    rm -f "$dir/launch.log"
-    echo "evaluate_all: $v $p: $(tail -n 1 "$dir/evaluation.csv" | cut -d, -f4,5 | tr , ' ') ($(($(date +%s) - start)) s)"
-  done
+  evaluate "$v" random random "$out/evaluations/${v}_random"
+  if [ -f "policies/$v.pt" ]; then
+    evaluate "$v" trained "$PWD/policies/$v.pt" "$out/evaluations/${v}_trained"
+  else
+    echo "evaluate_all: $v: no shipped policy"
+  fi
+  [ ! -f "policies/${v}_gru.pt" ] || evaluate "$v" gru_trained "$PWD/policies/${v}_gru.pt" "$out/evaluations/${v}_gru_trained"
+  # A separate statement, so that set -e stops on a policies.yaml that cannot be read.
+  runs=$(other_runs "$v")
+  while IFS= read -r run; do
+    [ -z "$run" ] || evaluate "$v" "$run" "$PWD/policies/$run.pt" "$out/evaluations/${run}_trained"
+  done <<< "$runs"
 done
 /usr/bin/python3 scripts/table2.py config/paper_reference.yaml "$out/evaluations" "$out/table2" policies
 cat "$out/table2.md"

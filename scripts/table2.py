@@ -96,9 +96,13 @@ def main(paper_file, evaluations, stem, policies):
         with open(os.path.join(policies, "policies.yaml")) as f:
             shipped = yaml.safe_load(f) or {}
     for name, entry in shipped.items():
-        if run_variant(name, entry or {}) is None:
+        variant = run_variant(name, entry or {})
+        if variant is None:
             sys.exit("table2.py: %s/policies.yaml: entry '%s' names no variant (add 'variant: <one of %s>')"
                      % (policies, name, ", ".join(VARIANTS)))
+        if variant not in VARIANTS:
+            sys.exit("table2.py: %s/policies.yaml: entry '%s' has variant '%s', which is not one of: %s"
+                     % (policies, name, variant, ", ".join(VARIANTS)))
     rows = []
     for base in VARIANTS:
         p = paper["variants"][base]

@@ -104,3 +104,42 @@ def test_an_entry_that_names_no_variant_is_refused_by_name(tmp_path, evaluations
     result, _ = run(tmp_path, POLICIES + "mystery_run: {training_seed: 3, steps: 10}\n")
     assert result.returncode != 0
     assert "mystery_run" in result.stderr and "variant" in result.stderr
+
+
+def test_a_misspelt_variant_is_refused_not_dropped(tmp_path, evaluations):
+    result, _ = run(tmp_path, POLICIES + "vr_run: {variant: visibilityreward-faster, training_seed: 0, steps: 10}\n")
+    assert result.returncode != 0
+    assert "vr_run" in result.stderr and "visibilityreward-faster" in result.stderr
+
+
+def test_runs_go_to_their_own_variant_not_one_whose_name_is_a_prefix(tmp_path, evaluations):
+    write_evaluation(evaluations, "visibilityreward_random", 39.0, 0.0)
+    write_evaluation(evaluations, "visibilityreward_faster_random", 38.0, 0.0)
+    write_evaluation(evaluations, "visibilityreward_faster_gru_trained", 200.0, 0.1)
+    write_evaluation(evaluations, "visibilityreward_faster_seed1_trained", 150.0, 0.05)
+    result, stem = run(tmp_path, POLICIES + "visibilityreward_faster_seed1: {variant: visibilityreward_faster, "
+                                            "training_seed: 1, steps: 10}\n")
+    assert result.returncode == 0, result.stderr
+    table = rows(str(stem) + ".csv")
+    assert [r["variant"] for r in table if r["base_variant"] == "visibilityreward"] == ["visibilityreward"]
+    faster = [r for r in table if r["base_variant"] == "visibilityreward_faster"]
+    assert [(r["variant"], r["living_trained"], r["living_random"]) for r in faster] == [
+        ("visibilityreward_faster", "", "38.0"), ("visibilityreward_faster_gru", "200.0", "38.0"),
+        ("visibilityreward_faster_seed1", "150.0", "38.0")]
+
+
+def test_a_listed_run_without_an_evaluation_gets_no_row(tmp_path, evaluations):
+    result, stem = run(tmp_path, POLICIES + "basic_seed3: {variant: basic, training_seed: 3, steps: 2000896}\n")
+    assert result.returncode == 0, result.stderr
+    assert "basic_seed3" not in [r["variant"] for r in rows(str(stem) + ".csv")]
+    assert rows(str(stem) + "_seeds.csv")[0]["training_seeds"] == "0 1 2"
+
+
+def test_the_spread_takes_one_run_per_seed_the_shipped_policy_first(tmp_path, evaluations):
+    # The shipped basic policy has the same steps as basic_seed0_2m: seed 0 counts once, as the shipped one.
+    policies = POLICIES.replace("basic: {training_seed: 0, steps: 1200000", "basic: {training_seed: 0, steps: 2000896")
+    result, stem = run(tmp_path, policies)
+    assert result.returncode == 0, result.stderr
+    g = rows(str(stem) + "_seeds.csv")[0]
+    assert g["training_seeds"] == "0 1 2" and g["runs"] == "basic basic_seed1 basic_seed2"
+    assert g["living_mean"] == "416.7"   # 500, 300, 450
