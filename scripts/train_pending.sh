@@ -6,7 +6,9 @@
 # at the GRU's seed and steps), and the GRU hider on basic, slowerhider and stochasticmaps. Each
 # run goes through scripts/train_variant.sh, so a run stopped part way (a session ended, a machine
 # rebooted) resumes from RUNS_DIR/<run>/checkpoint.pt when this script is started again, and a finished
-# one ships its policy, log and learning curve. Runs whose policy exists are skipped.
+# one ships its policy, log and learning curve. Runs whose policy exists are skipped. After the
+# feed-forward hiders, the GRU runs alternate with basic's other seeds, basic's GRU run first: its
+# feed-forward twin (basic_seed0_2m) exists, so it alone already answers the memory question once.
 # usage: scripts/train_pending.sh [RUNS_DIR=~/hideseek_runs] [STEPS=2000000]
 #   HIDESEEK_LIST=1 only prints what is pending.
 set -euo pipefail
@@ -21,10 +23,10 @@ plan=(
   "visibilityreward 0 ff visibilityreward"
   "basic 0 ff basic_seed0_2m"
   "visibilityreward_faster 0 ff visibilityreward_faster"
-  "basic 1 ff basic_seed1"
-  "basic 2 ff basic_seed2"
   "basic 0 gru basic_gru"
+  "basic 1 ff basic_seed1"
   "slowerhider 0 gru slowerhider_gru"
+  "basic 2 ff basic_seed2"
   "stochasticmaps 0 gru stochasticmaps_gru"
 )
 pending=()
