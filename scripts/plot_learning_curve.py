@@ -35,6 +35,7 @@ def main():
             values = [float("nan") if e else v for v, e in zip(values, empty)]
         ax.plot(steps, values, lw=1.2)
         ax.set_xlabel("environment steps")
+        ax.ticklabel_format(axis="x", style="sci", scilimits=(0, 0))  # 1e5 or 1e6 below the axis, never long labels that collide
         ax.set_title(label)
         ax.grid(alpha=0.3)
     fig.suptitle(sys.argv[3] if len(sys.argv) > 3 else path)
