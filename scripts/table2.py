@@ -3,12 +3,13 @@
 
 usage: table2.py PAPER_REFERENCE.yaml EVALUATIONS_DIR OUTPUT_STEM POLICIES_DIR
 Reads EVALUATIONS_DIR/<run>_trained/evaluation.csv and EVALUATIONS_DIR/<variant>_random/evaluation.csv,
-and POLICIES_DIR/policies.yaml (each shipped policy's variant, network, training seed, training steps and
-wall time). Writes OUTPUT_STEM.md and .csv: one row per variant (its shipped policy, <variant>.pt), then a
+and POLICIES_DIR/policies.yaml (each shipped policy's variant, network, training seed, training steps,
+wall time and training precision). Writes OUTPUT_STEM.md and .csv: one row per variant (its shipped policy, <variant>.pt), then a
 row for each other evaluated run of that variant (a GRU hider <variant>_gru, another training seed
 <variant>_seed<S>, ...), each beside the same random hider. Where two or more training seeds of one
 variant and network were trained for the same steps, OUTPUT_STEM_seeds.csv and a second table in the
-Markdown give their mean and sample standard deviation (the spread over training seeds).
+Markdown give their mean and sample standard deviation (the spread over training seeds), with each
+run's training precision, since runs trained in fp32 and in bf16 are pooled there.
 """
 import csv
 import os
@@ -81,6 +82,7 @@ def seed_spread(rows):
             "variant": variant, "network": network, "training_steps": steps,
             "training_seeds": " ".join(str(s) for s in sorted(by_seed)),
             "runs": " ".join(r["variant"] for r in runs),
+            "precisions": " ".join(r["training_precision"] or "?" for r in runs),
             "living_mean": "%.1f" % statistics.mean(living), "living_std": "%.1f" % statistics.stdev(living),
             "living_min": "%.1f" % min(living), "living_max": "%.1f" % max(living),
             "success_mean": "%.2f" % statistics.mean(success), "success_std": "%.2f" % statistics.stdev(success),
@@ -124,6 +126,7 @@ def main(paper_file, evaluations, stem, policies):
                 "trained_beats_random": ("yes" if trained[0] > random[0] else "no") if trained and random else "",
                 "training_steps": entry.get("steps", "") if trained else "",
                 "training_wall_h": "%.1f" % (entry["wall_s"] / 3600.0) if trained and "wall_s" in entry else "",
+                "training_precision": entry.get("precision", "") if trained else "",
             })
     with open(stem + ".csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
@@ -132,22 +135,23 @@ def main(paper_file, evaluations, stem, policies):
     lines = [
         "Average living steps and success rate over the evaluation seeds 0..99 (at most 1000 steps), "
         "trained policy (`%s/<variant>.pt`, greedy) / uniformly random hider, beside the paper's "
-        "(trained for %d steps). Training: the steps and wall hours of the shipped checkpoint's run on this "
-        "2-core machine (fp32). An empty cell: no policy shipped for that variant yet. Rows below a variant "
+        "(trained for %d steps). Training: the steps, precision and wall hours of the shipped checkpoint's run "
+        "on a 2-core machine (fp32, or bf16 autocast where that machine's CPU had native bf16; machines "
+        "differ, so wall hours compare runs only roughly). An empty cell: no policy shipped for that variant yet. Rows below a variant "
         "are its other runs (`%s/<run>.pt`): `<variant>_gru` the recurrent hider, `<variant>_seed<S>` "
         "training seed S, each beside the same random hider and the paper's feed-forward numbers." %
         (policies, paper["training_steps"], policies),
         "",
-        "| variant | training seed | living steps, trained / random | paper | success %, trained / random | paper | training steps | wall h |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- |",
+        "| variant | training seed | living steps, trained / random | paper | success %, trained / random | paper | training steps | precision | wall h |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     for r in rows:
-        lines.append("| %s | %s | %s / %s | %s / %s | %s / %s | %s / %s | %s | %s |" % (
+        lines.append("| %s | %s | %s / %s | %s / %s | %s / %s | %s / %s | %s | %s | %s |" % (
             r["variant"], r["training_seed"] if r["training_seed"] != "" else "-",
             r["living_trained"] or "-", r["living_random"] or "-", r["paper_living_trained"],
             r["paper_living_random"], r["success_trained"] or "-", r["success_random"] or "-",
             r["paper_success_trained"], r["paper_success_random"], r["training_steps"] or "-",
-            r["training_wall_h"] or "-"))
+            r["training_precision"] or "-", r["training_wall_h"] or "-"))
     spread = seed_spread(rows)
     seeds_csv = stem + "_seeds.csv"
     if spread:
@@ -158,14 +162,15 @@ def main(paper_file, evaluations, stem, policies):
         lines += [
             "",
             "Spread over training seeds (runs of one variant and network trained for the same steps; "
-            "mean, sample standard deviation, lowest and highest run):",
+            "mean, sample standard deviation, lowest and highest run; the precision each run trained in, "
+            "in the order of the seeds):",
             "",
-            "| variant | network | training steps | seeds (runs) | living steps, mean ± std (min to max) | success %, mean ± std |",
-            "| --- | --- | --- | --- | --- | --- |",
+            "| variant | network | training steps | seeds (runs) | precisions | living steps, mean ± std (min to max) | success %, mean ± std |",
+            "| --- | --- | --- | --- | --- | --- | --- |",
         ]
         for g in spread:
-            lines.append("| %s | %s | %d | %s (%s) | %s ± %s (%s to %s) | %s ± %s |" % (
-                g["variant"], g["network"], g["training_steps"], g["training_seeds"], g["runs"],
+            lines.append("| %s | %s | %d | %s (%s) | %s | %s ± %s (%s to %s) | %s ± %s |" % (
+                g["variant"], g["network"], g["training_steps"], g["training_seeds"], g["runs"], g["precisions"],
                 g["living_mean"], g["living_std"], g["living_min"], g["living_max"],
                 g["success_mean"], g["success_std"]))
     elif os.path.exists(seeds_csv):

@@ -45,8 +45,8 @@ def evaluations(tmp_path):
 
 POLICIES = """
 basic: {training_seed: 0, steps: 1200000, wall_s: 3600}
-basic_seed0_2m: {variant: basic, network: ff, training_seed: 0, steps: 2000896, wall_s: 7200}
-basic_seed1: {variant: basic, network: ff, training_seed: 1, steps: 2000896, wall_s: 7200}
+basic_seed0_2m: {variant: basic, network: ff, training_seed: 0, steps: 2000896, wall_s: 7200, precision: fp32}
+basic_seed1: {variant: basic, network: ff, training_seed: 1, steps: 2000896, wall_s: 7200, precision: bf16}
 basic_seed2: {variant: basic, network: ff, training_seed: 2, steps: 2000896, wall_s: 7200}
 basic_gru: {variant: basic, network: gru, training_seed: 0, steps: 2000896, wall_s: 9000}
 """
@@ -71,7 +71,11 @@ def test_every_run_of_a_variant_gets_a_row_beside_the_same_random_hider(tmp_path
     # A variant without a policy still has its row, with the random hider only.
     slower = [r for r in table if r["base_variant"] == "slowerhider"]
     assert [(r["variant"], r["living_trained"], r["living_random"]) for r in slower] == [("slowerhider", "", "38.0")]
-    assert "| basic_seed1 | 1 | 300.0 / 40.0 |" in open(str(stem) + ".md").read()
+    md = open(str(stem) + ".md").read()
+    assert "| basic_seed1 | 1 | 300.0 / 40.0 |" in md
+    # The precision a run trained in is shown where policies.yaml records it, "-" where it does not.
+    assert [r["training_precision"] for r in basic] == ["", "", "fp32", "bf16", ""]
+    assert "| 2000896 | bf16 | 2.0 |" in md and "| 2000896 | - | 2.0 |" in md
 
 
 def test_spread_over_training_seeds_takes_runs_of_equal_steps_and_network_only(tmp_path, evaluations):
@@ -84,10 +88,12 @@ def test_spread_over_training_seeds_takes_runs_of_equal_steps_and_network_only(t
     assert (g["variant"], g["network"], g["training_steps"]) == ("basic", "ff", "2000896")
     assert g["training_seeds"] == "0 1 2"
     assert g["runs"] == "basic_seed0_2m basic_seed1 basic_seed2"
+    # Pooled runs of different precisions say so, seed by seed ("?" where a run's is not recorded).
+    assert g["precisions"] == "fp32 bf16 ?"
     assert g["living_mean"] == "450.0" and g["living_std"] == "150.0"   # 600, 300, 450
     assert (g["living_min"], g["living_max"]) == ("300.0", "600.0")
     assert g["success_mean"] == "40.00" and g["success_std"] == "20.00"
-    assert "| basic | ff | 2000896 | 0 1 2 (basic_seed0_2m basic_seed1 basic_seed2) | 450.0 ± 150.0" in \
+    assert "| basic | ff | 2000896 | 0 1 2 (basic_seed0_2m basic_seed1 basic_seed2) | fp32 bf16 ? | 450.0 ± 150.0" in \
         open(str(stem) + ".md").read()
 
 
