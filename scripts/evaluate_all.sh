@@ -2,7 +2,7 @@
 # The paper's Table 2 side by side with this project's: every shipped policy (policies/<variant>.pt,
 # greedy) and the uniformly random hider on all seven variants, seeds 0..99 through the ROS graph
 # (evaluate.launch), beside the paper's figures (config/paper_reference.yaml).
-# Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/). Writes table2.md, table2.csv
+# Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/). Writes table2.md, table2.csv, gru_vs_ff.md, gru_vs_ff.csv
 # and, per evaluation, OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv.
 # A shipped GRU hider (policies/<variant>_gru.pt) is evaluated too, as <variant>_gru_trained, and so is
 # every other run of the variant listed in policies/policies.yaml (another training seed, a longer run):
@@ -67,3 +67,6 @@ for v in "${variants[@]}"; do
 done
 /usr/bin/python3 scripts/table2.py config/paper_reference.yaml "$out/evaluations" "$out/table2" policies
 cat "$out/table2.md"
+# The GRU hiders against their feed-forward twins, evaluation seed by evaluation seed.
+/usr/bin/python3 scripts/gru_vs_ff.py "$out/evaluations" policies "$out/gru_vs_ff" > /dev/null
+echo "evaluate_all: the GRU hiders against their feed-forward twins: $out/gru_vs_ff.md"

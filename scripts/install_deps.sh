@@ -14,7 +14,7 @@ PACKAGES=(
   libtorch-dev libopenblas0-pthread
   libgtest-dev googletest
   xvfb xauth imagemagick xterm
-  python3-matplotlib python3-sklearn python3-pytest python3-yaml
+  python3-matplotlib python3-sklearn python3-scipy python3-pytest python3-yaml
 )
 
 missing=()

@@ -263,8 +263,14 @@ def main():
              "Made by `make reproduce`: every shipped policy and the random hider evaluated on every variant, "
              "then every variant with a shipped policy analysed (`analyze.launch`).", "",
              "## Table 2: living steps and success", "", table2_md.strip(), "",
-             "CSV: [table2.csv](table2.csv); per evaluation: [evaluations/](evaluations/)", "",
-             "## Table 3: linear probes of the 512 mid-level features", "",
+             "CSV: [table2.csv](table2.csv); per evaluation: [evaluations/](evaluations/)", ""]
+    gru_vs_ff = os.path.join(a.report, "gru_vs_ff.md")
+    if os.path.exists(gru_vs_ff):  # scripts/evaluate_all.sh: the GRU hiders against their feed-forward twins
+        with open(gru_vs_ff) as f:
+            body = f.read().split("\n", 1)[1].strip()  # without its own title
+        index += ["## The GRU hider against its feed-forward twin", "", body, "",
+                  "CSV: [gru_vs_ff.csv](gru_vs_ff.csv)", ""]
+    index += ["## Table 3: linear probes of the 512 mid-level features", "",
              "Test accuracy in % on episodes held out from the probe's fit; the balanced accuracy (mean recall of "
              "both classes) is 50 % for any probe that ignores its input. Every probe is scored on several random "
              "splits by episode (analyze.launch probe_splits): the mean ± the standard deviation over the splits; "

@@ -134,6 +134,8 @@ def test_reproduce_report_pairs_the_splits_and_weighs_weaknesses_against_advanta
     (report / "table2.csv").write_text(
         "variant,living_trained,living_random\nslowerhider,60,38\nfasterhider,500,38\n")
     (report / "table2.md").write_text("| variant |\n| --- |\n")
+    (report / "gru_vs_ff.md").write_text("# The GRU hider against its feed-forward twin\n\n| v |\n| --- |\n"
+                                          "| basic_gru |\n\n**Goal: undecided**\n")
     here = os.path.dirname(os.path.abspath(__file__))
     paper = os.path.join(here, "..", "..", "hideseek_world", "config", "paper_reference.yaml")
     subprocess.run([sys.executable, os.path.join(here, "reproduce_report.py"), str(report), "--paper", paper],
@@ -156,6 +158,9 @@ def test_reproduce_report_pairs_the_splits_and_weighs_weaknesses_against_advanta
     # What training added: the advantaged hider's trained H probe scores 99 % on every split.
     assert "On the gain the best weaker variant does not beat the advantaged one" in index
     assert (report / "survival_vs_representation.png").stat().st_size > 0
+    # evaluate_all.sh's GRU comparison is inline, under the report's own heading, without its title.
+    assert "## The GRU hider against its feed-forward twin\n\n| v |" in index and "| basic_gru |" in index
+    assert index.count("The GRU hider against its feed-forward twin") == 1
 
 
 def test_report_probes_the_gru_state_of_a_recurrent_policy(tmp_path):
