@@ -109,10 +109,22 @@ HiderOutput HiderNetImpl::forwardSequence(const torch::Tensor& images, const tor
                 ", ", kHidden, "], got ", hidden.sizes());
     const torch::Tensor keep = (1.0 - starts.to(torch::kFloat32)).unsqueeze(2);  // [T, B, 1]
     torch::Tensor h = hidden.to(torch::kFloat32);
+    // torch::nn::GRUCell's equations on its own parameters (gates r, z, n; h' = n + z (h - n)),
+    // with the input side of every step in one matrix product before the loop: only the
+    // recurrent product is sequential. Step by step, the cell would multiply [B, 512] by the
+    // input weights T times, and backpropagation would add T weight gradients of [1536, 512].
+    const std::vector<torch::Tensor> input_gates =
+        torch::nn::functional::linear(out.features, gru_->weight_ih, gru_->bias_ih).chunk(3, 2);  // 3 x [T, B, 512]
     std::vector<torch::Tensor> states;
     states.reserve(steps);
     for (int64_t t = 0; t < steps; ++t) {
-      h = gru_->forward(out.features[t], h * keep[t]);
+      h = h * keep[t];
+      const std::vector<torch::Tensor> hidden_gates =
+          torch::nn::functional::linear(h, gru_->weight_hh, gru_->bias_hh).chunk(3, 1);
+      const torch::Tensor reset = torch::sigmoid(input_gates[0][t] + hidden_gates[0]);
+      const torch::Tensor update = torch::sigmoid(input_gates[1][t] + hidden_gates[1]);
+      const torch::Tensor candidate = torch::tanh(input_gates[2][t] + reset * hidden_gates[2]);
+      h = candidate + update * (h - candidate);
       states.push_back(h);
     }
     out.memory = torch::stack(states);

@@ -60,6 +60,34 @@ TEST(GruNet, SequencePassEqualsStepByStepPass) {
   expectClose(h, h_seq, "final state");
 }
 
+TEST(GruNet, StateIsTorchGruCellOfTheFeatures) {
+  // forwardSequence writes the GRU's equations out (its input side batched over the steps): a
+  // torch::nn::GRUCell holding the same weights, run step by step over the same features with
+  // the same resets, must give the same states.
+  torch::manual_seed(11);
+  HiderNet net(kSize, kSize, NetworkKind::kGru);
+  const int64_t steps = 5, batch = 2;
+  const torch::Tensor images = randomImages({steps, batch});
+  torch::Tensor starts = torch::zeros({steps, batch});
+  starts[2][0] = 1.0;
+  const torch::Tensor h0 = torch::randn({batch, kHidden});
+  const HiderOutput seq = net->forwardSequence(images, h0, starts);
+  torch::nn::GRUCell cell(torch::nn::GRUCellOptions(512, kHidden));
+  {
+    const torch::NoGradGuard no_grad;
+    const auto params = net->named_parameters();
+    cell->weight_ih.copy_(params["gru.weight_ih"]);
+    cell->weight_hh.copy_(params["gru.weight_hh"]);
+    cell->bias_ih.copy_(params["gru.bias_ih"]);
+    cell->bias_hh.copy_(params["gru.bias_hh"]);
+  }
+  torch::Tensor h = h0;
+  for (int64_t t = 0; t < steps; ++t) {
+    h = cell->forward(seq.features[t], h * (1.0 - starts[t]).unsqueeze(1));
+    expectClose(seq.memory[t], h, "state at step " + std::to_string(t));
+  }
+}
+
 TEST(GruNet, StateResetsWhereAnEpisodeStartsInsideASequence) {
   torch::manual_seed(2);
   HiderNet net(kSize, kSize, NetworkKind::kGru);
