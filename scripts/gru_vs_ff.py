@@ -110,13 +110,18 @@ def compare(variant, shipped, evaluations, resamples):
     row.update({
         "status": "compared", "episodes": len(seeds), "gru_living": round(gl.mean(), 2), "ff_living": round(fl.mean(), 2),
         "difference": round(d.mean(), 2), "ci_low": round(float(np.percentile(boot, 2.5)), 2),
-        "ci_high": round(float(np.percentile(boot, 97.5)), 2), "wilcoxon_p": round(p, 4),
+        "ci_high": round(float(np.percentile(boot, 97.5)), 2), "wilcoxon_p": float("%.3g" % p),
         "gru_longer": int((d > 0).sum()), "gru_shorter": int((d < 0).sum()), "equal": int((d == 0).sum()),
         "gru_success": round(100.0 * np.mean([g[s][1] == "survived" for s in seeds]), 1),
         "ff_success": round(100.0 * np.mean([f[s][1] == "survived" for s in seeds]), 1),
         "ff_other_seeds": "; ".join(others), "gru_lives_longer": "yes" if d.mean() > 0 else "no"})
     worst = sorted(((d[i], seeds[i], int(gl[i]), int(fl[i])) for i in range(len(seeds)) if d[i] < 0))[:5]
     return row, worst
+
+
+def fmt_p(p):
+    """A p-value as people read it: three significant digits, and below 0.001 only its order."""
+    return "< 0.001" if p < 0.001 else "%.3g" % p
 
 
 def markdown(rows, worst, variants):
@@ -133,9 +138,9 @@ def markdown(rows, worst, variants):
         if r["status"] != "compared":
             out.append("| %s | %s | %s | | | | | |" % (r["variant"], r["gru_run"], r["status"]))
             continue
-        out.append("| %s | %s / %s | %.1f / %.1f | %+.1f [%+.1f, %+.1f] | %.3g | %d / %d / %d | %.0f / %.0f | %s |" % (
+        out.append("| %s | %s / %s | %.1f / %.1f | %+.1f [%+.1f, %+.1f] | %s | %d / %d / %d | %.0f / %.0f | %s |" % (
             r["variant"], r["gru_run"], r["ff_twin"], r["gru_living"], r["ff_living"], r["difference"], r["ci_low"],
-            r["ci_high"], r["wilcoxon_p"], r["gru_longer"], r["gru_shorter"], r["equal"], r["gru_success"],
+            r["ci_high"], fmt_p(r["wilcoxon_p"]), r["gru_longer"], r["gru_shorter"], r["equal"], r["gru_success"],
             r["ff_success"], r["ff_other_seeds"] or "none"))
     compared = [r for r in rows if r["status"] == "compared"]
     wins = sum(r["gru_lives_longer"] == "yes" for r in compared)
