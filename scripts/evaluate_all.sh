@@ -4,7 +4,8 @@
 # (evaluate.launch), beside the paper's figures (config/paper_reference.yaml).
 # Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/). Writes table2.md, table2.csv, gru_vs_ff.md, gru_vs_ff.csv
 # and, per evaluation, OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv.
-# A shipped GRU hider (policies/<variant>_gru.pt) is evaluated too, as <variant>_gru_trained, and so is
+# A shipped GRU hider (policies/<variant>_gru.pt) is evaluated too, as <variant>_gru_trained, and once more
+# with its state zeroed at every step (memoryless:=true, what its memory does) as <variant>_gru_memoryless; so is
 # every other run of the variant listed in policies/policies.yaml (another training seed, a longer run):
 # policies/<run>.pt as <run>_trained.
 # HIDESEEK_VARIANTS="v1 v2" evaluates those variants only and keeps the other evaluations already in
@@ -26,14 +27,15 @@ else
   rm -rf "$out/evaluations"
 fi
 mkdir -p "$out/evaluations"
-# evaluate VARIANT LABEL POLICY DIR: one evaluation through evaluate.launch into DIR.
+# evaluate VARIANT LABEL POLICY DIR [ARG:=VALUE ...]: one evaluation through evaluate.launch into DIR.
 evaluate() {
   local v=$1 label=$2 policy=$3 dir=$4 start
+  shift 4
   rm -rf "$dir"
   mkdir -p "$dir"
   start=$(date +%s)
   # roslaunch exits 0 even when a required node dies: the evaluator's files are the verdict.
-  roslaunch -p "$port" hideseek_world evaluate.launch variant:="$v" policy:="$policy" output_dir:="$dir" \
+  roslaunch -p "$port" hideseek_world evaluate.launch variant:="$v" policy:="$policy" output_dir:="$dir" "$@" \
     > "$dir/launch.log" 2>&1 || true
   [ -s "$dir/evaluation.csv" ] || { echo "evaluate_all: $v $label failed, see $dir/launch.log"; exit 1; }
   rm -f "$dir/launch.log"
@@ -58,7 +60,10 @@ for v in "${variants[@]}"; do
   else
     echo "evaluate_all: $v: no shipped policy"
   fi
-  [ ! -f "policies/${v}_gru.pt" ] || evaluate "$v" gru_trained "$PWD/policies/${v}_gru.pt" "$out/evaluations/${v}_gru_trained"
+  if [ -f "policies/${v}_gru.pt" ]; then
+    evaluate "$v" gru_trained "$PWD/policies/${v}_gru.pt" "$out/evaluations/${v}_gru_trained"
+    evaluate "$v" gru_memoryless "$PWD/policies/${v}_gru.pt" "$out/evaluations/${v}_gru_memoryless" memoryless:=true
+  fi
   # A separate statement, so that set -e stops on a policies.yaml that cannot be read.
   runs=$(other_runs "$v")
   while IFS= read -r run; do

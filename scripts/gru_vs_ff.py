@@ -14,6 +14,11 @@ Wilcoxon signed-rank test. Both only measure the evaluation noise of two given p
 training seed per network, the training-seed spread is not in them, so the feed-forward runs of the
 variant at other training seeds (same steps) are listed beside as that spread.
 
+What the GRU's memory itself does: where EVALUATIONS_DIR/<variant>_gru_memoryless/episodes.csv exists
+(evaluate.launch memoryless:=true, the same policy with its state zeroed at every step, so that it acts
+on the current image alone), the same paired comparison is made between the GRU with and without its
+memory, in a second table and in the memory_* columns of the CSV.
+
 Writes OUTPUT_STEM.md and OUTPUT_STEM.csv. A variant whose GRU hider is not shipped or not
 evaluated gets a row saying so, and the goal (the GRU lives longer on at least two of the three
 variants) is reported as undecided until all are in.
@@ -46,9 +51,9 @@ def run_network(name, entry):
     return entry.get("network") or ("gru" if name.endswith("_gru") else "ff")
 
 
-def episodes(evaluations, run):
-    """{evaluation seed: (living steps, outcome)} of EVALUATIONS_DIR/<run>_trained, or None."""
-    path = os.path.join(evaluations, run + "_trained", "episodes.csv")
+def episodes(evaluations, run, folder_suffix="_trained"):
+    """{evaluation seed: (living steps, outcome)} of EVALUATIONS_DIR/<run><folder_suffix>, or None."""
+    path = os.path.join(evaluations, run + folder_suffix, "episodes.csv")
     if not os.path.exists(path):
         return None
     with open(path) as f:
@@ -72,7 +77,9 @@ def compare(variant, shipped, evaluations, resamples):
     row = {"variant": variant, "gru_run": variant + "_gru", "ff_twin": "", "training_seed": "", "training_steps": "",
            "status": "", "episodes": "", "gru_living": "", "ff_living": "", "difference": "", "ci_low": "",
            "ci_high": "", "wilcoxon_p": "", "gru_longer": "", "gru_shorter": "", "equal": "", "gru_success": "",
-           "ff_success": "", "ff_other_seeds": "", "gru_lives_longer": ""}
+           "ff_success": "", "ff_other_seeds": "", "gru_lives_longer": "", "memoryless_living": "",
+           "memory_gain": "", "memory_gain_ci_low": "", "memory_gain_ci_high": "", "memory_gain_p": "",
+           "memory_longer": "", "memory_shorter": "", "memoryless_success": ""}
     gru_name = variant + "_gru"
     gru = shipped.get(gru_name)
     if gru is None:
@@ -96,10 +103,7 @@ def compare(variant, shipped, evaluations, resamples):
     seeds = sorted(g)
     gl = np.array([g[s][0] for s in seeds], dtype=float)
     fl = np.array([f[s][0] for s in seeds], dtype=float)
-    d = gl - fl
-    rng = np.random.default_rng(0)
-    boot = d[rng.integers(0, len(d), size=(resamples, len(d)))].mean(axis=1)
-    p = 1.0 if not np.any(d) else float(wilcoxon(d).pvalue)
+    d, ci, p = paired(gl, fl, resamples)
     others = []
     for n, e in sorted(shipped.items()):
         if (n != twin and run_variant(n, e) == variant and run_network(n, e) == "ff" and e.get("steps") == gru.get("steps")
@@ -109,14 +113,32 @@ def compare(variant, shipped, evaluations, resamples):
                 others.append("%s %.1f" % (n, np.mean([v[0] for v in ep.values()])))
     row.update({
         "status": "compared", "episodes": len(seeds), "gru_living": round(gl.mean(), 2), "ff_living": round(fl.mean(), 2),
-        "difference": round(d.mean(), 2), "ci_low": round(float(np.percentile(boot, 2.5)), 2),
-        "ci_high": round(float(np.percentile(boot, 97.5)), 2), "wilcoxon_p": float("%.3g" % p),
+        "difference": round(d.mean(), 2), "ci_low": ci[0], "ci_high": ci[1], "wilcoxon_p": float("%.3g" % p),
         "gru_longer": int((d > 0).sum()), "gru_shorter": int((d < 0).sum()), "equal": int((d == 0).sum()),
         "gru_success": round(100.0 * np.mean([g[s][1] == "survived" for s in seeds]), 1),
         "ff_success": round(100.0 * np.mean([f[s][1] == "survived" for s in seeds]), 1),
         "ff_other_seeds": "; ".join(others), "gru_lives_longer": "yes" if d.mean() > 0 else "no"})
+    m = episodes(evaluations, gru_name, "_memoryless")
+    if m is not None:
+        if set(m) != set(g):
+            sys.exit("gru_vs_ff: %s_memoryless and %s_trained were evaluated on different seeds" % (gru_name, gru_name))
+        ml = np.array([m[s][0] for s in seeds], dtype=float)
+        dm, cim, pm = paired(gl, ml, resamples)
+        row.update({"memoryless_living": round(ml.mean(), 2), "memory_gain": round(dm.mean(), 2),
+                    "memory_gain_ci_low": cim[0], "memory_gain_ci_high": cim[1], "memory_gain_p": float("%.3g" % pm),
+                    "memory_longer": int((dm > 0).sum()), "memory_shorter": int((dm < 0).sum()),
+                    "memoryless_success": round(100.0 * np.mean([m[s][1] == "survived" for s in seeds]), 1)})
     worst = sorted(((d[i], seeds[i], int(gl[i]), int(fl[i])) for i in range(len(seeds)) if d[i] < 0))[:5]
     return row, worst
+
+
+def paired(a, b, resamples):
+    """Per-seed differences a - b, the bootstrap 95 % interval of their mean and the Wilcoxon p-value."""
+    d = a - b
+    rng = np.random.default_rng(0)
+    boot = d[rng.integers(0, len(d), size=(resamples, len(d)))].mean(axis=1)
+    p = 1.0 if not np.any(d) else float(wilcoxon(d).pvalue)
+    return d, (round(float(np.percentile(boot, 2.5)), 2), round(float(np.percentile(boot, 97.5)), 2)), p
 
 
 def fmt_p(p):
@@ -154,6 +176,22 @@ def markdown(rows, worst, variants):
                    "(the GRU lives longer on %d); waiting for: %s." % (
                        need, len(variants), len(compared), len(variants), wins,
                        ", ".join(r["variant"] for r in rows if r["status"] != "compared")))
+    ablated = [r for r in compared if r["memoryless_living"] != ""]
+    if ablated:
+        out += ["", "## What the memory does", "",
+                "The same GRU policy with its state zeroed at every step (`evaluate.launch memoryless:=true`), so "
+                "that it acts on the current image alone, on the same evaluation seeds. The gain is the GRU with "
+                "memory minus without, per seed. The zeroed state is one the trained network met only at an "
+                "episode's first step, so the ablation takes away the memory and also puts the heads off the "
+                "states they were trained on: read a large gain as an upper bound on what memory does.", "",
+                "| variant | living steps, GRU / GRU without memory / FF twin | memory gain [95 % CI] | Wilcoxon p | "
+                "seeds longer / shorter with memory | success %, GRU / without memory |",
+                "| --- | --- | --- | --- | --- | --- |"]
+        for r in ablated:
+            out.append("| %s | %.1f / %.1f / %.1f | %+.1f [%+.1f, %+.1f] | %s | %d / %d | %.0f / %.0f |" % (
+                r["variant"], r["gru_living"], r["memoryless_living"], r["ff_living"], r["memory_gain"],
+                r["memory_gain_ci_low"], r["memory_gain_ci_high"], fmt_p(r["memory_gain_p"]), r["memory_longer"],
+                r["memory_shorter"], r["gru_success"], r["memoryless_success"]))
     for v, w in worst.items():
         if w:
             out += ["", "Evaluation seeds where %s's GRU hider loses most against its twin (seed: GRU / FF living "

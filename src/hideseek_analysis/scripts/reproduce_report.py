@@ -268,6 +268,8 @@ def main():
     if os.path.exists(gru_vs_ff):  # scripts/evaluate_all.sh: the GRU hiders against their feed-forward twins
         with open(gru_vs_ff) as f:
             body = f.read().split("\n", 1)[1].strip()  # without its own title
+        # Its sections one level down, under the index's heading.
+        body = "\n".join("#" + line if line.startswith("#") else line for line in body.split("\n"))
         index += ["## The GRU hider against its feed-forward twin", "", body, "",
                   "CSV: [gru_vs_ff.csv](gru_vs_ff.csv)", ""]
     index += ["## Table 3: linear probes of the 512 mid-level features", "",

@@ -135,7 +135,8 @@ def test_reproduce_report_pairs_the_splits_and_weighs_weaknesses_against_advanta
         "variant,living_trained,living_random\nslowerhider,60,38\nfasterhider,500,38\n")
     (report / "table2.md").write_text("| variant |\n| --- |\n")
     (report / "gru_vs_ff.md").write_text("# The GRU hider against its feed-forward twin\n\n| v |\n| --- |\n"
-                                          "| basic_gru |\n\n**Goal: undecided**\n")
+                                          "| basic_gru |\n\n**Goal: undecided**\n\n## What the memory does\n\n"
+                                          "| slowerhider |\n")
     here = os.path.dirname(os.path.abspath(__file__))
     paper = os.path.join(here, "..", "..", "hideseek_world", "config", "paper_reference.yaml")
     subprocess.run([sys.executable, os.path.join(here, "reproduce_report.py"), str(report), "--paper", paper],
@@ -161,6 +162,8 @@ def test_reproduce_report_pairs_the_splits_and_weighs_weaknesses_against_advanta
     # evaluate_all.sh's GRU comparison is inline, under the report's own heading, without its title.
     assert "## The GRU hider against its feed-forward twin\n\n| v |" in index and "| basic_gru |" in index
     assert index.count("The GRU hider against its feed-forward twin") == 1
+    # Its own sections sit one level below that heading.
+    assert "\n### What the memory does\n" in index and "\n## What the memory does" not in index
 
 
 def test_report_probes_the_gru_state_of_a_recurrent_policy(tmp_path):

@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
     // A network policy is evaluated either greedily or sampling its actions: the table says which.
     policy = hideseek_world::readString(pnh, "policy", "random");
     if (policy != "random" && policy != "human") {
-      policy += hideseek_world::readBool(pnh, "greedy", true) ? " (greedy)" : " (sampled)";
+      policy += hideseek_world::readBool(pnh, "greedy", true) ? " (greedy" : " (sampled";
+      policy += hideseek_world::readBool(pnh, "memoryless", false) ? ", memoryless)" : ")";
     }
   } catch (const std::exception& e) {
     ROS_FATAL("evaluator: %s", e.what());

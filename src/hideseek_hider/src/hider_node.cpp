@@ -43,6 +43,7 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   if (o.mode == HiderMode::kRandom) return o;
   o.device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
   o.greedy = hideseek_world::readBool(pnh, "greedy", true);
+  o.memoryless = hideseek_world::readBool(pnh, "memoryless", false);
   if (o.mode == HiderMode::kPolicy) return o;
   TrainingOptions& t = o.training;
   t.variant = o.variant.name;
@@ -72,10 +73,16 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
     CheckpointInfo info;
     HiderNet net = loadCheckpoint(o.policy, image_height_, image_width_, &info, o.network);
     net->setPrecision(precision.precision);
-    policy_ = std::make_unique<NetworkHiderPolicy>(net, o.device, o.greedy);
-    ROS_INFO("hider: policy %s (variant '%s', network %s, %ld training steps) on %s in %s", o.policy.c_str(),
+    if (o.memoryless && !net->recurrent()) {
+      throw std::runtime_error("parameter " + pnh.resolveName("memoryless") + " is true, but " + o.policy +
+                               " holds a feed-forward hider: memoryless applies to a GRU policy only");
+    }
+    auto policy = std::make_unique<NetworkHiderPolicy>(net, o.device, o.greedy);
+    policy->setMemoryless(o.memoryless);
+    policy_ = std::move(policy);
+    ROS_INFO("hider: policy %s (variant '%s', network %s, %ld training steps) on %s in %s%s", o.policy.c_str(),
              info.variant.c_str(), networkName(info.network), static_cast<long>(info.steps), o.device.str().c_str(),
-             precision.reason.c_str());
+             precision.reason.c_str(), o.memoryless ? ", memoryless (the GRU state zeroed at every step)" : "");
   } else {
     startTraining(o);
   }

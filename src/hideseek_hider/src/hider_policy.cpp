@@ -37,7 +37,7 @@ std::vector<uint8_t> NetworkHiderPolicy::act(const std::vector<ArenaObservation>
     }
     torch::Tensor starts = torch::zeros({1, n});
     for (int64_t i = 0; i < n; ++i) {
-      if (batch[i].step == 0 || batch[i].seed != seeds_[i]) starts[0][i] = 1.0;
+      if (memoryless_ || batch[i].step == 0 || batch[i].seed != seeds_[i]) starts[0][i] = 1.0;
       seeds_[i] = batch[i].seed;
     }
     logits = net_->forwardSequence(images.to(device_).unsqueeze(0), hidden_, starts.to(device_), &hidden_).logits[0];

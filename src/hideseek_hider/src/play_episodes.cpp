@@ -1,7 +1,9 @@
 // Plays seeded episodes of a variant in process (world and seeker cores, the hider's policy on
 // rendered images) and writes every step of them to a CSV: the trajectories and distances that
 // show a policy's strategy. The same cores, draws and step order as the ROS graph in lockstep.
-// usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled]
+// usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]
+//   memoryless (GRU policies only, an ablation): every step starts from the zero state, so the
+//   trained GRU acts on the current image alone.
 //   POLICY: a checkpoint, or "random". Columns: seed,step,hider_x,hider_y,hider_yaw,seeker_x,
 //   seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome (outcome on the last step of an
 //   episode: captured or survived; empty before). Beside it, OUTPUT_layouts.yaml (OUTPUT's name
@@ -21,13 +23,20 @@
 #include "hideseek_world/world.h"
 
 int main(int argc, char** argv) {
-  if (argc < 6 || argc > 7) {
-    std::fprintf(stderr, "usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled]\n");
+  if (argc < 6 || argc > 8) {
+    std::fprintf(stderr,
+                 "usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]\n");
+    return 2;
+  }
+  const std::string mode = argc > 6 ? argv[6] : "greedy", memory = argc > 7 ? argv[7] : "memory";
+  if ((mode != "greedy" && mode != "sampled") || (memory != "memory" && memory != "memoryless")) {
+    std::fprintf(stderr, "play_episodes: the 6th argument is greedy or sampled (got %s), the 7th memory or memoryless (got %s)\n",
+                 mode.c_str(), memory.c_str());
     return 2;
   }
   const std::string config = HIDESEEK_CONFIG_DIR, variant_name = argv[1], policy_path = argv[2];
   const long first_seed = std::atol(argv[3]), count = std::atol(argv[4]);
-  const bool greedy = argc < 7 || std::string(argv[6]) != "sampled";
+  const bool greedy = mode == "greedy";
   if (first_seed < 0 || count < 1 || count > 64) {
     std::fprintf(stderr, "play_episodes: FIRST_SEED must be >= 0 and COUNT in [1, 64]\n");
     return 2;
@@ -40,11 +49,17 @@ int main(int argc, char** argv) {
     hw::World world(variant.game, map, n, static_cast<uint32_t>(first_seed), true, 2);
     std::unique_ptr<hideseek_hider::HiderPolicy> hider;
     if (policy_path == "random") {
+      if (memory == "memoryless") throw std::runtime_error("memoryless applies to a GRU policy, not to the random hider");
       hider = std::make_unique<hideseek_hider::RandomHiderPolicy>();
     } else {
       const int h = variant.game.camera.height, w = variant.game.camera.width;
-      hider = std::make_unique<hideseek_hider::NetworkHiderPolicy>(hideseek_hider::loadCheckpoint(policy_path, h, w),
-                                                                   torch::kCPU, greedy);
+      auto net = hideseek_hider::loadCheckpoint(policy_path, h, w);
+      if (memory == "memoryless" && !net->recurrent()) {
+        throw std::runtime_error("memoryless applies to a GRU policy, and " + policy_path + " holds a feed-forward one");
+      }
+      auto policy = std::make_unique<hideseek_hider::NetworkHiderPolicy>(net, torch::kCPU, greedy);
+      policy->setMemoryless(memory == "memoryless");
+      hider = std::move(policy);
     }
     std::vector<hideseek_seeker::SeekerPolicy> seekers;
     for (int i = 0; i < n; ++i) {

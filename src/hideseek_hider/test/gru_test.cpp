@@ -218,6 +218,21 @@ TEST(GruPolicy, StateStartsAfreshAtStepZeroAndAtANewSeed) {
   expectClose(policy.hidden(), fresh, "a new seed");
 }
 
+TEST(GruPolicy, MemorylessStartsEveryStepFromTheZeroState) {
+  torch::manual_seed(9);
+  HiderNet net(kSize, kSize, NetworkKind::kGru);
+  NetworkHiderPolicy with_memory(net, torch::kCPU, true), memoryless(net, torch::kCPU, true);
+  memoryless.setMemoryless(true);
+  const torch::Tensor a = randomImages({1}).contiguous(), b = randomImages({1}).contiguous();
+  const torch::Tensor fresh_b = net->forwardSequence(b.unsqueeze(0), net->initialHidden(1), torch::zeros({1, 1})).memory[0];
+  for (NetworkHiderPolicy* p : {&with_memory, &memoryless}) {
+    p->act({{a.data_ptr<uint8_t>(), 3, 0}});
+    p->act({{b.data_ptr<uint8_t>(), 3, 1}});  // the same episode, a step later
+  }
+  expectClose(memoryless.hidden(), fresh_b, "memoryless: the state after image b alone");
+  EXPECT_GT((with_memory.hidden() - fresh_b).abs().max().item<double>(), 1e-4) << "with memory, image a is remembered";
+}
+
 TEST(RecurrentPpo, SequencesMustDivideTheRolloutAndTheMinibatches) {
   PpoOptions o;
   o.rollout_steps = 8;

@@ -18,8 +18,8 @@ stochasticmaps: {training_seed: 0, steps: 2000896}
 """
 
 
-def write_episodes(evaluations, run, living, seeds=None):
-    folder = os.path.join(evaluations, run + "_trained")
+def write_episodes(evaluations, run, living, seeds=None, suffix="_trained"):
+    folder = os.path.join(evaluations, run + suffix)
     os.makedirs(folder)
     with open(os.path.join(folder, "episodes.csv"), "w") as f:
         f.write("seed,living_steps,outcome\n")
@@ -114,3 +114,27 @@ def test_different_evaluation_seeds_are_refused(tmp_path):
     result, _ = run(tmp_path)
     assert result.returncode != 0
     assert "different seeds" in result.stderr
+
+
+def test_the_gru_without_its_memory_is_compared_with_itself_where_evaluated(tmp_path):
+    e = str(tmp_path / "evaluations")
+    write_episodes(e, "slowerhider", [50, 60, 70, 80])
+    write_episodes(e, "slowerhider_gru", [90, 60, 75, 85])
+    write_episodes(e, "basic_seed0_2m", [500, 600])
+    write_episodes(e, "basic_gru", [400, 650])
+    # Without its memory the slowerhider GRU lives 10 steps less on three seeds and as long on one.
+    write_episodes(e, "slowerhider_gru", [80, 60, 65, 75], suffix="_memoryless")
+    result, rows = run(tmp_path)
+    assert result.returncode == 0, result.stderr
+    s = rows["slowerhider"]
+    assert float(s["memoryless_living"]) == 70.0 and float(s["memory_gain"]) == 7.5
+    assert (s["memory_longer"], s["memory_shorter"]) == ("3", "0")
+    # basic's GRU has no memoryless evaluation: its memory columns stay empty, and only slowerhider is in the table.
+    assert rows["basic"]["memoryless_living"] == ""
+    table = result.stdout.split("## What the memory does")[1]
+    assert "| slowerhider | 77.5 / 70.0 / 65.0 | +7.5 [" in table
+    assert "| basic |" not in table
+    # An ablation on other seeds than the GRU's evaluation is refused.
+    write_episodes(e, "basic_gru", [1, 2], seeds=[5, 6], suffix="_memoryless")
+    result, _ = run(tmp_path)
+    assert result.returncode != 0 and "basic_gru_memoryless" in result.stderr

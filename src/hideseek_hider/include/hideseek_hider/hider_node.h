@@ -29,6 +29,7 @@ struct HiderNodeOptions {
   std::optional<NetworkKind> network;       // empty: auto (the checkpoint's; a new training run: ff)
   torch::Device device = torch::kCPU;       // policy and train modes
   bool greedy = true;                       // policy mode
+  bool memoryless = false;                  // policy mode, GRU only: every step from the zero state (an ablation)
   // Train mode only.
   TrainingOptions training;                 // output_dir, total_steps, checkpoint_interval_s, image size, variant
   PpoOptions ppo;

@@ -37,11 +37,15 @@ class NetworkHiderPolicy : public HiderPolicy {
   std::vector<uint8_t> act(const std::vector<ArenaObservation>& batch) override;
   // GRU only: each arena's state after the last act() ([N, 512]); undefined before it.
   const torch::Tensor& hidden() const { return hidden_; }
+  // GRU only, an ablation: start every step from the zero state, as if each were an episode's
+  // first, so that the action depends on the current image alone (the trained weights, no memory).
+  void setMemoryless(bool memoryless) { memoryless_ = memoryless; }
 
  private:
   HiderNet net_;
   torch::Device device_;
   bool greedy_;
+  bool memoryless_ = false;
   torch::Tensor hidden_;
   std::vector<uint32_t> seeds_;  // each arena's episode seed at the last act()
 };
