@@ -79,7 +79,7 @@ def compare(variant, shipped, evaluations, resamples):
            "ci_high": "", "wilcoxon_p": "", "gru_longer": "", "gru_shorter": "", "equal": "", "gru_success": "",
            "ff_success": "", "ff_other_seeds": "", "gru_lives_longer": "", "memoryless_living": "",
            "memory_gain": "", "memory_gain_ci_low": "", "memory_gain_ci_high": "", "memory_gain_p": "",
-           "memory_longer": "", "memory_shorter": "", "memoryless_success": ""}
+           "memory_longer": "", "memory_shorter": "", "memory_equal": "", "memoryless_success": ""}
     gru_name = variant + "_gru"
     gru = shipped.get(gru_name)
     if gru is None:
@@ -127,6 +127,7 @@ def compare(variant, shipped, evaluations, resamples):
         row.update({"memoryless_living": round(ml.mean(), 2), "memory_gain": round(dm.mean(), 2),
                     "memory_gain_ci_low": cim[0], "memory_gain_ci_high": cim[1], "memory_gain_p": float("%.3g" % pm),
                     "memory_longer": int((dm > 0).sum()), "memory_shorter": int((dm < 0).sum()),
+                    "memory_equal": int((dm == 0).sum()),
                     "memoryless_success": round(100.0 * np.mean([m[s][1] == "survived" for s in seeds]), 1)})
     worst = sorted(((d[i], seeds[i], int(gl[i]), int(fl[i])) for i in range(len(seeds)) if d[i] < 0))[:5]
     return row, worst
@@ -176,6 +177,10 @@ def markdown(rows, worst, variants):
                    "(the GRU lives longer on %d); waiting for: %s." % (
                        need, len(variants), len(compared), len(variants), wins,
                        ", ".join(r["variant"] for r in rows if r["status"] != "compared")))
+    for v, w in worst.items():
+        if w:
+            out += ["", "Evaluation seeds where %s's GRU hider loses most against its twin (seed: GRU / FF living "
+                    "steps): %s." % (v, ", ".join("%d: %d / %d" % (s, a, b) for _, s, a, b in w))]
     ablated = [r for r in compared if r["memoryless_living"] != ""]
     if ablated:
         out += ["", "## What the memory does", "",
@@ -185,17 +190,13 @@ def markdown(rows, worst, variants):
                 "episode's first step, so the ablation takes away the memory and also puts the heads off the "
                 "states they were trained on: read a large gain as an upper bound on what memory does.", "",
                 "| variant | living steps, GRU / GRU without memory / FF twin | memory gain [95 % CI] | Wilcoxon p | "
-                "seeds longer / shorter with memory | success %, GRU / without memory |",
+                "seeds longer / shorter / equal with memory | success %, GRU / without memory |",
                 "| --- | --- | --- | --- | --- | --- |"]
         for r in ablated:
-            out.append("| %s | %.1f / %.1f / %.1f | %+.1f [%+.1f, %+.1f] | %s | %d / %d | %.0f / %.0f |" % (
+            out.append("| %s | %.1f / %.1f / %.1f | %+.1f [%+.1f, %+.1f] | %s | %d / %d / %d | %.0f / %.0f |" % (
                 r["variant"], r["gru_living"], r["memoryless_living"], r["ff_living"], r["memory_gain"],
                 r["memory_gain_ci_low"], r["memory_gain_ci_high"], fmt_p(r["memory_gain_p"]), r["memory_longer"],
-                r["memory_shorter"], r["gru_success"], r["memoryless_success"]))
-    for v, w in worst.items():
-        if w:
-            out += ["", "Evaluation seeds where %s's GRU hider loses most against its twin (seed: GRU / FF living "
-                    "steps): %s." % (v, ", ".join("%d: %d / %d" % (s, a, b) for _, s, a, b in w))]
+                r["memory_shorter"], r["memory_equal"], r["gru_success"], r["memoryless_success"]))
     return "\n".join(out) + "\n"
 
 

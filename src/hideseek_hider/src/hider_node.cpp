@@ -40,10 +40,14 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   o.precision = parsePrecision(readString(pnh, "precision", "auto"), pnh.resolveName("precision"));
   const std::string network = hideseek_world::readChoice(pnh, "network", "auto", {"auto", "ff", "gru"});
   if (network != "auto") o.network = parseNetwork(network, pnh.resolveName("network"));
+  o.memoryless = hideseek_world::readBool(pnh, "memoryless", false);
+  if (o.memoryless && o.mode != HiderMode::kPolicy) {
+    throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true, but the hider is in " + mode +
+                                " mode: memoryless applies to a GRU policy only");
+  }
   if (o.mode == HiderMode::kRandom) return o;
   o.device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
   o.greedy = hideseek_world::readBool(pnh, "greedy", true);
-  o.memoryless = hideseek_world::readBool(pnh, "memoryless", false);
   if (o.mode == HiderMode::kPolicy) return o;
   TrainingOptions& t = o.training;
   t.variant = o.variant.name;

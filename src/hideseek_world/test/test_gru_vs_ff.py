@@ -55,6 +55,8 @@ def test_the_twin_has_the_gru_seed_and_steps_and_the_difference_is_paired(tmp_pa
     assert float(b["ci_low"]) == 20.0 and float(b["ci_high"]) == 20.0
     assert (b["gru_longer"], b["gru_shorter"], b["equal"]) == ("20", "0", "0")
     assert float(b["wilcoxon_p"]) < 0.001
+    # ... and the Markdown prints such a p-value as people read it, not as 9.5e-05.
+    assert "| < 0.001 |" in result.stdout
     assert b["gru_lives_longer"] == "yes"
     assert "basic_seed1 1000.0" in b["ff_other_seeds"]
 
@@ -128,7 +130,7 @@ def test_the_gru_without_its_memory_is_compared_with_itself_where_evaluated(tmp_
     assert result.returncode == 0, result.stderr
     s = rows["slowerhider"]
     assert float(s["memoryless_living"]) == 70.0 and float(s["memory_gain"]) == 7.5
-    assert (s["memory_longer"], s["memory_shorter"]) == ("3", "0")
+    assert (s["memory_longer"], s["memory_shorter"], s["memory_equal"]) == ("3", "0", "1")
     # basic's GRU has no memoryless evaluation: its memory columns stay empty, and only slowerhider is in the table.
     assert rows["basic"]["memoryless_living"] == ""
     table = result.stdout.split("## What the memory does")[1]

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # A node that cannot start says why, where roslaunch shows it: a missing checkpoint, a bad
-# precision and a misspelt variant field each stop the game with a FATAL line naming the problem.
+# precision, a misspelt variant field and the memoryless ablation asked of a hider without a GRU
+# each stop the game with a FATAL line naming the problem.
 # usage: startup_error_test.sh XUNIT_OUTPUT
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -21,6 +22,11 @@ expect_fatal bad_precision "/hider/precision must be auto, fp32 or bf16, got 'fp
 config="$(cd "$(dirname "$0")/../config" && pwd)"
 printf 'variant: basic\nmap: %s/maps/deterministic.yaml\nhider:\n  sped: 3.0\n' "$config" > "$dir/typo.yaml"
 expect_fatal bad_field "field 'hider.sped': unknown field" game.launch.xml variant:=basic variant_config:="$dir/typo.yaml"
+policies="$(cd "$(dirname "$0")/../policies" && pwd)"
+expect_fatal memoryless_ff "holds a feed-forward hider: memoryless applies to a GRU policy only" evaluate.launch \
+  policy:="$policies/basic.pt" memoryless:=true episodes:=1 output_dir:="$dir/eval_ff"
+expect_fatal memoryless_random "is true, but the hider is in random mode: memoryless applies to a GRU policy only" \
+  evaluate.launch policy:=random memoryless:=true episodes:=1 output_dir:="$dir/eval_random"
 write_xunit "$out" startup StartupErrorsAreShownByRoslaunch "${failures[@]}"
 printf 'failure: %s\n' "${failures[@]}"
 rm -rf "$dir"
