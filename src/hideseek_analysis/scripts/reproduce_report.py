@@ -240,7 +240,7 @@ def main():
         ax.annotate(v, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=8)
     if any(p[2].endswith("_gru") for p in points):
         ax.plot([], [], "s", color="tab:green", label="GRU hider: probe of its GRU state (not in the fit)")
-        ax.legend(fontsize=8, loc="lower right")
+        ax.legend(fontsize=8, loc="best")
     points = [p for p in points if not p[2].endswith("_gru")]
     fit_note = "fewer than 3 feed-forward variants: no parabolic fit"
     if len(points) >= 3:
