@@ -77,12 +77,12 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
     CheckpointInfo info;
     HiderNet net = loadCheckpoint(o.policy, image_height_, image_width_, &info, o.network);
     net->setPrecision(precision.precision);
-    if (o.memoryless && !net->recurrent()) {
-      throw std::runtime_error("parameter " + pnh.resolveName("memoryless") + " is true, but " + o.policy +
-                               " holds a feed-forward hider: memoryless applies to a GRU policy only");
-    }
     auto policy = std::make_unique<NetworkHiderPolicy>(net, o.device, o.greedy);
-    policy->setMemoryless(o.memoryless);
+    try {
+      policy->setMemoryless(o.memoryless);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true for " + o.policy + ": " + e.what());
+    }
     policy_ = std::move(policy);
     ROS_INFO("hider: policy %s (variant '%s', network %s, %ld training steps) on %s in %s%s", o.policy.c_str(),
              info.variant.c_str(), networkName(info.network), static_cast<long>(info.steps), o.device.str().c_str(),

@@ -1,6 +1,7 @@
 #include "hideseek_hider/hider_policy.h"
 
 #include <cstring>
+#include <stdexcept>
 
 #include "hideseek_world/hash_uniform.h"
 
@@ -20,6 +21,13 @@ NetworkHiderPolicy::NetworkHiderPolicy(HiderNet net, torch::Device device, bool 
     : net_(std::move(net)), device_(device), greedy_(greedy) {
   net_->to(device_);
   net_->eval();
+}
+
+void NetworkHiderPolicy::setMemoryless(bool memoryless) {
+  if (memoryless && !net_->recurrent()) {
+    throw std::invalid_argument("memoryless applies to a GRU policy only, and this one is a feed-forward hider");
+  }
+  memoryless_ = memoryless;
 }
 
 std::vector<uint8_t> NetworkHiderPolicy::act(const std::vector<ArenaObservation>& batch) {

@@ -53,11 +53,8 @@ int main(int argc, char** argv) {
       hider = std::make_unique<hideseek_hider::RandomHiderPolicy>();
     } else {
       const int h = variant.game.camera.height, w = variant.game.camera.width;
-      auto net = hideseek_hider::loadCheckpoint(policy_path, h, w);
-      if (memory == "memoryless" && !net->recurrent()) {
-        throw std::runtime_error("memoryless applies to a GRU policy, and " + policy_path + " holds a feed-forward one");
-      }
-      auto policy = std::make_unique<hideseek_hider::NetworkHiderPolicy>(net, torch::kCPU, greedy);
+      auto policy = std::make_unique<hideseek_hider::NetworkHiderPolicy>(hideseek_hider::loadCheckpoint(policy_path, h, w),
+                                                                         torch::kCPU, greedy);
       policy->setMemoryless(memory == "memoryless");
       hider = std::move(policy);
     }

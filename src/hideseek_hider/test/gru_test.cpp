@@ -231,6 +231,9 @@ TEST(GruPolicy, MemorylessStartsEveryStepFromTheZeroState) {
   }
   expectClose(memoryless.hidden(), fresh_b, "memoryless: the state after image b alone");
   EXPECT_GT((with_memory.hidden() - fresh_b).abs().max().item<double>(), 1e-4) << "with memory, image a is remembered";
+  // A feed-forward policy has no state to zero: asking is refused, not ignored.
+  NetworkHiderPolicy feed_forward(HiderNet(kSize, kSize, NetworkKind::kFeedForward), torch::kCPU, true);
+  EXPECT_THROW(feed_forward.setMemoryless(true), std::invalid_argument);
 }
 
 TEST(RecurrentPpo, SequencesMustDivideTheRolloutAndTheMinibatches) {

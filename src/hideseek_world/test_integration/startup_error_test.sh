@@ -23,7 +23,7 @@ config="$(cd "$(dirname "$0")/../config" && pwd)"
 printf 'variant: basic\nmap: %s/maps/deterministic.yaml\nhider:\n  sped: 3.0\n' "$config" > "$dir/typo.yaml"
 expect_fatal bad_field "field 'hider.sped': unknown field" game.launch.xml variant:=basic variant_config:="$dir/typo.yaml"
 policies="$(cd "$(dirname "$0")/../policies" && pwd)"
-expect_fatal memoryless_ff "holds a feed-forward hider: memoryless applies to a GRU policy only" evaluate.launch \
+expect_fatal memoryless_ff "memoryless applies to a GRU policy only, and this one is a feed-forward hider" evaluate.launch \
   policy:="$policies/basic.pt" memoryless:=true episodes:=1 output_dir:="$dir/eval_ff"
 expect_fatal memoryless_random "is true, but the hider is in random mode: memoryless applies to a GRU policy only" \
   evaluate.launch policy:=random memoryless:=true episodes:=1 output_dir:="$dir/eval_random"

@@ -39,7 +39,8 @@ class NetworkHiderPolicy : public HiderPolicy {
   const torch::Tensor& hidden() const { return hidden_; }
   // GRU only, an ablation: start every step from the zero state, as if each were an episode's
   // first, so that the action depends on the current image alone (the trained weights, no memory).
-  void setMemoryless(bool memoryless) { memoryless_ = memoryless; }
+  // Throws std::invalid_argument for a feed-forward network, which has no state to zero.
+  void setMemoryless(bool memoryless);
 
  private:
   HiderNet net_;
