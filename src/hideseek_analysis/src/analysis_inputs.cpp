@@ -7,7 +7,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "hideseek_seeker/random_hider_game.h"
+#include "hideseek_seeker/scripted_game.h"
 #include "hideseek_world/arena.h"
 #include "hideseek_world/renderer.h"
 
@@ -233,8 +233,8 @@ AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::Hi
     uint32_t next_seed = seeds.empty() ? 0 : *seeds.begin();
     while (summary.random_steps < summary.steps) {
       std::vector<ArenaStepRecord> episode;
-      const auto played = hideseek_seeker::playRandomHider(
-          variant, map, next_seed, 1, [&](const hideseek_seeker::RandomHiderStep& s) {
+      const auto played = hideseek_seeker::playScriptedHider(
+          variant, map, hideseek_seeker::EvaderKind::kRandom, next_seed, 1, [&](const hideseek_seeker::ScriptedStep& s) {
             ArenaStepRecord r;
             r.seed = s.seed;
             r.step = static_cast<uint32_t>(s.step);

@@ -7,7 +7,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "hideseek_seeker/random_hider_game.h"
+#include "hideseek_seeker/scripted_game.h"
 #include "hideseek_world/hash_uniform.h"
 #include "hideseek_world/world.h"
 
@@ -107,8 +107,8 @@ StepLog rollout(const hw::VariantConfig& v, std::shared_ptr<const hw::MapSpec> m
       s.hider_sees_seeker = a.labels().hider_sees_seeker;
       s.seeker_sees_hider = a.labels().seeker_sees_hider;
       const auto hider = static_cast<hw::Action>(hw::hashAction(a.seed(), s.step, hw::kSaltRandomHider));
-      const auto seeker = seekers[i].act(hw::seekerPerception(a));
-      const hw::ArenaStep step = world.stepArena(i, hider, seeker);
+      const hw::ArenaStep step =
+          world.stepArena(i, hider, [&](const hw::SeekerPerception& p) { return seekers[i].act(p); });
       s.outcome = static_cast<int>(step.result.outcome);
       if (step.finished) seekers[i].reset(world.arena(i).layout(), world.arena(i).seed());
       r.arenas.push_back(s);

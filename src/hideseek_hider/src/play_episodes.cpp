@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "hideseek_hider/hider_policy.h"
-#include "hideseek_seeker/random_hider_game.h"
+#include "hideseek_seeker/scripted_game.h"
 #include "hideseek_world/world.h"
 
 int main(int argc, char** argv) {
@@ -99,12 +99,12 @@ int main(int argc, char** argv) {
       for (int i = 0; i < n; ++i) {
         if (!playing[i]) continue;
         const hw::Arena& a = world.arena(i);
-        const auto seeker_action = seekers[i].act(hw::seekerPerception(a));
         const hw::AgentState hs = a.hider(), ss = a.seeker();
         const hw::Labels l = a.labels();
         const uint32_t seed = a.seed();
         const int step = a.stepCount();
-        const hw::ArenaStep r = world.stepArena(i, static_cast<hw::Action>(actions[i]), seeker_action);
+        const hw::ArenaStep r = world.stepArena(i, static_cast<hw::Action>(actions[i]),
+                                                [&](const hw::SeekerPerception& p) { return seekers[i].act(p); });
         out << seed << ',' << step << ',' << hs.position.x << ',' << hs.position.y << ',' << hs.yaw << ','
             << ss.position.x << ',' << ss.position.y << ',' << ss.yaw << ',' << l.hider_sees_seeker << ','
             << l.seeker_sees_hider << ',' << l.obstacle_in_view << ',' << hw::distance(hs.position, ss.position) << ','

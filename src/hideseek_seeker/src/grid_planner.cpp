@@ -7,6 +7,19 @@
 
 namespace hideseek_seeker {
 
+bool sameFootprints(const Layout& a, const Layout& b) {
+  if (a.half_extent != b.half_extent || a.obstacles.size() != b.obstacles.size()) return false;
+  for (size_t i = 0; i < a.obstacles.size(); ++i) {
+    const hideseek_world::Box& p = a.obstacles[i];
+    const hideseek_world::Box& q = b.obstacles[i];
+    if (p.center.x != q.center.x || p.center.y != q.center.y || p.size.x != q.size.x || p.size.y != q.size.y ||
+        p.yaw != q.yaw) {
+      return false;
+    }
+  }
+  return true;
+}
+
 GridPlanner::GridPlanner(const Layout& layout, double inflation, double resolution)
     : grid_(layout, inflation, resolution) {}
 

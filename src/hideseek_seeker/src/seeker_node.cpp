@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "hideseek_seeker/random_hider_game.h"
+#include "hideseek_seeker/scripted_game.h"
 #include "hideseek_world/params.h"
 #include "hideseek_world/topic_names.h"
 #include "hideseek_world/wall_throttle.h"

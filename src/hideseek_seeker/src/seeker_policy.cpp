@@ -21,24 +21,6 @@ const char* modeName(SeekerMode mode) {
   }
 }
 
-namespace {
-
-// What the planner's grid depends on: the arena's size and the obstacles' footprints.
-bool sameFootprints(const Layout& a, const Layout& b) {
-  if (a.half_extent != b.half_extent || a.obstacles.size() != b.obstacles.size()) return false;
-  for (size_t i = 0; i < a.obstacles.size(); ++i) {
-    const hideseek_world::Box& p = a.obstacles[i];
-    const hideseek_world::Box& q = b.obstacles[i];
-    if (p.center.x != q.center.x || p.center.y != q.center.y || p.size.x != q.size.x || p.size.y != q.size.y ||
-        p.yaw != q.yaw) {
-      return false;
-    }
-  }
-  return true;
-}
-
-}  // namespace
-
 void SeekerPolicy::reset(const Layout& layout, uint32_t seed) {
   // A fixed map keeps its grid from episode to episode; a new layout is planned afresh.
   if (!planner_ || !sameFootprints(layout, planned_layout_)) {

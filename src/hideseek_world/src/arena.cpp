@@ -112,11 +112,30 @@ void Arena::updateLabels() {
   labels_.obstacle_in_view = obstacleInView(hider_, layout_, options_);
 }
 
+uint32_t Arena::seekerDecisionIndex() const {
+  return static_cast<uint32_t>((step_ * options_.action_repeat + frame_) / options_.seeker_decision_frames);
+}
+
+bool Arena::seekerSeesHiderNow() const {
+  // At a decision step's boundary the labels are current; between them, look again.
+  if (frame_ == 0) return labels_.seeker_sees_hider;
+  return agentSeesAgent(seeker_, hider_, layout_, options_);
+}
+
 SeekerPerception seekerPerception(const Arena& arena) {
   SeekerPerception p;
   p.pose = arena.seeker();
-  if (arena.labels().seeker_sees_hider) p.hider_position = arena.hider().position;
+  const bool told_spawn = arena.options().seeker_knows_spawn && arena.stepCount() == 0 && arena.frameInStep() == 0;
+  if (told_spawn || arena.seekerSeesHiderNow()) p.hider_position = arena.hider().position;
   return p;
+}
+
+StepResult playDecisionStep(Arena& arena, Action hider, const SeekerDecide& seeker) {
+  Action seeker_action = Action::kStay;
+  for (;;) {
+    if (arena.seekerDecisionDue()) seeker_action = seeker(seekerPerception(arena));
+    if (const std::optional<StepResult> r = arena.advanceFrame(hider, seeker_action)) return *r;
+  }
 }
 
 }  // namespace hideseek_world

@@ -12,6 +12,11 @@ double CameraOptions::verticalFov() const {
 
 namespace {
 
+std::string directoryOf(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
+}
+
 // Reads the motion fields of an agent section; the caller checks for unknown keys.
 void readMotion(YamlFields& f, MotionOptions& m) {
   const std::string mode =
@@ -24,8 +29,14 @@ void readMotion(YamlFields& f, MotionOptions& m) {
 }
 
 // Applies one file's fields over opts. Sections are optional; unknown keys are errors.
-void applyGameFields(const YAML::Node& root, const std::string& source, GameOptions& g, VariantConfig* variant) {
+void applyGameFields(const YAML::Node& root, const std::string& source, GameOptions& g, VariantConfig* variant,
+                     std::string* maps_dir = nullptr) {
   YamlFields f(root, source, "");
+  if (maps_dir) {
+    // Only a game file says where its maps are; `extends` was followed by the caller.
+    f.text("extends", "", {});
+    *maps_dir = f.text("maps_dir", *maps_dir, {});
+  }
   if (variant) {
     variant->name = f.text("variant", "", {});
     if (variant->name.empty()) throw ConfigError(source, "variant", "is required");
@@ -61,6 +72,8 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
     readMotion(s, g.seeker);
     // The policy belongs to the variant; the game defaults file has none.
     if (variant) variant->seeker_policy = s.text("policy", "deterministic", {"deterministic", "stochastic"});
+    g.seeker_decision_frames = s.integer("decision_frames", g.seeker_decision_frames, 1, 1000);
+    g.seeker_knows_spawn = s.boolean("knows_spawn", g.seeker_knows_spawn);
     s.rejectUnknown();
   }
   {
@@ -86,21 +99,40 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
   if (g.camera.mount_height >= g.agent_height) {
     throw ConfigError(source, "camera.mount_height", "must be below agents.height");
   }
+  if (g.action_repeat % g.seeker_decision_frames != 0) {
+    throw ConfigError(source, "seeker.decision_frames",
+                      "must divide physics.action_repeat (" + std::to_string(g.action_repeat) + ")");
+  }
 }
 
-std::string directoryOf(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
+constexpr int kMaxExtends = 8;  // a longer chain of game files is a loop
+
+// Applies a game file and, first, the files it extends; returns its maps folder.
+std::string applyGameFile(const std::string& path, GameOptions& g, int depth) {
+  if (depth > kMaxExtends) throw ConfigError(path, "extends", "is a chain of more than 8 files (a loop?)");
+  const YAML::Node root = loadYamlFile(path);
+  std::string maps_dir = "maps";
+  if (root.IsMap() && root["extends"]) {
+    std::string base = root["extends"].as<std::string>();
+    if (base.empty() || base.front() != '/') base = directoryOf(path) + "/" + base;
+    maps_dir = applyGameFile(base, g, depth + 1);
+    // The base's maps_dir is relative to the base; re-anchor it for this file.
+    if (maps_dir.front() != '/') maps_dir = directoryOf(base) + "/" + maps_dir;
+  }
+  applyGameFields(root, path, g, nullptr, &maps_dir);
+  return maps_dir;
 }
 
 }  // namespace
 
 VariantConfig loadVariantConfig(const std::string& game_file, const std::string& variant_file) {
   VariantConfig v;
-  applyGameFields(loadYamlFile(game_file), game_file, v.game, nullptr);
+  std::string maps_dir = applyGameFile(game_file, v.game, 0);
+  if (maps_dir.front() != '/') maps_dir = directoryOf(game_file) + "/" + maps_dir;
   applyGameFields(loadYamlFile(variant_file), variant_file, v.game, &v);
   v.source = variant_file;
-  if (v.map_file.front() != '/') v.map_file = directoryOf(variant_file) + "/../maps/" + v.map_file;
+  v.game_file = game_file;
+  if (v.map_file.front() != '/') v.map_file = maps_dir + "/" + v.map_file;
   return v;
 }
 

@@ -29,8 +29,10 @@ MapSpec loadMapFile(const std::string& path) {
       if (size.x <= 0.0 || size.y <= 0.0) throw ConfigError(path, b.field("size"), "extents must be positive");
       const double yaw = b.number("yaw", 0.0, -2.0 * kPi, 2.0 * kPi);
       const double height = b.number("height", spec.obstacle_height, 0.1, 10.0);
+      Box box = Box::make(center, size, height, yaw);
+      box.wall = b.boolean("wall", false);
       b.rejectUnknown();
-      spec.obstacles.push_back(Box::make(center, size, height, yaw));
+      spec.obstacles.push_back(box);
     }
   }
   if (spec.stochastic && !spec.obstacles.empty()) {
@@ -77,6 +79,8 @@ MapSpec loadMapFile(const std::string& path) {
   spec.colors.hider = c.rgb("hider", defaults.hider);
   spec.colors.seeker = c.rgb("seeker", defaults.seeker);
   spec.colors.sky = c.rgb("sky", defaults.sky);
+  if (c.has("hider_front")) spec.colors.hider_front = c.rgb("hider_front", defaults.hider);
+  if (c.has("seeker_front")) spec.colors.seeker_front = c.rgb("seeker_front", defaults.seeker);
   c.rejectUnknown();
   f.rejectUnknown();
   return spec;

@@ -173,7 +173,9 @@ visualization_msgs::MarkerArray toMarkers(const Arena& arena, const std::string&
   clear.action = visualization_msgs::Marker::DELETEALL;
   out.markers.push_back(clear);
   int id = 0;
-  for (const Box& b : layout.obstacles) out.markers.push_back(boxMarker(b, id++, "obstacles", colors.obstacle));
+  for (const Box& b : layout.obstacles) {
+    out.markers.push_back(boxMarker(b, id++, b.wall ? "wall_cuts" : "obstacles", b.wall ? colors.wall : colors.obstacle));
+  }
   id = 0;
   for (const Box& b : wallBoxes(layout.half_extent, layout.wall_height)) {
     out.markers.push_back(boxMarker(b, id++, "walls", colors.wall));
@@ -285,7 +287,7 @@ hideseek_msgs::SeekerObservationBatch toSeekerObservationBatch(const World& worl
       hider.y = perception.hider_position->y;
     }
     seen.hider_position.push_back(hider);
-    seen.step.push_back(static_cast<uint32_t>(a.stepCount()));
+    seen.step.push_back(world.seekerDecisionId(i));
     seen.episode.push_back(world.episode(i));
     seen.seed.push_back(a.seed());
   }

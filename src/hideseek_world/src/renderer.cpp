@@ -174,6 +174,8 @@ struct Renderer::Impl {
   Eigen::Matrix4f projection;
   std::map<int, std::vector<Quad>> scenes;
   std::vector<Quad> cylinder;  // around the origin, front (+x) stripe on the first quad
+  std::vector<Quad> plain_cylinder;  // the same without the stripe, for agents with a front colour
+  std::vector<bool> front_segment;   // which of its quads face within kFrontHalfAngle of +x
   std::vector<FrameVertex> frame;
   Polygon poly;
   Polygon scratch;
@@ -227,6 +229,10 @@ Renderer::Renderer(const RendererOptions& options) : options_(options), impl_(st
     const Eigen::Vector3f p1(radius * std::cos(a1), radius * std::sin(a1), 0.f);
     const Eigen::Vector3f up(0.f, 0.f, height);
     r.cylinder.push_back(makeQuad({p0, p1, p1 + up, p0 + up}, i == 0 ? Rgb{0.45f, 0.45f, 0.45f} : Rgb{1.f, 1.f, 1.f}, false));
+    r.plain_cylinder.push_back(makeQuad({p0, p1, p1 + up, p0 + up}, Rgb{1.f, 1.f, 1.f}, false));
+    // Segment i faces 30 i degrees; the front colour covers the five facing within 60 degrees.
+    const int facing = i <= kSegments / 2 ? i : kSegments - i;
+    r.front_segment.push_back(facing <= 2);
   }
 }
 
@@ -263,9 +269,10 @@ void Renderer::setScene(int scene, const Layout& layout) {
       const auto& a = corner[i];
       const auto& b = corner[(i + 1) % 4];
       quads.push_back(makeQuad({at(a[0], a[1], 0.f), at(b[0], b[1], 0.f), at(b[0], b[1], h), at(a[0], a[1], h)},
-                               colors.obstacle, true));
+                               box.wall ? colors.wall : colors.obstacle, true));
     }
-    quads.push_back(makeQuad({at(hx, hy, h), at(-hx, hy, h), at(-hx, -hy, h), at(hx, -hy, h)}, colors.obstacle, true));
+    quads.push_back(makeQuad({at(hx, hy, h), at(-hx, hy, h), at(-hx, -hy, h), at(hx, -hy, h)},
+                             box.wall ? colors.wall : colors.obstacle, true));
   }
   for (Quad& q : quads) {
     if (!q.occluder) continue;
@@ -350,9 +357,16 @@ void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, ui
     for (const Quad& q : scene->second) emit(q, Eigen::Vector3f::Zero(), 1.f, 0.f, white, false);
     const AgentState& o = view.other;
     const Rgb tint = view.other_is_hider ? options_.colors.hider : options_.colors.seeker;
+    const std::optional<Rgb>& front = view.other_is_hider ? options_.colors.hider_front : options_.colors.seeker_front;
     const Eigen::Vector3f at(o.position.x, o.position.y, 0.f);
     const float c = std::cos(o.yaw), s = std::sin(o.yaw);
-    for (const Quad& q : r.cylinder) emit(q, at, c, s, tint, true);
+    if (front) {
+      for (size_t q = 0; q < r.plain_cylinder.size(); ++q) {
+        emit(r.plain_cylinder[q], at, c, s, r.front_segment[q] ? *front : tint, true);
+      }
+    } else {
+      for (const Quad& q : r.cylinder) emit(q, at, c, s, tint, true);
+    }
   }
 
   // Several renderers may share a thread (tests do); each draws into its own context.

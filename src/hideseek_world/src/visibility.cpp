@@ -85,6 +85,7 @@ bool obstacleInView(const AgentState& viewer, const Layout& layout, const GameOp
   const Frustum frustum(viewer, options.camera);
   // Points on each box: corners at the floor and the top, and the side centres at eye height.
   for (const Box& box : layout.obstacles) {
+    if (box.wall) continue;
     const double hx = 0.5 * box.size.x, hy = 0.5 * box.size.y;
     const double c = box.cos_yaw, s = box.sin_yaw;
     const std::array<Vec2, 8> local = {Vec2{hx, hy}, Vec2{-hx, hy}, Vec2{-hx, -hy}, Vec2{hx, -hy},

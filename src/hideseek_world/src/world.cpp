@@ -9,7 +9,9 @@ World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int
     : options_(options),
       episodes_(num_arenas, 0),
       next_seeds_(num_arenas),
-      uploaded_layouts_(num_arenas, ~uint64_t{0}) {
+      uploaded_layouts_(num_arenas, ~uint64_t{0}),
+      step_start_(num_arenas, 0),
+      results_(num_arenas) {
   if (num_arenas < 1) throw std::invalid_argument("World: num_arenas must be at least 1");
   arenas_.reserve(num_arenas);
   for (int i = 0; i < num_arenas; ++i) arenas_.emplace_back(options, map);
@@ -28,20 +30,46 @@ World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int
 
 void World::startEpisode(int i, uint32_t seed) {
   arenas_[i].reset(seed);
+  step_start_[i] = 0;
   next_seeds_[i] = seed + static_cast<uint32_t>(arenas_.size());
 }
 
 void World::resetArena(int i, std::optional<uint32_t> seed) {
+  if (frame_ != 0) throw std::logic_error("World: reset in the middle of a decision step");
   startEpisode(i, seed ? *seed : next_seeds_[i]);
   ++episodes_[i];
 }
 
 ArenaStep World::stepArena(int i, Action hider, Action seeker) { return conclude(i, arenas_[i].step(hider, seeker)); }
 
-std::optional<ArenaStep> World::advanceArenaFrame(int i, Action hider, Action seeker) {
-  const std::optional<StepResult> result = arenas_[i].advanceFrame(hider, seeker);
-  if (!result) return std::nullopt;
-  return conclude(i, *result);
+ArenaStep World::stepArena(int i, Action hider, const SeekerDecide& seeker) {
+  return conclude(i, playDecisionStep(arenas_[i], hider, seeker));
+}
+
+uint32_t World::seekerDecisionId(int i) const {
+  return static_cast<uint32_t>(step_start_[i] * options_.seekerDecisionsPerStep() +
+                               frame_ / options_.seeker_decision_frames);
+}
+
+std::optional<std::vector<ArenaStep>> World::advanceFrame(const std::vector<Action>& hider,
+                                                          const std::vector<Action>& seeker) {
+  const int n = numArenas();
+  if (frame_ == 0) {
+    for (int i = 0; i < n; ++i) step_start_[i] = arenas_[i].stepCount();
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!results_[i]) results_[i] = arenas_[i].advanceFrame(hider[i], seeker[i]);
+  }
+  if (++frame_ < options_.action_repeat) return std::nullopt;
+  frame_ = 0;
+  std::vector<ArenaStep> out;
+  out.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    out.push_back(conclude(i, *results_[i]));
+    results_[i].reset();
+    step_start_[i] = arenas_[i].stepCount();
+  }
+  return out;
 }
 
 ArenaStep World::conclude(int i, const StepResult& result) {

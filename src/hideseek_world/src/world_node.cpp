@@ -119,7 +119,8 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   if (lockstep) {
     watchdog_timer_ = nh_.createWallTimer(ros::WallDuration(0.05), &WorldNode::onWatchdog, this);
   } else {
-    realtime_hider_.assign(n, Action::kStay);
+    step_hider_.assign(n, Action::kStay);
+    step_first_seeker_.assign(n, Action::kStay);
     realtime_seeker_.assign(n, Action::kStay);
     tick_timer_ = nh_.createWallTimer(ros::WallDuration(game.physics_dt), &WorldNode::onRealtimeTick, this);
     publishObservations();
@@ -181,8 +182,14 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
     return;
   }
   const bool lockstep = options_.mode == ClockMode::kLockstep;
+  // The hider answers a step's first frame; inside the step only the seeker decides.
+  constexpr uint32_t kNoStep = UINT32_MAX;
+  const bool hider = channel.player == Player::kHider;
   for (size_t i = 0; i < n; ++i) {
-    const uint32_t current = static_cast<uint32_t>(world_->arena(i).stepCount());
+    const int arena = static_cast<int>(i);
+    const uint32_t current = !hider                        ? world_->seekerDecisionId(arena)
+                             : world_->frameInStep() == 0 ? static_cast<uint32_t>(world_->arena(arena).stepCount())
+                                                          : kNoStep;
     switch (scheduler_.offer(channel.player, static_cast<int>(i), msg.actions[i], msg.step[i], current)) {
       case Verdict::kAccepted:
         break;
@@ -229,20 +236,34 @@ void WorldNode::tryAdvanceLockstep() {
     ROS_INFO_ONCE("world: max_decisions (%ld) reached; the world no longer advances", options_.max_decisions);
     return;
   }
-  if (!scheduler_.complete()) return;
-  const int n = options_.num_arenas;
-  beginStepRecord();
-  const DecisionActions d = scheduler_.takeDecision();
-  std::vector<ArenaStep> results;
-  results.reserve(n);
-  for (int i = 0; i < n; ++i) results.push_back(world_->stepArena(i, d.hider[i], d.seeker[i]));
-  concludeDecision(results, d.hider, d.seeker);
-  publishObservations();
-  publishArenaZero(false);
+  std::vector<Action> seeker;
+  if (world_->frameInStep() == 0) {
+    if (!scheduler_.complete()) return;
+    beginStepRecord();
+    const DecisionActions d = scheduler_.takeDecision();
+    step_hider_ = d.hider;
+    step_first_seeker_ = d.seeker;
+    seeker = d.seeker;
+  } else {
+    if (!scheduler_.completeFor(Player::kSeeker)) return;
+    seeker = scheduler_.takeSeekerDecision();
+  }
+  // Play frames up to the seeker's next decision, or to the end of the step.
+  for (;;) {
+    if (const auto results = world_->advanceFrame(step_hider_, seeker)) {
+      concludeDecision(*results, step_hider_, step_first_seeker_);
+      publishObservations();
+      publishArenaZero(false);
+      return;
+    }
+    if (world_->seekerDecisionDue()) {
+      publishSeekerObservations();
+      return;
+    }
+  }
 }
 
 void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
-  const int n = options_.num_arenas;
   if (!started_) {
     // The first episode starts when both players are there (a person's keyboard hider may take
     // seconds to open), and when every listener that must see it listens.
@@ -257,7 +278,7 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
     publishObservations();  // the batch sent at start-up went out before anyone listened
     return;
   }
-  if (frame_ == 0) {
+  if (world_->frameInStep() == 0) {
     // A decision step starts once both agents answered its observation, so each decision drives
     // its own step. A slow agent slows the game (diagnostics show the real-time factor) rather
     // than changing it; an agent silent for stale_action_timeout, or absent, stands still for
@@ -268,52 +289,55 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
       publishAgentTransforms(ros::Time::now());
       return;
     }
-    if (start == RealtimeStart::kStale && connected) {
-      ++stale_decisions_;
-      static WallThrottle throttle(kWarnPeriod);
-      if (throttle.ready()) {
-        ROS_WARN(
-            "world: no action for step %d within %.2f s (hider %s, seeker %s): the silent "
-            "agent stands still this step (%lu more like it since the last)",
-            world_->arena(0).stepCount(), options_.stale_action_timeout,
-            scheduler_.answered(Player::kHider, 0) ? "answered" : "silent",
-            scheduler_.answered(Player::kSeeker, 0) ? "answered" : "silent",
-            static_cast<unsigned long>(throttle.suppressed()));
-      }
-    }
+    if (start == RealtimeStart::kStale && connected) warnStale();
     // The step record's state half is taken before the frames change it.
     beginStepRecord();
     const DecisionActions d = scheduler_.takeDecision();
-    realtime_hider_ = d.hider;
+    step_hider_ = d.hider;
+    step_first_seeker_ = d.seeker;
     realtime_seeker_ = d.seeker;
-    frame_results_.assign(n, std::nullopt);
+  } else if (world_->seekerDecisionDue()) {
+    // The seeker's later decisions inside the step, under the same rules.
+    const bool connected = seeker_sub_.getNumPublishers() > 0;
+    const RealtimeStart start = scheduler_.realtimeSeekerStart(ros::WallTime::now().toSec(), connected);
+    if (start == RealtimeStart::kWait) {
+      publishAgentTransforms(ros::Time::now());
+      return;
+    }
+    if (start == RealtimeStart::kStale && connected) warnStale();
+    realtime_seeker_ = scheduler_.takeSeekerDecision();
   }
   // One physics frame per tick. An arena whose step ended early (capture) waits for the others,
   // so every arena's decisions stay on the same 0.12 s clock.
-  for (int i = 0; i < n; ++i) {
-    if (!frame_results_[i]) frame_results_[i] = world_->advanceArenaFrame(i, realtime_hider_[i], realtime_seeker_[i]);
-  }
-  if (++frame_ < options_.variant.game.action_repeat) {
-    publishAgentTransforms(ros::Time::now());
+  if (const auto results = world_->advanceFrame(step_hider_, realtime_seeker_)) {
+    concludeDecision(*results, step_hider_, step_first_seeker_);
+    scheduler_.finishDecision();
+    publishObservations();
+    publishArenaZero(true);
     return;
   }
-  finishRealtimeDecision();
-  publishObservations();
-  publishArenaZero(true);
+  if (world_->seekerDecisionDue()) publishSeekerObservations();
+  publishAgentTransforms(ros::Time::now());
+}
+
+void WorldNode::warnStale() {
+  ++stale_decisions_;
+  if (stale_throttle_.ready()) {
+    ROS_WARN(
+        "world: no action for step %d (frame %d) within %.2f s (hider %s, seeker %s): the silent "
+        "agent stands still this decision (%lu more like it since the last)",
+        world_->arena(0).stepCount(), world_->frameInStep(), options_.stale_action_timeout,
+        scheduler_.answered(Player::kHider, 0) ? "answered" : "silent",
+        scheduler_.answered(Player::kSeeker, 0) ? "answered" : "silent",
+        static_cast<unsigned long>(stale_throttle_.suppressed()));
+  }
 }
 
 void WorldNode::finishRealtimeDecision() {
-  const int n = options_.num_arenas;
-  for (; frame_ < options_.variant.game.action_repeat; ++frame_) {
-    for (int i = 0; i < n; ++i) {
-      if (!frame_results_[i]) frame_results_[i] = world_->advanceArenaFrame(i, realtime_hider_[i], realtime_seeker_[i]);
-    }
+  std::optional<std::vector<ArenaStep>> results;
+  while (!(results = world_->advanceFrame(step_hider_, realtime_seeker_))) {
   }
-  frame_ = 0;
-  std::vector<ArenaStep> results;
-  results.reserve(n);
-  for (const auto& r : frame_results_) results.push_back(*r);
-  concludeDecision(results, realtime_hider_, realtime_seeker_);
+  concludeDecision(*results, step_hider_, step_first_seeker_);
   scheduler_.finishDecision();
 }
 
@@ -335,6 +359,11 @@ void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
     return;
   }
   if (!reachedMaxDecisions() && scheduler_.resendDue(now.toSec())) {
+    if (world_->frameInStep() != 0) {
+      // Inside a step only the seeker has an unanswered observation.
+      publishSeekerObservations();
+      return;
+    }
     static WallThrottle throttle(10.0);
     if (throttle.ready()) {
       ROS_WARN(
@@ -407,9 +436,20 @@ void WorldNode::publishObservations() {
   hideseek_msgs::ObservationBatch obs = toObservationBatch(*world_, images_, rewards_, done_, outcome_);
   obs.header.stamp = stamp;
   obs.header.frame_id = options_.frame_id;
-  hideseek_msgs::SeekerObservationBatch seen = toSeekerObservationBatch(*world_, done_, arena_maps_.update(*world_));
-  seen.header = obs.header;
   hider_obs_pub_.publish(obs);
+  publishSeekerObservations(obs.header, done_);
+}
+
+void WorldNode::publishSeekerObservations() {
+  std_msgs::Header header;
+  header.stamp = simNow();
+  header.frame_id = options_.frame_id;
+  publishSeekerObservations(header, std::vector<uint8_t>(options_.num_arenas, 0));
+}
+
+void WorldNode::publishSeekerObservations(const std_msgs::Header& header, const std::vector<uint8_t>& done) {
+  hideseek_msgs::SeekerObservationBatch seen = toSeekerObservationBatch(*world_, done, arena_maps_.update(*world_));
+  seen.header = header;
   seeker_obs_pub_.publish(seen);
   scheduler_.observationSent(ros::WallTime::now().toSec());
   ++batches_published_;

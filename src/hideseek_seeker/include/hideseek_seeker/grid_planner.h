@@ -12,6 +12,9 @@ using hideseek_world::GridCell;
 using hideseek_world::Layout;
 using hideseek_world::Vec2;
 
+// Whether two layouts have the same arena and obstacle footprints: all a planner's grid depends on.
+bool sameFootprints(const Layout& a, const Layout& b);
+
 class GridPlanner {
  public:
   GridPlanner(const Layout& layout, double inflation, double resolution);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <random>
@@ -41,6 +42,16 @@ class Arena {
   // frame completes it (its last frame, or a capture), else nothing.
   std::optional<StepResult> advanceFrame(Action hider, Action seeker);
 
+  // Physics frames already played of the current decision step.
+  int frameInStep() const { return frame_; }
+  // Whether the seeker decides before the next frame: every seeker_decision_frames frames.
+  bool seekerDecisionDue() const { return frame_ % options_.seeker_decision_frames == 0; }
+  // The seeker's decisions in this episode before the current one: its step id in the exchange.
+  uint32_t seekerDecisionIndex() const;
+  // Whether the seeker sees the hider now, between decision steps too (the labels hold the last
+  // decision step's value).
+  bool seekerSeesHiderNow() const;
+
   const AgentState& hider() const { return hider_; }
   const AgentState& seeker() const { return seeker_; }
   const Layout& layout() const { return layout_; }
@@ -73,12 +84,21 @@ class Arena {
   uint64_t layout_version_ = 0;
 };
 
-// What the seeker may act on (SPEC section 3): its own pose, and the hider's position only while
-// it sees the hider. Every seeker, in process or behind the world node, gets exactly this.
+// What the seeker may act on (SPEC section 3): its own pose, and the hider's position while it
+// sees the hider, and at its first decision of an episode when the game gives it the hider's
+// spawn point (seeker_knows_spawn). Every seeker, in process or behind the world node, gets
+// exactly this.
 struct SeekerPerception {
   AgentState pose;
   std::optional<Vec2> hider_position;
 };
 SeekerPerception seekerPerception(const Arena& arena);
+
+// A seeker played in process: its action for a perception.
+using SeekerDecide = std::function<Action(const SeekerPerception&)>;
+
+// Plays one decision step of `arena` with the hider's action, asking `seeker` for an action at
+// each of its decisions in the step, in the world node's order: the one game loop of an arena.
+StepResult playDecisionStep(Arena& arena, Action hider, const SeekerDecide& seeker);
 
 }  // namespace hideseek_world

@@ -2,11 +2,14 @@
 // lockstep and realtime exchange, free of ROS so that they are unit-tested with an injected time.
 //
 // Both modes: an action answers the current step of its arena (its step id), else it is refused.
-// Lockstep: a decision is taken once both agents answered every arena; an unanswered observation
-//   is re-sent every resend_period.
+// The seeker may decide more often than the hider (seeker_decision_frames): a decision step then
+// holds several seeker decisions, the first taken with the hider's action, the others alone.
+// Lockstep: a decision is taken once both agents answered every arena (the seeker alone for its
+//   later decisions in the step); an unanswered observation is re-sent every resend_period.
 // Realtime: a decision starts once both agents answered every arena, or once stale_action_timeout
 //   has passed since it could have started (a silent agent then stands still for that step), or at
-//   once while an agent is absent. While a decision's frames play, answers are late and refused.
+//   once while an agent is absent; the seeker's later decisions likewise. While a decision's
+//   frames play, the hider's answers are late and refused.
 #pragma once
 
 #include <cstdint>
@@ -40,15 +43,21 @@ class DecisionScheduler {
   // An action of `player` for `arena`, answering step `step_id` while the arena is at `current_step`.
   Verdict offer(Player player, int arena, uint8_t action, uint32_t step_id, uint32_t current_step);
   // Both agents answered every arena.
-  bool complete() const;
+  bool complete() const { return completeFor(Player::kHider) && completeFor(Player::kSeeker); }
+  // `player` answered every arena.
+  bool completeFor(Player player) const;
   // Whether the pending answer of `player` for `arena` has arrived.
   bool answered(Player player, int arena) const { return pending_[index(player, arena)].has_value(); }
 
   // Realtime: may the next decision start at `now_s`? `agents_connected`: both agents publish.
   RealtimeStart realtimeStart(double now_s, bool agents_connected);
+  // Realtime: may the seeker's next decision inside the step be taken at `now_s`?
+  RealtimeStart realtimeSeekerStart(double now_s, bool seeker_connected);
   // Takes the decision: every arena's pending actions (STAY where missing), then clears them.
   // In realtime the decision's frames now play until finishDecision(), and answers are late.
   DecisionActions takeDecision();
+  // Takes the seeker's later decision inside a step (STAY where missing), then clears it.
+  std::vector<Action> takeSeekerDecision();
   void finishDecision() { executing_ = false; }
   bool executing() const { return executing_; }
 
@@ -62,6 +71,7 @@ class DecisionScheduler {
 
  private:
   size_t index(Player p, int arena) const { return static_cast<size_t>(p) * num_arenas_ + arena; }
+  RealtimeStart waitOrStale(bool ready, double now_s, bool connected);
 
   ClockMode mode_;
   int num_arenas_;

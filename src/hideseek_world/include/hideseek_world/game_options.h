@@ -47,22 +47,32 @@ struct GameOptions {
   double min_spawn_distance = 3.0;
   MotionOptions hider;
   MotionOptions seeker{SpeedMode::kConstant, 1.5, 1.5, 2.0, kPi};
+  // Physics frames between two decisions of the scripted seeker; divides action_repeat. The
+  // paper gives the action repeat for the learner only; a scripted agent in a game engine
+  // usually decides every frame (game v2: 1; game v1: 6).
+  int seeker_decision_frames = 1;
+  // The seeker starts knowing the hider's spawn point, as its last known position: both
+  // agents start facing each other (game v2: true; game v1: false).
+  bool seeker_knows_spawn = true;
   CameraOptions camera;
   RewardOptions rewards;
 
   double stepDuration() const { return physics_dt * action_repeat; }
+  int seekerDecisionsPerStep() const { return action_repeat / seeker_decision_frames; }
 };
 
 // A variant file (config/variants/*.yaml): the game options plus what other nodes need.
 struct VariantConfig {
   std::string name;
   std::string source;
-  std::string map_file;        // resolved against the variant file's ../maps/
+  std::string game_file;       // the game file the variant was read over (its `extends` chain)
+  std::string map_file;        // resolved against the game file's maps_dir
   std::string seeker_policy;   // deterministic | stochastic
   GameOptions game;
 };
 
-// Reads game defaults (config/game.yaml) then a variant file over them; throws ConfigError.
+// Reads a game file (config/game.yaml, or one that `extends` it, such as config/game_v1.yaml),
+// then a variant file over it; throws ConfigError.
 VariantConfig loadVariantConfig(const std::string& game_file, const std::string& variant_file);
 
 }  // namespace hideseek_world

@@ -37,6 +37,9 @@ struct Box {
   double yaw = 0.0;
   double cos_yaw = 1.0;
   double sin_yaw = 0.0;
+  // Part of the arena's boundary (drawn in the walls' colour, never counted by the O label);
+  // it blocks and hides like any obstacle.
+  bool wall = false;
 
   static Box make(Vec2 center, Vec2 size, double height, double yaw) {
     return {center, size, height, yaw, std::cos(yaw), std::sin(yaw)};

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -21,6 +22,10 @@ struct MapColors {
   Rgb hider{0.10f, 0.55f, 0.95f};
   Rgb seeker{0.90f, 0.12f, 0.10f};
   Rgb sky{0.62f, 0.75f, 0.88f};
+  // The front half of each agent (150 degrees around its heading) in its own colour, so that an
+  // 84 x 84 image shows which way the other agent faces. Unset: a thin dark stripe (game v1).
+  std::optional<Rgb> hider_front;
+  std::optional<Rgb> seeker_front;
 };
 
 // Parameters of the per-episode random obstacle generator (SPEC section 2).

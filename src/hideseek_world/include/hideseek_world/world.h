@@ -43,10 +43,24 @@ class World {
   // Starts a new episode in arena i, with `seed` or the next of its sequence; the sequence
   // then continues from the seed used.
   void resetArena(int i, std::optional<uint32_t> seed);
-  // Advances arena i one decision step; a finished episode is replaced by the next one.
+  // Advances arena i one decision step with fixed actions; a finished episode is replaced by the
+  // next one.
   ArenaStep stepArena(int i, Action hider, Action seeker);
-  // Advances arena i one physics frame; returns the decision step's outcome when it completes.
-  std::optional<ArenaStep> advanceArenaFrame(int i, Action hider, Action seeker);
+  // Advances arena i one decision step, asking the in-process seeker at each of its decisions.
+  ArenaStep stepArena(int i, Action hider, const SeekerDecide& seeker);
+
+  // The world node's exchange, all arenas in phase: a decision step is action_repeat frames, and
+  // the seeker decides before every seeker_decision_frames-th of them (SeekerObservationBatch).
+  int frameInStep() const { return frame_; }
+  bool seekerDecisionDue() const { return frame_ % options_.seeker_decision_frames == 0; }
+  // Arena i's seeker decision about to be taken, counted from its episode's start: the step id
+  // of the seeker's exchange (the hider's step id when the seeker decides once a step).
+  uint32_t seekerDecisionId(int i) const;
+  // Plays one physics frame of every arena whose decision step still runs (a capture ends an
+  // arena's step early; it then waits for the others). After the step's last frame returns every
+  // arena's result, finished episodes replaced by their next ones; else nothing.
+  std::optional<std::vector<ArenaStep>> advanceFrame(const std::vector<Action>& hider,
+                                                     const std::vector<Action>& seeker);
 
   // Renders every arena's hider camera into out (numArenas() images, rgb8, rows top down).
   void renderHiderViews(uint8_t* out, RenderMode mode = RenderMode::kColor);
@@ -64,6 +78,9 @@ class World {
   std::vector<uint32_t> episodes_;
   std::vector<uint32_t> next_seeds_;
   std::vector<uint64_t> uploaded_layouts_;
+  int frame_ = 0;                                    // frames played of the current step
+  std::vector<int> step_start_;                      // each arena's step count when the step began
+  std::vector<std::optional<StepResult>> results_;   // each arena's step result once it is over
   std::unique_ptr<Renderer> renderer_;
   std::vector<ViewRequest> views_;
 };

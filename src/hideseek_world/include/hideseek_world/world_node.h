@@ -22,6 +22,7 @@
 
 #include "hideseek_world/decision_scheduler.h"
 #include "hideseek_world/msg_conversion.h"
+#include "hideseek_world/wall_throttle.h"
 #include "hideseek_world/world.h"
 #include "hideseek_world/world_node_options.h"
 
@@ -66,6 +67,11 @@ class WorldNode {
   void beginStepRecord();
   void publishAgentTransforms(const ros::Time& stamp);
   void publishObservations();
+  // The seeker's observation alone: its later decisions inside a step.
+  void publishSeekerObservations();
+  void publishSeekerObservations(const std_msgs::Header& header, const std::vector<uint8_t>& done);
+  // Counts and warns about a decision an agent missed (realtime).
+  void warnStale();
   void publishArenaZero(bool force_visuals);
   void startEpisodeVisuals();
   void publishDiagnostics(const ros::WallTimerEvent&);
@@ -105,11 +111,11 @@ class WorldNode {
   std::vector<Action> last_hider_actions_, last_seeker_actions_;
   // Each arena's map as the seeker receives it, rebuilt only when the arena's layout changes.
   ArenaMapCache arena_maps_;
-  // Realtime mode: physics frame within the decision step, its actions and finished results.
-  int frame_ = 0;
-  std::vector<Action> realtime_hider_, realtime_seeker_;
-  std::vector<std::optional<ArenaStep>> frame_results_;
+  // The decision step being played: the hider's actions, the seeker's first decision in it (what
+  // world/steps records) and, in realtime, the seeker's decision the frames now play.
+  std::vector<Action> step_hider_, step_first_seeker_, realtime_seeker_;
   uint64_t stale_decisions_ = 0;       // decisions an agent missed (it stood still)
+  WallThrottle stale_throttle_{2.0};
   // Diagnostics: the counts at the previous report, so that a status returns to OK once a
   // problem is over.
   uint64_t reported_rejections_ = 0, reported_stale_ = 0, reported_steps_ = 0;

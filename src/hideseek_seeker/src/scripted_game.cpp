@@ -1,9 +1,8 @@
-#include "hideseek_seeker/random_hider_game.h"
+#include "hideseek_seeker/scripted_game.h"
 
 #include <algorithm>
 
 #include "hideseek_world/arena.h"
-#include "hideseek_world/hash_uniform.h"
 
 namespace hideseek_seeker {
 
@@ -14,33 +13,33 @@ SeekerOptions seekerOptionsFor(const hideseek_world::VariantConfig& variant, dou
   SeekerOptions o;
   o.type = variant.seeker_policy == "stochastic" ? SeekerPolicyType::kStochastic : SeekerPolicyType::kDeterministic;
   o.radius = variant.game.agent_radius;
-  o.turn_per_step = variant.game.seeker.turn_rate * variant.game.stepDuration();
+  o.turn_per_step = variant.game.seeker.turn_rate * variant.game.physics_dt * variant.game.seeker_decision_frames;
   o.grid_resolution = grid_resolution;
   return o;
 }
 
-std::vector<RandomHiderEpisode> playRandomHider(const hideseek_world::VariantConfig& variant,
-                                                std::shared_ptr<const hideseek_world::MapSpec> map,
-                                                uint32_t first_seed, int episodes,
-                                                const RandomHiderStepObserver& observe) {
+std::vector<ScriptedEpisode> playScriptedHider(const hideseek_world::VariantConfig& variant,
+                                               std::shared_ptr<const hideseek_world::MapSpec> map, EvaderKind evader,
+                                               uint32_t first_seed, int episodes, const ScriptedStepObserver& observe) {
   Arena arena(variant.game, map);
   SeekerPolicy seeker(seekerOptionsFor(variant));
-  std::vector<RandomHiderEpisode> out;
+  ScriptedEvader hider(evader, variant.game);
+  const hideseek_world::SeekerDecide decide = [&](const hideseek_world::SeekerPerception& p) { return seeker.act(p); };
+  std::vector<ScriptedEpisode> out;
   for (int e = 0; e < episodes; ++e) {
-    RandomHiderEpisode episode;
+    ScriptedEpisode episode;
     episode.seed = first_seed + static_cast<uint32_t>(e);
     arena.reset(episode.seed);
     seeker.reset(arena.layout(), episode.seed);
+    hider.reset(arena.layout());
     episode.seen_at_start = arena.labels().seeker_sees_hider;
-    // The world node's lockstep order: both agents answer the observation of step t, then the
-    // arena advances one decision step.
+    // The world node's lockstep order: both agents answer the observation of step t (the seeker
+    // again before each of its later decisions in the step), then the arena advances.
     for (;;) {
       const auto step = static_cast<uint32_t>(arena.stepCount());
-      const Action seeker_action = seeker.act(hideseek_world::seekerPerception(arena));
-      const auto hider_action =
-          static_cast<Action>(hideseek_world::hashAction(episode.seed, step, hideseek_world::kSaltRandomHider));
+      const Action hider_action = hider.act({arena.hider(), arena.seeker(), episode.seed, step});
       if (observe) observe({episode.seed, static_cast<int>(step), arena.hider(), arena.seeker(), arena.labels(), hider_action});
-      const hideseek_world::StepResult r = arena.step(hider_action, seeker_action);
+      const hideseek_world::StepResult r = hideseek_world::playDecisionStep(arena, hider_action, decide);
       if (r.done()) {
         episode.living_steps = arena.stepCount();
         episode.survived = r.outcome == hideseek_world::Outcome::kSurvived;
@@ -52,8 +51,8 @@ std::vector<RandomHiderEpisode> playRandomHider(const hideseek_world::VariantCon
   return out;
 }
 
-RandomHiderSummary summarize(const std::vector<RandomHiderEpisode>& episodes) {
-  RandomHiderSummary s;
+ScriptedSummary summarize(const std::vector<ScriptedEpisode>& episodes) {
+  ScriptedSummary s;
   s.episodes = static_cast<int>(episodes.size());
   if (episodes.empty()) return s;
   std::vector<int> steps;

@@ -1,0 +1,82 @@
+// Scripted evaders: baseline hiders that read the true game state (both poses and the layout),
+// never an image. They calibrate the game (does hiding pay, does backing away in view win?) and
+// sit beside the learned hiders in every table. They decide once per decision step, like the
+// learned hider.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hideseek_seeker/grid_planner.h"
+#include "hideseek_world/agent.h"
+#include "hideseek_world/game_options.h"
+
+namespace hideseek_seeker {
+
+enum class EvaderKind {
+  kRandom,     // uniformly random actions, drawn from the episode seed and step (the paper's baseline)
+  kBackpedal,  // face the seeker and back away from it along free space, keeping it in view
+  kFlee,       // turn away and run to the reachable free point farthest from the seeker
+  kHide,       // go to the nearest reachable point an obstacle hides from the seeker, stay while hidden
+};
+constexpr EvaderKind kAllEvaders[] = {EvaderKind::kRandom, EvaderKind::kBackpedal, EvaderKind::kFlee,
+                                      EvaderKind::kHide};
+const char* evaderName(EvaderKind kind);
+// The evader called `name` (random, backpedal, flee, hide), or nothing.
+std::optional<EvaderKind> evaderKind(const std::string& name);
+
+// The true state an evader decides on.
+struct EvaderObservation {
+  hideseek_world::AgentState hider;
+  hideseek_world::AgentState seeker;
+  uint32_t seed = 0;  // the episode's seed
+  uint32_t step = 0;  // decision step in the episode
+};
+
+// Tuning of the evaders' planning; none of it is a game rule.
+struct EvaderOptions {
+  double grid_resolution = 0.2;   // m: the distance fields and hiding spots
+  double clearance_weight = 1.0;  // backpedal: metres of distance worth one metre of clearance
+  double clearance_cap = 1.5;     // m: clearance beyond this earns nothing
+  double hide_margin = 1.0;       // m: a hiding spot must be this much nearer the hider than the seeker
+  double retarget_distance = 1.0; // m: flee replans when its goal moved this far
+};
+
+class ScriptedEvader {
+ public:
+  ScriptedEvader(EvaderKind kind, const hideseek_world::GameOptions& game, const EvaderOptions& options = {});
+
+  EvaderKind kind() const { return kind_; }
+  // Starts an episode on `layout`; the grid is rebuilt only when the obstacles changed.
+  void reset(const hideseek_world::Layout& layout);
+  hideseek_world::Action act(const EvaderObservation& observation);
+  // Where flee or hide is heading, if anywhere.
+  std::optional<Vec2> goal() const { return goal_; }
+
+ private:
+  hideseek_world::Action backpedal(const EvaderObservation& o);
+  hideseek_world::Action flee(const EvaderObservation& o);
+  hideseek_world::Action hide(const EvaderObservation& o);
+  // Turn towards the next point of path_ (replanned to goal_ when needed), else move forward.
+  hideseek_world::Action follow(const hideseek_world::AgentState& hider);
+  // Path lengths (m) from `from` to every free cell; infinity where unreachable.
+  void distanceField(Vec2 from, std::vector<float>& out) const;
+  float fieldAt(const std::vector<float>& field, Vec2 p) const;
+  // Whether the seeker, turned towards an agent at p, would see it past the obstacles.
+  bool hiddenFrom(Vec2 seeker, Vec2 p) const;
+
+  EvaderKind kind_;
+  hideseek_world::GameOptions game_;
+  EvaderOptions options_;
+  hideseek_world::Layout layout_;
+  std::unique_ptr<GridPlanner> planner_;
+  std::vector<float> clearance_;  // m from each cell centre to the nearest obstacle or wall
+  std::vector<float> from_seeker_, from_hider_;
+  std::optional<Vec2> goal_;
+  std::vector<Vec2> path_;
+};
+
+}  // namespace hideseek_seeker

@@ -1,0 +1,57 @@
+// A scripted hider (the random hider or an evader) against the scripted seeker, played in process
+// with the same cores, draws and frame order as the ROS graph in lockstep (no rendering: a
+// scripted hider needs no image). This is what calibrates the game against the paper's random
+// hider and shows which strategies the game rewards.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "hideseek_seeker/scripted_evader.h"
+#include "hideseek_seeker/seeker_policy.h"
+#include "hideseek_world/arena.h"
+#include "hideseek_world/game_options.h"
+#include "hideseek_world/map.h"
+
+namespace hideseek_seeker {
+
+struct ScriptedEpisode {
+  uint32_t seed = 0;
+  int living_steps = 0;        // decision steps until capture, or max_steps
+  bool survived = false;
+  bool seen_at_start = false;  // the seeker saw the hider at step 0
+};
+
+// One decision of an episode: the state both agents chose in, and the hider's action.
+struct ScriptedStep {
+  uint32_t seed = 0;
+  int step = 0;
+  hideseek_world::AgentState hider, seeker;
+  hideseek_world::Labels labels;
+  hideseek_world::Action hider_action = hideseek_world::Action::kStay;
+};
+using ScriptedStepObserver = std::function<void(const ScriptedStep&)>;
+
+// The seeker of a variant, as the seeker node builds it.
+SeekerOptions seekerOptionsFor(const hideseek_world::VariantConfig& variant, double grid_resolution = 0.1);
+
+// Plays the episodes with seeds first_seed .. first_seed + episodes - 1, in seed order; `observe`,
+// when given, sees every decision (the state statistics of the scripted hiders).
+std::vector<ScriptedEpisode> playScriptedHider(const hideseek_world::VariantConfig& variant,
+                                               std::shared_ptr<const hideseek_world::MapSpec> map, EvaderKind evader,
+                                               uint32_t first_seed, int episodes,
+                                               const ScriptedStepObserver& observe = {});
+
+// Summary of a set of episodes.
+struct ScriptedSummary {
+  int episodes = 0;
+  double avg_living_steps = 0.0;
+  double median_living_steps = 0.0;
+  double success_rate = 0.0;        // fraction that survived max_steps
+  double seen_at_start_rate = 0.0;  // fraction in which the seeker saw the hider at step 0
+};
+ScriptedSummary summarize(const std::vector<ScriptedEpisode>& episodes);
+
+}  // namespace hideseek_seeker

@@ -1,0 +1,256 @@
+#include "hideseek_seeker/scripted_evader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+#include "hideseek_world/hash_uniform.h"
+#include "hideseek_world/visibility.h"
+
+namespace hideseek_seeker {
+
+using hideseek_world::Action;
+using hideseek_world::AgentState;
+using hideseek_world::distance;
+using hideseek_world::wrapAngle;
+
+namespace {
+
+constexpr float kUnreachable = std::numeric_limits<float>::infinity();
+constexpr double kOutOfViewPenalty = 100.0;  // m: backpedal never trades the seeker's view for distance
+constexpr double kInViewMargin = 10.0 * hideseek_world::kPi / 180.0;  // keep the seeker this far inside the image
+constexpr double kArrived = 0.3;             // m: a path point or hiding spot counts as reached
+constexpr Action kLookahead[] = {Action::kBackward, Action::kStay, Action::kTurnLeft, Action::kTurnRight,
+                                 Action::kForward};
+
+}  // namespace
+
+const char* evaderName(EvaderKind kind) {
+  switch (kind) {
+    case EvaderKind::kBackpedal:
+      return "backpedal";
+    case EvaderKind::kFlee:
+      return "flee";
+    case EvaderKind::kHide:
+      return "hide";
+    default:
+      return "random";
+  }
+}
+
+std::optional<EvaderKind> evaderKind(const std::string& name) {
+  for (EvaderKind k : kAllEvaders) {
+    if (name == evaderName(k)) return k;
+  }
+  return std::nullopt;
+}
+
+ScriptedEvader::ScriptedEvader(EvaderKind kind, const hideseek_world::GameOptions& game, const EvaderOptions& options)
+    : kind_(kind), game_(game), options_(options) {}
+
+void ScriptedEvader::reset(const hideseek_world::Layout& layout) {
+  goal_.reset();
+  path_.clear();
+  if (kind_ == EvaderKind::kRandom) return;
+  if (planner_ && sameFootprints(layout, layout_)) return;
+  layout_ = layout;
+  planner_ = std::make_unique<GridPlanner>(layout, game_.agent_radius, options_.grid_resolution);
+  const auto& grid = planner_->grid();
+  clearance_.assign(static_cast<size_t>(grid.width()) * grid.height(), 0.f);
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      const Vec2 c = grid.centerOf({x, y});
+      double d = layout.half_extent - std::max(std::abs(c.x), std::abs(c.y));
+      for (const auto& b : layout.obstacles) d = std::min(d, hideseek_world::footprintDistance(b, c));
+      clearance_[grid.index({x, y})] = static_cast<float>(std::max(0.0, d - game_.agent_radius));
+    }
+  }
+}
+
+void ScriptedEvader::distanceField(Vec2 from, std::vector<float>& out) const {
+  const auto& grid = planner_->grid();
+  out.assign(static_cast<size_t>(grid.width()) * grid.height(), kUnreachable);
+  // Start from the nearest free cell: an agent pressed against a box stands inside the inflation.
+  hideseek_world::GridCell start = grid.cellOf(from);
+  if (!grid.isFree(start)) {
+    double best = std::numeric_limits<double>::max();
+    for (int dy = -3; dy <= 3; ++dy) {
+      for (int dx = -3; dx <= 3; ++dx) {
+        const hideseek_world::GridCell c{start.x + dx, start.y + dy};
+        if (grid.isFree(c) && dx * dx + dy * dy < best) {
+          best = dx * dx + dy * dy;
+          start = c;
+        }
+      }
+    }
+    if (!grid.isFree(start)) return;
+  }
+  using Entry = std::pair<float, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  const float res = static_cast<float>(grid.resolution());
+  out[grid.index(start)] = 0.f;
+  open.push({0.f, grid.index(start)});
+  while (!open.empty()) {
+    const auto [d, i] = open.top();
+    open.pop();
+    if (d > out[i]) continue;
+    const hideseek_world::GridCell c{i % grid.width(), i / grid.width()};
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (!dx && !dy) continue;
+        const hideseek_world::GridCell nb{c.x + dx, c.y + dy};
+        if (!grid.isFree(nb)) continue;
+        if (dx && dy && (!grid.isFree({c.x + dx, c.y}) || !grid.isFree({c.x, c.y + dy}))) continue;
+        const float next = d + res * ((dx && dy) ? 1.41421356f : 1.f);
+        const int j = grid.index(nb);
+        if (next < out[j]) {
+          out[j] = next;
+          open.push({next, j});
+        }
+      }
+    }
+  }
+}
+
+float ScriptedEvader::fieldAt(const std::vector<float>& field, Vec2 p) const {
+  const auto& grid = planner_->grid();
+  const hideseek_world::GridCell c = grid.cellOf(p);
+  if (grid.isFree(c)) return field[grid.index(c)];
+  // Inside the inflation (pressed against a box): the best free neighbour plus the step to it.
+  float best = kUnreachable;
+  for (int dy = -2; dy <= 2; ++dy) {
+    for (int dx = -2; dx <= 2; ++dx) {
+      const hideseek_world::GridCell n{c.x + dx, c.y + dy};
+      if (grid.isFree(n)) best = std::min(best, field[grid.index(n)] + static_cast<float>(distance(p, grid.centerOf(n))));
+    }
+  }
+  return best;
+}
+
+bool ScriptedEvader::hiddenFrom(Vec2 seeker, Vec2 p) const {
+  AgentState viewer{seeker, std::atan2(p.y - seeker.y, p.x - seeker.x), 0.0};
+  AgentState target{p, 0.0, 0.0};
+  return !hideseek_world::agentSeesAgent(viewer, target, layout_, game_);
+}
+
+Action ScriptedEvader::act(const EvaderObservation& o) {
+  switch (kind_) {
+    case EvaderKind::kBackpedal:
+      return backpedal(o);
+    case EvaderKind::kFlee:
+      return flee(o);
+    case EvaderKind::kHide:
+      return hide(o);
+    default:
+      return static_cast<Action>(hideseek_world::hashAction(o.seed, o.step, hideseek_world::kSaltRandomHider));
+  }
+}
+
+Action ScriptedEvader::backpedal(const EvaderObservation& o) {
+  distanceField(o.seeker.position, from_seeker_);
+  const auto& grid = planner_->grid();
+  const double view_limit = 0.5 * game_.camera.horizontal_fov - kInViewMargin;
+  // Two decision steps ahead, the seeker standing still: the first action of the best pair.
+  auto play = [&](AgentState s, Action a) {
+    for (int f = 0; f < game_.action_repeat; ++f) {
+      hideseek_world::advanceAgent(s, a, game_.hider, game_.physics_dt, layout_, game_.agent_radius);
+    }
+    return s;
+  };
+  auto score = [&](const AgentState& s) {
+    const Vec2 to_seeker = o.seeker.position - s.position;
+    const double off = std::abs(wrapAngle(std::atan2(to_seeker.y, to_seeker.x) - s.yaw));
+    const hideseek_world::GridCell c = grid.cellOf(s.position);
+    const double clearance = grid.isFree(c) ? clearance_[grid.index(c)] : 0.0;
+    return static_cast<double>(fieldAt(from_seeker_, s.position)) +
+           options_.clearance_weight * std::min(clearance, options_.clearance_cap) -
+           (off > view_limit ? kOutOfViewPenalty : 0.0);
+  };
+  Action best = Action::kBackward;
+  double best_score = -std::numeric_limits<double>::infinity();
+  for (Action first : kLookahead) {
+    const AgentState one = play(o.hider, first);
+    for (Action second : kLookahead) {
+      const double v = score(play(one, second));
+      if (v > best_score + 1e-9) {
+        best_score = v;
+        best = first;
+      }
+    }
+  }
+  return best;
+}
+
+Action ScriptedEvader::flee(const EvaderObservation& o) {
+  distanceField(o.seeker.position, from_seeker_);
+  distanceField(o.hider.position, from_hider_);
+  int far = -1;
+  for (size_t i = 0; i < from_seeker_.size(); ++i) {
+    if (from_hider_[i] == kUnreachable || from_seeker_[i] == kUnreachable) continue;
+    if (far < 0 || from_seeker_[i] > from_seeker_[far]) far = static_cast<int>(i);
+  }
+  if (far < 0) return Action::kStay;
+  const auto& grid = planner_->grid();
+  const Vec2 target = grid.centerOf({far % grid.width(), far / grid.width()});
+  if (!goal_ || distance(*goal_, target) > options_.retarget_distance) {
+    goal_ = target;
+    path_ = planner_->plan(o.hider.position, target);
+  }
+  return follow(o.hider);
+}
+
+Action ScriptedEvader::hide(const EvaderObservation& o) {
+  distanceField(o.seeker.position, from_seeker_);
+  distanceField(o.hider.position, from_hider_);
+  const double hider_speed =
+      game_.hider.mode == hideseek_world::SpeedMode::kConstant ? game_.hider.speed : game_.hider.max_speed;
+  const double ratio = game_.seeker.speed / std::max(hider_speed, 1e-6);
+  auto safe = [&](Vec2 p) {
+    const float dh = fieldAt(from_hider_, p), ds = fieldAt(from_seeker_, p);
+    return dh != kUnreachable && (ds == kUnreachable || dh * ratio + options_.hide_margin < ds);
+  };
+  if (goal_ && hiddenFrom(o.seeker.position, *goal_) && safe(*goal_)) {
+    if (distance(o.hider.position, *goal_) <= kArrived) return Action::kStay;
+    return follow(o.hider);
+  }
+  // The seeker came round, or no spot yet: the nearest safe spot it cannot see.
+  const auto& grid = planner_->grid();
+  std::vector<int> candidates;
+  for (size_t i = 0; i < from_hider_.size(); ++i) {
+    const float dh = from_hider_[i], ds = from_seeker_[i];
+    if (dh != kUnreachable && (ds == kUnreachable || dh * ratio + options_.hide_margin < ds)) {
+      candidates.push_back(static_cast<int>(i));
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
+    return from_hider_[a] != from_hider_[b] ? from_hider_[a] < from_hider_[b] : a < b;
+  });
+  for (int i : candidates) {
+    const Vec2 p = grid.centerOf({i % grid.width(), i / grid.width()});
+    if (hiddenFrom(o.seeker.position, p)) {
+      goal_ = p;
+      path_ = planner_->plan(o.hider.position, p);
+      if (distance(o.hider.position, p) <= kArrived) return Action::kStay;
+      return follow(o.hider);
+    }
+  }
+  // Nowhere to hide in time: run.
+  goal_.reset();
+  return flee(o);
+}
+
+Action ScriptedEvader::follow(const AgentState& hider) {
+  const Vec2 here = hider.position;
+  while (path_.size() > 1 && distance(here, path_.front()) <= kArrived) path_.erase(path_.begin());
+  if (path_.empty()) return Action::kStay;
+  size_t target = 0;
+  while (target + 1 < path_.size() && planner_->lineOfSight(here, path_[target + 1])) ++target;
+  const Vec2 t = path_[target];
+  const double error = wrapAngle(std::atan2(t.y - here.y, t.x - here.x) - hider.yaw);
+  const double turn_step = game_.hider.turn_rate * game_.stepDuration();
+  if (std::abs(error) <= 0.5 * turn_step) return Action::kForward;
+  return error > 0 ? Action::kTurnLeft : Action::kTurnRight;
+}
+
+}  // namespace hideseek_seeker
