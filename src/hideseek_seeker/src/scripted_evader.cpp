@@ -51,6 +51,7 @@ ScriptedEvader::ScriptedEvader(EvaderKind kind, const hideseek_world::GameOption
 
 void ScriptedEvader::reset(const hideseek_world::Layout& layout) {
   goal_.reset();
+  last_seen_.reset();
   path_.clear();
   if (kind_ == EvaderKind::kRandom) return;
   if (planner_ && sameFootprints(layout, layout_)) return;
@@ -134,16 +135,29 @@ bool ScriptedEvader::hiddenFrom(Vec2 seeker, Vec2 p) const {
   return !hideseek_world::agentSeesAgent(viewer, target, layout_, game_);
 }
 
+bool ScriptedEvader::hiddenFromSearch(Vec2 seeker, Vec2 p) const {
+  if (!hiddenFrom(seeker, p)) return false;
+  if (!last_seen_) return true;
+  const Vec2 mid = 0.5 * (seeker + *last_seen_);
+  return hiddenFrom(mid, p) && hiddenFrom(*last_seen_, p);
+}
+
 Action ScriptedEvader::act(const EvaderObservation& o) {
+  if (kind_ == EvaderKind::kRandom) {
+    return static_cast<Action>(hideseek_world::hashAction(o.seed, o.step, hideseek_world::kSaltRandomHider));
+  }
+  // What the seeker knows of the hider, read off the true state as the seeker would perceive it.
+  if ((o.step == 0 && game_.seeker_knows_spawn) ||
+      hideseek_world::agentSeesAgent(o.seeker, o.hider, layout_, game_)) {
+    last_seen_ = o.hider.position;
+  }
   switch (kind_) {
     case EvaderKind::kBackpedal:
       return backpedal(o);
     case EvaderKind::kFlee:
       return flee(o);
-    case EvaderKind::kHide:
-      return hide(o);
     default:
-      return static_cast<Action>(hideseek_world::hashAction(o.seed, o.step, hideseek_world::kSaltRandomHider));
+      return hide(o);
   }
 }
 
@@ -210,11 +224,13 @@ Action ScriptedEvader::hide(const EvaderObservation& o) {
     const float dh = fieldAt(from_hider_, p), ds = fieldAt(from_seeker_, p);
     return dh != kUnreachable && (ds == kUnreachable || dh * ratio + options_.hide_margin < ds);
   };
-  if (goal_ && hiddenFrom(o.seeker.position, *goal_) && safe(*goal_)) {
+  if (goal_ && hiddenFromSearch(o.seeker.position, *goal_) && safe(*goal_) &&
+      fieldAt(from_seeker_, *goal_) > options_.move_on_distance) {
     if (distance(o.hider.position, *goal_) <= kArrived) return Action::kStay;
     return follow(o.hider);
   }
-  // The seeker came round, or no spot yet: the nearest safe spot it cannot see.
+  // The seeker came round, or no spot yet: a new one, among the spots the hider reaches safely
+  // before the seeker, nearest first.
   const auto& grid = planner_->grid();
   std::vector<int> candidates;
   for (size_t i = 0; i < from_hider_.size(); ++i) {
@@ -226,14 +242,35 @@ Action ScriptedEvader::hide(const EvaderObservation& o) {
   std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
     return from_hider_[a] != from_hider_[b] ? from_hider_[a] < from_hider_[b] : a < b;
   });
+  // The safest spot within hide_search_radius that the seeker cannot see from where it is, nor
+  // from where it will search; failing that, the nearest spot it cannot see from where it is.
+  int best = -1;
+  double best_margin = -1e9;
   for (int i : candidates) {
+    if (from_hider_[i] > options_.hide_search_radius) break;
     const Vec2 p = grid.centerOf({i % grid.width(), i / grid.width()});
-    if (hiddenFrom(o.seeker.position, p)) {
-      goal_ = p;
-      path_ = planner_->plan(o.hider.position, p);
-      if (distance(o.hider.position, p) <= kArrived) return Action::kStay;
-      return follow(o.hider);
+    if (!hiddenFromSearch(o.seeker.position, p)) continue;
+    const double margin = from_seeker_[i] == kUnreachable ? 1e6 : from_seeker_[i] - ratio * from_hider_[i];
+    if (margin > best_margin) {
+      best_margin = margin;
+      best = i;
     }
+  }
+  if (best < 0) {
+    for (int i : candidates) {
+      const Vec2 p = grid.centerOf({i % grid.width(), i / grid.width()});
+      if (hiddenFrom(o.seeker.position, p)) {
+        best = i;
+        break;
+      }
+    }
+  }
+  if (best >= 0) {
+    const Vec2 p = grid.centerOf({best % grid.width(), best / grid.width()});
+    goal_ = p;
+    path_ = planner_->plan(o.hider.position, p);
+    if (distance(o.hider.position, p) <= kArrived) return Action::kStay;
+    return follow(o.hider);
   }
   // Nowhere to hide in time: run.
   goal_.reset();

@@ -20,10 +20,11 @@ SeekerOptions seekerOptionsFor(const hideseek_world::VariantConfig& variant, dou
 
 std::vector<ScriptedEpisode> playScriptedHider(const hideseek_world::VariantConfig& variant,
                                                std::shared_ptr<const hideseek_world::MapSpec> map, EvaderKind evader,
-                                               uint32_t first_seed, int episodes, const ScriptedStepObserver& observe) {
+                                               uint32_t first_seed, int episodes, const ScriptedStepObserver& observe,
+                                               const EvaderOptions& evader_options) {
   Arena arena(variant.game, map);
   SeekerPolicy seeker(seekerOptionsFor(variant));
-  ScriptedEvader hider(evader, variant.game);
+  ScriptedEvader hider(evader, variant.game, evader_options);
   const hideseek_world::SeekerDecide decide = [&](const hideseek_world::SeekerPerception& p) { return seeker.act(p); };
   std::vector<ScriptedEpisode> out;
   for (int e = 0; e < episodes; ++e) {

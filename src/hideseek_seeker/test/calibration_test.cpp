@@ -1,43 +1,89 @@
-// Holds the calibration of the deterministic map: over the evaluation seeds 0..99 the uniformly
-// random hider on basic lives within +-25 % of the paper's 41 steps and almost never survives.
-// Deterministic given the seeds (no rendering, no timing), so the check is stable.
+// Holds the calibration of the game (docs/calibration.md): over the evaluation seeds 0..99, the
+// random hider lives about as long as in the paper, backing away in view does not win, and
+// hiding pays. Deterministic given the seeds (no rendering, no timing), so the checks are stable.
+// The game file is HIDESEEK_GAME_FILE when set (config/game_v1.yaml must fail these checks),
+// else config/game.yaml.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include "hideseek_seeker/random_hider_game.h"
+#include <cstdlib>
+
+#include "hideseek_seeker/scripted_game.h"
 #include "hideseek_world/arena.h"
 
 namespace hideseek_seeker {
+namespace {
 
-TEST(Calibration, RandomHiderOnBasicLivesAsLongAsInThePaper) {
-  const std::string config = HIDESEEK_CONFIG_DIR;
-  const double paper = YAML::LoadFile(config + "/paper_reference.yaml")["variants"]["basic"]["living_random"].as<double>();
-  const auto variant = hideseek_world::loadVariantConfig(config + "/game.yaml", config + "/variants/basic.yaml");
-  const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(variant.map_file));
-  const RandomHiderSummary s = summarize(playRandomHider(variant, map, 0, 100));
-  RecordProperty("avg_living_steps", std::to_string(s.avg_living_steps));
-  EXPECT_EQ(s.episodes, 100);
-  EXPECT_GE(s.avg_living_steps, 0.75 * paper);
-  EXPECT_LE(s.avg_living_steps, 1.25 * paper);
-  EXPECT_LE(s.success_rate, 0.02);
-  // The seeker sees the hider at step 0 in most episodes, as in an open arena.
-  EXPECT_GE(s.seen_at_start_rate, 0.7);
+const std::string kConfig = HIDESEEK_CONFIG_DIR;
+
+std::string gameFile() {
+  const char* game = std::getenv("HIDESEEK_GAME_FILE");
+  return game && *game ? game : kConfig + "/game.yaml";
+}
+
+hideseek_world::VariantConfig variant(const std::string& name) {
+  return hideseek_world::loadVariantConfig(gameFile(), kConfig + "/variants/" + name + ".yaml");
+}
+
+std::vector<ScriptedEpisode> play(const std::string& name, EvaderKind evader, uint32_t first = 0, int n = 100) {
+  const auto v = variant(name);
+  const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(v.map_file));
+  return playScriptedHider(v, map, evader, first, n);
+}
+
+std::string describe(const std::string& variant_name, EvaderKind evader, const ScriptedSummary& s) {
+  return variant_name + " " + evaderName(evader) + ": " + std::to_string(s.avg_living_steps) + " living steps, " +
+         std::to_string(100.0 * s.success_rate) + " % success (game " + gameFile() + ")";
+}
+
+}  // namespace
+
+// The random hider within +-20 % of the paper's random column, success at most 2 %. Variants whose
+// random hider plays the same game are checked once; visibilityreward_faster shares fasterhider's
+// game but the paper's figure is 20 % lower (35 against 42): docs/calibration.md reports it.
+TEST(Calibration, RandomHiderLivesAsLongAsInThePaper) {
+  const YAML::Node paper = YAML::LoadFile(kConfig + "/paper_reference.yaml")["variants"];
+  for (const std::string name : {"basic", "fasterhider", "slowerhider", "stochasticseeker", "stochasticmaps"}) {
+    const ScriptedSummary s = summarize(play(name, EvaderKind::kRandom));
+    const double reference = paper[name]["living_random"].as<double>();
+    EXPECT_NEAR(s.avg_living_steps, reference, 0.2 * reference) << describe(name, EvaderKind::kRandom, s);
+    EXPECT_LE(s.success_rate, 0.02) << describe(name, EvaderKind::kRandom, s);
+  }
+}
+
+// Backing away in view, the strategy every hider of game v1 found, must not win the game.
+TEST(Calibration, BackpedalRarelySurvivesOnBasic) {
+  const ScriptedSummary s = summarize(play("basic", EvaderKind::kBackpedal));
+  RecordProperty("backpedal_avg_living_steps", std::to_string(s.avg_living_steps));
+  EXPECT_LE(s.success_rate, 0.15) << describe("basic", EvaderKind::kBackpedal, s);
+}
+
+// Occlusion pays: hiding outlives backing away on basic, and running on slowerhider.
+TEST(Calibration, HidingPays) {
+  const ScriptedSummary hide = summarize(play("basic", EvaderKind::kHide));
+  const ScriptedSummary backpedal = summarize(play("basic", EvaderKind::kBackpedal));
+  EXPECT_GT(hide.avg_living_steps, backpedal.avg_living_steps)
+      << describe("basic", EvaderKind::kHide, hide) << " against " << describe("basic", EvaderKind::kBackpedal, backpedal);
+  const ScriptedSummary slow_hide = summarize(play("slowerhider", EvaderKind::kHide));
+  const ScriptedSummary slow_flee = summarize(play("slowerhider", EvaderKind::kFlee));
+  EXPECT_GT(slow_hide.avg_living_steps, slow_flee.avg_living_steps)
+      << describe("slowerhider", EvaderKind::kHide, slow_hide) << " against "
+      << describe("slowerhider", EvaderKind::kFlee, slow_flee);
 }
 
 TEST(Calibration, PlayingIsDeterministicGivenTheSeeds) {
-  const std::string config = HIDESEEK_CONFIG_DIR;
-  const auto variant = hideseek_world::loadVariantConfig(config + "/game.yaml", config + "/variants/stochasticseeker.yaml");
-  const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(variant.map_file));
-  const auto a = playRandomHider(variant, map, 40, 10), b = playRandomHider(variant, map, 40, 10);
-  ASSERT_EQ(a.size(), 10u);
-  for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].seed, 40 + i);
-    EXPECT_EQ(a[i].living_steps, b[i].living_steps);
+  for (EvaderKind evader : kAllEvaders) {
+    const auto a = play("stochasticmaps", evader, 40, 10), b = play("stochasticmaps", evader, 40, 10);
+    ASSERT_EQ(a.size(), 10u);
+    for (size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i].seed, 40 + i);
+      EXPECT_EQ(a[i].living_steps, b[i].living_steps) << evaderName(evader) << " seed " << a[i].seed;
+    }
   }
 }
 
 TEST(Calibration, SummaryCountsMedianAndRates) {
-  const RandomHiderSummary s =
+  const ScriptedSummary s =
       summarize({{0, 10, false, true}, {1, 30, false, false}, {2, 1000, true, true}, {3, 20, false, true}});
   EXPECT_DOUBLE_EQ(s.avg_living_steps, 265.0);
   EXPECT_DOUBLE_EQ(s.median_living_steps, 25.0);
@@ -51,12 +97,12 @@ TEST(Calibration, SummaryCountsMedianAndRates) {
 // the rest of the episode (a trained slowerhider found this). Validation seeds 1000..1199, never
 // the evaluation seeds 0..99. Reports each stalled episode.
 TEST(Calibration, SeekerCatchesAHiderThatStaysPutOnceItHasSeenIt) {
-  const std::string config = HIDESEEK_CONFIG_DIR;
   for (const std::string v : {"basic", "slowerhider", "stochasticseeker"}) {
-    const auto variant = hideseek_world::loadVariantConfig(config + "/game.yaml", config + "/variants/" + v + ".yaml");
-    const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(variant.map_file));
-    hideseek_world::Arena arena(variant.game, map);
-    SeekerPolicy seeker(seekerOptionsFor(variant));
+    const auto config = variant(v);
+    const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(config.map_file));
+    hideseek_world::Arena arena(config.game, map);
+    SeekerPolicy seeker(seekerOptionsFor(config));
+    const hideseek_world::SeekerDecide decide = [&](const hideseek_world::SeekerPerception& p) { return seeker.act(p); };
     int seen_episodes = 0;
     for (uint32_t seed = 1000; seed < 1200; ++seed) {
       arena.reset(seed);
@@ -68,7 +114,7 @@ TEST(Calibration, SeekerCatchesAHiderThatStaysPutOnceItHasSeenIt) {
         const int run = static_cast<int>(seed % 60);
         const auto hider_action = arena.stepCount() < run                 ? hideseek_world::Action::kForward
                                  : arena.stepCount() % 2 ? hideseek_world::Action::kBackward : hideseek_world::Action::kForward;
-        r = arena.step(hider_action, seeker.act(hideseek_world::seekerPerception(arena)));
+        r = hideseek_world::playDecisionStep(arena, hider_action, decide);
       } while (!r.done());
       if (first_seen < 0) continue;
       ++seen_episodes;

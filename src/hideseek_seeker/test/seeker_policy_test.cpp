@@ -80,11 +80,11 @@ TEST(SeekerPolicy, ChasesOnSightAndTurnsTowardsTheHider) {
   const Layout layout = deterministicLayout();
   SeekerPolicy seeker({});
   seeker.reset(layout, 1);
-  const AgentState s{{-5.0, -2.5}, 0.0, 0.0};
-  EXPECT_EQ(seeker.act({s, Vec2{-5.0, 2.5}}), Action::kTurnLeft);  // hider to its left
+  const AgentState s{{0.0, -4.0}, 0.0, 0.0};  // between the cross and the south wall segment, facing east
+  EXPECT_EQ(seeker.act({s, Vec2{0.0, -2.0}}), Action::kTurnLeft);  // hider to its left
   EXPECT_EQ(seeker.mode(), SeekerMode::kChase);
-  EXPECT_EQ(seeker.act({s, Vec2{-2.0, -2.5}}), Action::kForward);  // hider straight ahead
-  EXPECT_EQ(seeker.act({s, Vec2{-5.0, -5.5}}), Action::kTurnRight);
+  EXPECT_EQ(seeker.act({s, Vec2{3.0, -4.0}}), Action::kForward);  // hider straight ahead
+  EXPECT_EQ(seeker.act({s, Vec2{2.0, -4.8}}), Action::kTurnRight);
 }
 
 TEST(SeekerPolicy, DeterministicSeekerPatrolsWaypointsInOrder) {

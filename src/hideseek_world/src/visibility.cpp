@@ -114,10 +114,13 @@ bool obstacleInView(const AgentState& viewer, const Layout& layout, const GameOp
       for (const Box& w : walls) {
         nearest_wall = std::min(nearest_wall, segmentEntry(w, frustum.eye, end));
       }
+      for (const Box& w : layout.obstacles) {
+        if (w.wall) nearest_wall = std::min(nearest_wall, segmentEntry(w, frustum.eye, end));
+      }
       const double floor_t = end.z < frustum.eye.z ? frustum.eye.z / (frustum.eye.z - end.z) : 2.0;
       const double limit = std::min(nearest_wall, floor_t);
       for (const Box& box : layout.obstacles) {
-        if (segmentEntry(box, frustum.eye, end) < limit) return true;
+        if (!box.wall && segmentEntry(box, frustum.eye, end) < limit) return true;
       }
     }
   }

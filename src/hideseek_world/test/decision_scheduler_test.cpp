@@ -81,5 +81,44 @@ TEST(DecisionScheduler, RealtimeStartsAtOnceWhenAnsweredOrWhenAnAgentIsAbsent) {
   EXPECT_EQ(s.realtimeStart(5.2, false), RealtimeStart::kStale);  // nobody to wait for
 }
 
+TEST(DecisionScheduler, TheSeekersLaterDecisionsInAStepNeedTheSeekerAlone) {
+  DecisionScheduler s(ClockMode::kLockstep, 2, 0.5, 1.0);
+  for (int i = 0; i < 2; ++i) {
+    s.offer(Player::kHider, i, kForwardId, 0, 0);
+    s.offer(Player::kSeeker, i, kLeftId, 0, 0);
+  }
+  ASSERT_TRUE(s.complete());
+  s.takeDecision();
+  // The step goes on: the seeker's decision 1 of the step, with no hider answer.
+  EXPECT_FALSE(s.completeFor(Player::kSeeker));
+  EXPECT_EQ(s.offer(Player::kSeeker, 0, kForwardId, 0, 1), Verdict::kWrongStep);  // an answer to decision 0
+  EXPECT_EQ(s.offer(Player::kSeeker, 0, kForwardId, 1, 1), Verdict::kAccepted);
+  EXPECT_FALSE(s.completeFor(Player::kSeeker));
+  EXPECT_EQ(s.offer(Player::kSeeker, 1, kLeftId, 1, 1), Verdict::kAccepted);
+  ASSERT_TRUE(s.completeFor(Player::kSeeker));
+  EXPECT_FALSE(s.complete());  // the hider has not answered a new step
+  const std::vector<Action> seeker = s.takeSeekerDecision();
+  EXPECT_EQ(seeker, (std::vector<Action>{Action::kForward, Action::kTurnLeft}));
+  EXPECT_FALSE(s.completeFor(Player::kSeeker));
+}
+
+TEST(DecisionScheduler, RealtimeTakesTheSeekersAnswersWhileTheHidersStepPlays) {
+  DecisionScheduler s(ClockMode::kRealtime, 1, 0.5, 1.0);
+  s.offer(Player::kHider, 0, kForwardId, 0, 0);
+  s.offer(Player::kSeeker, 0, kLeftId, 0, 0);
+  ASSERT_EQ(s.realtimeStart(0.0, true), RealtimeStart::kReady);
+  s.takeDecision();
+  ASSERT_TRUE(s.executing());
+  EXPECT_EQ(s.offer(Player::kHider, 0, kForwardId, 0, 0), Verdict::kLate);
+  EXPECT_EQ(s.realtimeSeekerStart(1.0, true), RealtimeStart::kWait);
+  EXPECT_EQ(s.offer(Player::kSeeker, 0, kForwardId, 1, 1), Verdict::kAccepted);
+  EXPECT_EQ(s.realtimeSeekerStart(1.1, true), RealtimeStart::kReady);
+  EXPECT_EQ(s.takeSeekerDecision(), std::vector<Action>{Action::kForward});
+  // A silent seeker stands still once stale_action_timeout has passed.
+  EXPECT_EQ(s.realtimeSeekerStart(2.0, true), RealtimeStart::kWait);
+  EXPECT_EQ(s.realtimeSeekerStart(2.6, true), RealtimeStart::kStale);
+  EXPECT_EQ(s.takeSeekerDecision(), std::vector<Action>{Action::kStay});
+}
+
 }  // namespace
 }  // namespace hideseek_world

@@ -3,7 +3,7 @@
 # 1. On the shipped basic policy: evaluation.md, evaluation.csv and episodes.csv appear, with the
 #    documented columns and 100 episodes.
 # 2. The random hider through the ROS graph (4 arenas) plays exactly the episodes that the
-#    in-process calibration table plays (random_hider_table): the calibration is the real game,
+#    in-process calibration table plays (calibration_table): the calibration is the real game,
 #    and an episode's draws do not depend on the number of arenas.
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -35,8 +35,8 @@ failures=()
 mkdir -p "$dir/random"
 timeout 300 roslaunch -p "$port" hideseek_world evaluate.launch variant:=stochasticseeker policy:=random episodes:=40 \
   num_arenas:=4 output_dir:="$dir/random" > "$dir/random/launch.log" 2>&1
-"$(catkin_find hideseek_seeker random_hider_table --first-only 2>/dev/null || echo random_hider_table)" \
-  --episodes 40 --episodes-csv "$dir/in_process.csv" stochasticseeker > /dev/null
+"$(catkin_find hideseek_seeker calibration_table --first-only 2>/dev/null || echo calibration_table)" \
+  --episodes 40 --evaders random --episodes-csv "$dir/in_process.csv" stochasticseeker > /dev/null
 if [ ! -s "$dir/random/episodes.csv" ]; then
   failures+=("the graph's evaluation wrote no episodes.csv")
 elif ! diff "$dir/random/episodes.csv" "$dir/in_process.csv" > "$dir/diff.txt"; then

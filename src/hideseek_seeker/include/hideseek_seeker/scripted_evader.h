@@ -20,7 +20,8 @@ enum class EvaderKind {
   kRandom,     // uniformly random actions, drawn from the episode seed and step (the paper's baseline)
   kBackpedal,  // face the seeker and back away from it along free space, keeping it in view
   kFlee,       // turn away and run to the reachable free point farthest from the seeker
-  kHide,       // go to the nearest reachable point an obstacle hides from the seeker, stay while hidden
+  kHide,       // go to a reachable point an obstacle hides from the seeker, stay while hidden, move on
+               // when the seeker comes round
 };
 constexpr EvaderKind kAllEvaders[] = {EvaderKind::kRandom, EvaderKind::kBackpedal, EvaderKind::kFlee,
                                       EvaderKind::kHide};
@@ -43,6 +44,8 @@ struct EvaderOptions {
   double clearance_cap = 1.5;     // m: clearance beyond this earns nothing
   double hide_margin = 1.0;       // m: a hiding spot must be this much nearer the hider than the seeker
   double retarget_distance = 1.0; // m: flee replans when its goal moved this far
+  double move_on_distance = 3.0;  // m: hide leaves its spot when the seeker's way to it is this short
+  double hide_search_radius = 8.0;  // m: hide takes the safest spot within this path length
 };
 
 class ScriptedEvader {
@@ -67,6 +70,9 @@ class ScriptedEvader {
   float fieldAt(const std::vector<float>& field, Vec2 p) const;
   // Whether the seeker, turned towards an agent at p, would see it past the obstacles.
   bool hiddenFrom(Vec2 seeker, Vec2 p) const;
+  // Whether p is hidden from where the seeker is and from where it will search: the hider's
+  // position when the seeker last saw it, and the way there.
+  bool hiddenFromSearch(Vec2 seeker, Vec2 p) const;
 
   EvaderKind kind_;
   hideseek_world::GameOptions game_;
@@ -76,6 +82,7 @@ class ScriptedEvader {
   std::vector<float> clearance_;  // m from each cell centre to the nearest obstacle or wall
   std::vector<float> from_seeker_, from_hider_;
   std::optional<Vec2> goal_;
+  std::optional<Vec2> last_seen_;  // the hider's position when the seeker last saw it (or its spawn)
   std::vector<Vec2> path_;
 };
 

@@ -42,7 +42,8 @@ SeekerOptions seekerOptionsFor(const hideseek_world::VariantConfig& variant, dou
 std::vector<ScriptedEpisode> playScriptedHider(const hideseek_world::VariantConfig& variant,
                                                std::shared_ptr<const hideseek_world::MapSpec> map, EvaderKind evader,
                                                uint32_t first_seed, int episodes,
-                                               const ScriptedStepObserver& observe = {});
+                                               const ScriptedStepObserver& observe = {},
+                                               const EvaderOptions& evader_options = {});
 
 // Summary of a set of episodes.
 struct ScriptedSummary {
