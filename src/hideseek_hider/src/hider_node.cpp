@@ -72,7 +72,19 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
   if (o.mode == HiderMode::kRandom) {
     policy_ = std::make_unique<RandomHiderPolicy>();
     ROS_INFO("hider: uniformly random policy");
+  } else if (o.mode == HiderMode::kPolicy && scriptedPolicy(o.policy)) {
+    if (o.memoryless) {
+      throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true for " + o.policy +
+                                  ": memoryless applies to a GRU policy only");
+    }
+    policy_ = std::make_unique<ScriptedHiderPolicy>(*scriptedPolicy(o.policy), o.variant);
+    ROS_INFO("hider: scripted evader %s (a baseline that reads the true state, not the image)", o.policy.c_str());
   } else if (o.mode == HiderMode::kPolicy) {
+    if (o.policy.rfind("scripted/", 0) == 0) {
+      throw std::invalid_argument("parameter " + pnh.resolveName("policy") + " is '" + o.policy +
+                                  "': the scripted evaders are scripted/random, scripted/backpedal, scripted/flee "
+                                  "and scripted/hide");
+    }
     const PrecisionChoice precision = choosePrecision(o.precision, o.device, detectCpuBf16());
     CheckpointInfo info;
     HiderNet net = loadCheckpoint(o.policy, image_height_, image_width_, &info, o.network);
@@ -177,8 +189,13 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
     }
   } else {
     std::vector<ArenaObservation> batch(n);
+    const bool poses = msg->hider_pose.size() == n && msg->seeker_pose.size() == n;
     for (size_t i = 0; i < n; ++i) {
-      batch[i] = {msg->images.data() + i * bytes, msg->seed[i], msg->step[i]};
+      batch[i] = {msg->images.data() + i * bytes, msg->seed[i], msg->step[i], {}, {}};
+      if (poses) {
+        batch[i].hider = {{msg->hider_pose[i].x, msg->hider_pose[i].y}, msg->hider_pose[i].theta, 0.0};
+        batch[i].seeker = {{msg->seeker_pose[i].x, msg->seeker_pose[i].y}, msg->seeker_pose[i].theta, 0.0};
+      }
     }
     out.actions = policy_->act(batch);
   }

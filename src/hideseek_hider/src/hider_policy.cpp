@@ -17,6 +17,36 @@ std::vector<uint8_t> RandomHiderPolicy::act(const std::vector<ArenaObservation>&
   return actions;
 }
 
+std::optional<hideseek_seeker::EvaderKind> scriptedPolicy(const std::string& policy) {
+  const std::string prefix = "scripted/";
+  if (policy.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
+  return hideseek_seeker::evaderKind(policy.substr(prefix.size()));
+}
+
+ScriptedHiderPolicy::ScriptedHiderPolicy(hideseek_seeker::EvaderKind kind, const hideseek_world::VariantConfig& variant)
+    : kind_(kind),
+      variant_(variant),
+      layout_source_(variant.game, std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(variant.map_file))) {}
+
+std::vector<uint8_t> ScriptedHiderPolicy::act(const std::vector<ArenaObservation>& batch) {
+  if (evaders_.size() != batch.size()) {
+    evaders_.clear();
+    for (size_t i = 0; i < batch.size(); ++i) evaders_.emplace_back(kind_, variant_.game);
+    seeds_.assign(batch.size(), std::nullopt);
+  }
+  std::vector<uint8_t> actions(batch.size());
+  for (size_t i = 0; i < batch.size(); ++i) {
+    const ArenaObservation& o = batch[i];
+    if (seeds_[i] != o.seed || o.step == 0) {
+      layout_source_.reset(o.seed);
+      evaders_[i].reset(layout_source_.layout());
+      seeds_[i] = o.seed;
+    }
+    actions[i] = static_cast<uint8_t>(evaders_[i].act({o.hider, o.seeker, o.seed, o.step}));
+  }
+  return actions;
+}
+
 NetworkHiderPolicy::NetworkHiderPolicy(HiderNet net, torch::Device device, bool greedy)
     : net_(std::move(net)), device_(device), greedy_(greedy) {
   net_->to(device_);

@@ -4,7 +4,7 @@
 // usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]
 //   memoryless (GRU policies only, an ablation): every step starts from the zero state, so the
 //   trained GRU acts on the current image alone.
-//   POLICY: a checkpoint, or "random". Columns: seed,step,hider_x,hider_y,hider_yaw,seeker_x,
+//   POLICY: a checkpoint, "random", or scripted/EVADER (backpedal, flee, hide). Columns: seed,step,hider_x,hider_y,hider_yaw,seeker_x,
 //   seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome (outcome on the last step of an
 //   episode: captured or survived; empty before). Beside it, OUTPUT_layouts.yaml (OUTPUT's name
 //   without .csv) holds each episode's obstacles and arena size, which differ per episode on
@@ -51,6 +51,9 @@ int main(int argc, char** argv) {
     if (policy_path == "random") {
       if (memory == "memoryless") throw std::runtime_error("memoryless applies to a GRU policy, not to the random hider");
       hider = std::make_unique<hideseek_hider::RandomHiderPolicy>();
+    } else if (const auto evader = hideseek_hider::scriptedPolicy(policy_path)) {
+      if (memory == "memoryless") throw std::runtime_error("memoryless applies to a GRU policy, not to " + policy_path);
+      hider = std::make_unique<hideseek_hider::ScriptedHiderPolicy>(*evader, variant);
     } else {
       const int h = variant.game.camera.height, w = variant.game.camera.width;
       auto policy = std::make_unique<hideseek_hider::NetworkHiderPolicy>(hideseek_hider::loadCheckpoint(policy_path, h, w),
@@ -92,8 +95,9 @@ int main(int argc, char** argv) {
       world.renderHiderViews(images.data());
       std::vector<hideseek_hider::ArenaObservation> batch(n);
       for (int i = 0; i < n; ++i) {
-        batch[i] = {images.data() + i * world.imageBytes(), world.arena(i).seed(),
-                    static_cast<uint32_t>(world.arena(i).stepCount())};
+        const hw::Arena& a = world.arena(i);
+        batch[i] = {images.data() + i * world.imageBytes(), a.seed(), static_cast<uint32_t>(a.stepCount()), a.hider(),
+                    a.seeker()};
       }
       const std::vector<uint8_t> actions = hider->act(batch);
       for (int i = 0; i < n; ++i) {

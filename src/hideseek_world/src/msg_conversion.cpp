@@ -249,6 +249,8 @@ hideseek_msgs::ObservationBatch toObservationBatch(const World& world, const std
     obs.hider_sees_seeker.push_back(a.labels().hider_sees_seeker);
     obs.seeker_sees_hider.push_back(a.labels().seeker_sees_hider);
     obs.obstacle_in_view.push_back(a.labels().obstacle_in_view);
+    obs.hider_pose.push_back(toPose2D(a.hider()));
+    obs.seeker_pose.push_back(toPose2D(a.seeker()));
   }
   return obs;
 }

@@ -5,6 +5,7 @@
 # 2. The random hider through the ROS graph (4 arenas) plays exactly the episodes that the
 #    in-process calibration table plays (calibration_table): the calibration is the real game,
 #    and an episode's draws do not depend on the number of arenas.
+# 3. The same for a scripted evader (scripted/hide) and for game v1's random hider (game:=v1).
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
 out=$1
@@ -44,5 +45,29 @@ elif ! diff "$dir/random/episodes.csv" "$dir/in_process.csv" > "$dir/diff.txt"; 
 fi
 write_xunit "${out%.xml}-random_hider.xml" evaluate RandomHiderThroughTheGraphPlaysTheCalibratedEpisodes "${failures[@]}"
 printf 'failure: %s\n' "${failures[@]}"
+random_failed=${#failures[@]}
+
+# 3. A scripted evader through the graph (policy:=scripted/hide, 4 arenas, stochastic maps whose
+#    layouts the hider draws again from each seed) plays the calibration table's episodes, and so
+#    does the random hider of game v1 (game:=v1).
+failures=()
+compare() {  # NAME VARIANT POLICY EVADER GAME_FILE [LAUNCH ARGS...]
+  local name=$1 variant=$2 policy=$3 evader=$4 game=$5
+  shift 5
+  mkdir -p "$dir/$name"
+  timeout 300 roslaunch -p "$port" hideseek_world evaluate.launch variant:="$variant" policy:="$policy" episodes:=20 \
+    num_arenas:=4 output_dir:="$dir/$name" "$@" > "$dir/$name/launch.log" 2>&1
+  "$(catkin_find hideseek_seeker calibration_table --first-only 2>/dev/null || echo calibration_table)" \
+    --game "$game" --episodes 20 --evaders "$evader" --episodes-csv "$dir/$name/in_process.csv" "$variant" > /dev/null
+  if [ ! -s "$dir/$name/episodes.csv" ]; then
+    failures+=("$name: the graph's evaluation wrote no episodes.csv")
+  elif ! diff "$dir/$name/episodes.csv" "$dir/$name/in_process.csv" > "$dir/$name/diff.txt"; then
+    failures+=("$name: graph and in-process differ: $(head -c 300 "$dir/$name/diff.txt" | tr '\n' ' ')")
+  fi
+}
+compare hide stochasticmaps scripted/hide hide "$root/config/game.yaml"
+compare v1 basic random random "$root/config/game_v1.yaml" game:=v1
+write_xunit "${out%.xml}-scripted.xml" evaluate ScriptedEvaderAndGameV1ThroughTheGraphPlayTheCalibratedEpisodes "${failures[@]}"
+printf 'failure: %s\n' "${failures[@]}"
 rm -rf "$dir"
-[ "$shipped_failed" -eq 0 ] && [ ${#failures[@]} -eq 0 ]
+[ "$shipped_failed" -eq 0 ] && [ "$random_failed" -eq 0 ] && [ ${#failures[@]} -eq 0 ]

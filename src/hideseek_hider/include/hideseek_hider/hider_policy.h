@@ -3,18 +3,25 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "hideseek_hider/hider_net.h"
+#include "hideseek_seeker/scripted_evader.h"
+#include "hideseek_world/arena.h"
+#include "hideseek_world/game_options.h"
 
 namespace hideseek_hider {
 
-// One arena's observation as the policy needs it: the image and what makes sampling reproducible.
+// One arena's observation as the policy needs it: the image and what makes sampling reproducible,
+// and the true poses, which only the scripted evaders read.
 struct ArenaObservation {
   const uint8_t* image = nullptr;  // H x W x 3, rgb8
   uint32_t seed = 0;               // episode seed
   uint32_t step = 0;
+  hideseek_world::AgentState hider;
+  hideseek_world::AgentState seeker;
 };
 
 class HiderPolicy {
@@ -27,6 +34,24 @@ class RandomHiderPolicy : public HiderPolicy {
  public:
   std::vector<uint8_t> act(const std::vector<ArenaObservation>& batch) override;
 };
+
+// A scripted evader for every arena (policy scripted/NAME): a baseline that reads the true state.
+// Each episode's layout is drawn again from its seed, as the world draws it.
+class ScriptedHiderPolicy : public HiderPolicy {
+ public:
+  ScriptedHiderPolicy(hideseek_seeker::EvaderKind kind, const hideseek_world::VariantConfig& variant);
+  std::vector<uint8_t> act(const std::vector<ArenaObservation>& batch) override;
+
+ private:
+  hideseek_seeker::EvaderKind kind_;
+  hideseek_world::VariantConfig variant_;
+  hideseek_world::Arena layout_source_;  // reset with an episode's seed, it holds that episode's layout
+  std::vector<hideseek_seeker::ScriptedEvader> evaders_;
+  std::vector<std::optional<uint32_t>> seeds_;  // each arena's episode seed at the last act()
+};
+
+// The evader a policy name scripted/NAME asks for, or nothing for any other name.
+std::optional<hideseek_seeker::EvaderKind> scriptedPolicy(const std::string& policy);
 
 // Inference from a checkpoint: one batched forward pass per step, no autograd. A GRU network
 // carries each arena's state from step to step and starts from zero at an episode's step 0 (a
