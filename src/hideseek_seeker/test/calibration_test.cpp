@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <cstdlib>
+#include <set>
+#include <string>
 
 #include "hideseek_seeker/scripted_game.h"
 #include "hideseek_world/arena.h"
@@ -69,6 +72,38 @@ TEST(Calibration, HidingPays) {
   EXPECT_GT(slow_hide.avg_living_steps, slow_flee.avg_living_steps)
       << describe("slowerhider", EvaderKind::kHide, slow_hide) << " against "
       << describe("slowerhider", EvaderKind::kFlee, slow_flee);
+}
+
+// The paper's state space is in play: over the scripted hiders' episodes on basic, the states
+// (S, H, O) occur with and without an obstacle in view (in game v1 O was 1 in every state: its
+// corner cuts were obstacles seen from everywhere), and at least half of the 56 transitions
+// between distinct states occur.
+TEST(Calibration, ThePapersStateSpaceIsInPlay) {
+  std::array<long, 8> count{};
+  std::set<std::pair<int, int>> transitions;
+  for (EvaderKind evader : kAllEvaders) {
+    int previous = -1;
+    uint32_t previous_seed = 0;
+    const auto v = variant("basic");
+    const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(v.map_file));
+    playScriptedHider(v, map, evader, 0, 100, [&](const ScriptedStep& s) {
+      const int state = 4 * s.labels.hider_sees_seeker + 2 * s.labels.seeker_sees_hider + s.labels.obstacle_in_view;
+      ++count[state];
+      if (previous >= 0 && s.seed == previous_seed && previous != state) transitions.insert({previous, state});
+      previous = state;
+      previous_seed = s.seed;
+    });
+  }
+  int with_obstacle = 0, without_obstacle = 0;
+  std::string counts;
+  for (int state = 0; state < 8; ++state) {
+    (state & 1 ? with_obstacle : without_obstacle) += count[state] > 0;
+    counts += " S" + std::to_string(state >> 2) + "H" + std::to_string((state >> 1) & 1) + "O" +
+              std::to_string(state & 1) + "=" + std::to_string(count[state]);
+  }
+  EXPECT_EQ(with_obstacle, 4) << "states seen:" << counts << " (game " << gameFile() << ")";
+  EXPECT_GE(without_obstacle, 3) << "states seen:" << counts << " (game " << gameFile() << ")";
+  EXPECT_GE(transitions.size(), 28u) << transitions.size() << " of 56 transitions occur (game " << gameFile() << ")";
 }
 
 TEST(Calibration, PlayingIsDeterministicGivenTheSeeds) {
