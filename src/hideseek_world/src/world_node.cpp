@@ -121,7 +121,7 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   } else {
     step_hider_.assign(n, Action::kStay);
     step_first_seeker_.assign(n, Action::kStay);
-    realtime_seeker_.assign(n, Action::kStay);
+    seeker_now_.assign(n, Action::kStay);
     tick_timer_ = nh_.createWallTimer(ros::WallDuration(game.physics_dt), &WorldNode::onRealtimeTick, this);
     publishObservations();
     publishArenaZero(true);
@@ -248,9 +248,10 @@ void WorldNode::tryAdvanceLockstep() {
     if (!scheduler_.completeFor(Player::kSeeker)) return;
     seeker = scheduler_.takeSeekerDecision();
   }
+  seeker_now_ = seeker;
   // Play frames up to the seeker's next decision, or to the end of the step.
   for (;;) {
-    if (const auto results = world_->advanceFrame(step_hider_, seeker)) {
+    if (const auto results = world_->advanceFrame(step_hider_, seeker_now_)) {
       concludeDecision(*results, step_hider_, step_first_seeker_);
       publishObservations();
       publishArenaZero(false);
@@ -295,7 +296,7 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
     const DecisionActions d = scheduler_.takeDecision();
     step_hider_ = d.hider;
     step_first_seeker_ = d.seeker;
-    realtime_seeker_ = d.seeker;
+    seeker_now_ = d.seeker;
   } else if (world_->seekerDecisionDue()) {
     // The seeker's later decisions inside the step, under the same rules.
     const bool connected = seeker_sub_.getNumPublishers() > 0;
@@ -305,11 +306,11 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
       return;
     }
     if (start == RealtimeStart::kStale && connected) warnStale();
-    realtime_seeker_ = scheduler_.takeSeekerDecision();
+    seeker_now_ = scheduler_.takeSeekerDecision();
   }
   // One physics frame per tick. An arena whose step ended early (capture) waits for the others,
   // so every arena's decisions stay on the same 0.12 s clock.
-  if (const auto results = world_->advanceFrame(step_hider_, realtime_seeker_)) {
+  if (const auto results = world_->advanceFrame(step_hider_, seeker_now_)) {
     concludeDecision(*results, step_hider_, step_first_seeker_);
     scheduler_.finishDecision();
     publishObservations();
@@ -333,9 +334,9 @@ void WorldNode::warnStale() {
   }
 }
 
-void WorldNode::finishRealtimeDecision() {
+void WorldNode::finishDecisionInProgress() {
   std::optional<std::vector<ArenaStep>> results;
-  while (!(results = world_->advanceFrame(step_hider_, realtime_seeker_))) {
+  while (!(results = world_->advanceFrame(step_hider_, seeker_now_))) {
   }
   concludeDecision(*results, step_hider_, step_first_seeker_);
   scheduler_.finishDecision();
@@ -537,9 +538,10 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
     res.message = "seed must be -1 or in [0, 2^32)";
     return true;
   }
-  // A realtime decision in progress is played to its end first, with the actions it started
-  // with: every arena's step stays whole, and an episode it ends is reported like any other.
-  if (scheduler_.executing()) finishRealtimeDecision();
+  // A decision step in progress is played to its end first, with the hider's action and the
+  // seeker's latest: every arena's step stays whole, and an episode it ends is reported like any
+  // other.
+  if (world_->frameInStep() != 0) finishDecisionInProgress();
   scheduler_.reset(req.arena);
   for (int i = 0; i < n; ++i) {
     if (req.arena != -1 && req.arena != i) continue;

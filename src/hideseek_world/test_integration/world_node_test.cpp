@@ -44,12 +44,22 @@ class WorldNodeTest : public testing::Test {
     return b;
   }
 
-  // Answers the current observation for both agents and waits for the next one.
+  // Answers the current observation for both agents, and the seeker's later decisions inside the
+  // step (game v2's seeker decides every frame), and waits for the next step's observation.
   bool playStep(uint8_t hider_action, uint8_t seeker_action) {
     const auto before = hider_obs_;
+    auto answered = seeker_obs_;
     hider_pub_.publish(batch(hider_action, before->step));
-    seeker_pub_.publish(batch(seeker_action, before->step));
-    return waitFor([&] { return hider_obs_ != before; }, 10.0);
+    seeker_pub_.publish(batch(seeker_action, answered->step));
+    return waitFor(
+        [&] {
+          if (hider_obs_ == before && seeker_obs_ != answered) {
+            answered = seeker_obs_;
+            seeker_pub_.publish(batch(seeker_action, answered->step));
+          }
+          return hider_obs_ != before;
+        },
+        10.0);
   }
 
   ros::NodeHandle nh_;

@@ -56,8 +56,8 @@ class WorldNode {
   bool acceptPublisher(const std::string& caller, AgentChannel& channel);
   void tryAdvanceLockstep();
   void onRealtimeTick(const ros::WallTimerEvent&);
-  // Plays the realtime decision in progress to its last frame and concludes it.
-  void finishRealtimeDecision();
+  // Plays the decision step in progress to its last frame and concludes it.
+  void finishDecisionInProgress();
   void onWatchdog(const ros::WallTimerEvent&);
   bool onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset::Response& res);
   // Records a finished decision step of every arena and renders the new hider views.
@@ -112,8 +112,8 @@ class WorldNode {
   // Each arena's map as the seeker receives it, rebuilt only when the arena's layout changes.
   ArenaMapCache arena_maps_;
   // The decision step being played: the hider's actions, the seeker's first decision in it (what
-  // world/steps records) and, in realtime, the seeker's decision the frames now play.
-  std::vector<Action> step_hider_, step_first_seeker_, realtime_seeker_;
+  // world/steps records) and the seeker's decision the frames now play.
+  std::vector<Action> step_hider_, step_first_seeker_, seeker_now_;
   uint64_t stale_decisions_ = 0;       // decisions an agent missed (it stood still)
   WallThrottle stale_throttle_{2.0};
   // Diagnostics: the counts at the previous report, so that a status returns to OK once a
