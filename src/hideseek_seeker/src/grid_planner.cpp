@@ -79,21 +79,15 @@ std::vector<Vec2> GridPlanner::plan(Vec2 from, Vec2 to) const {
     if (i == g) break;
     const GridCell c{i % grid_.width(), i / grid_.width()};
     if (f - heuristic(c) > cost[i] + 1e-9) continue;  // stale entry
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        if (!dx && !dy) continue;
-        const GridCell nb{c.x + dx, c.y + dy};
-        if (!grid_.isFree(nb)) continue;
-        if (dx && dy && (!grid_.isFree({c.x + dx, c.y}) || !grid_.isFree({c.x, c.y + dy}))) continue;
-        const int j = grid_.index(nb);
-        const double next = cost[i] + ((dx && dy) ? std::sqrt(2.0) : 1.0);
-        if (next < cost[j]) {
-          cost[j] = next;
-          parent[j] = i;
-          open.push({next + heuristic(nb), j});
-        }
+    forEachNeighbour(c, [&](GridCell nb, double step) {
+      const int j = grid_.index(nb);
+      const double next = cost[i] + step;
+      if (next < cost[j]) {
+        cost[j] = next;
+        parent[j] = i;
+        open.push({next + heuristic(nb), j});
       }
-    }
+    });
   }
   if (parent[g] < 0 && g != s) return {};
   std::vector<Vec2> cells;
@@ -110,6 +104,32 @@ std::vector<Vec2> GridPlanner::plan(Vec2 from, Vec2 to) const {
   }
   path.push_back(cells.back());
   return path;
+}
+
+std::vector<float> GridPlanner::distancesFrom(Vec2 from) const {
+  std::vector<float> out(static_cast<size_t>(grid_.width()) * grid_.height(), std::numeric_limits<float>::infinity());
+  const GridCell start = nearestFree(grid_.cellOf(from));
+  if (!grid_.isFree(start)) return out;
+  // Dijkstra over the same moves as plan().
+  using Entry = std::pair<float, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  const float resolution = static_cast<float>(grid_.resolution());
+  out[grid_.index(start)] = 0.f;
+  open.push({0.f, grid_.index(start)});
+  while (!open.empty()) {
+    const auto [d, i] = open.top();
+    open.pop();
+    if (d > out[i]) continue;
+    forEachNeighbour({i % grid_.width(), i / grid_.width()}, [&](GridCell nb, double step) {
+      const float next = d + resolution * static_cast<float>(step);
+      const int j = grid_.index(nb);
+      if (next < out[j]) {
+        out[j] = next;
+        open.push({next, j});
+      }
+    });
+  }
+  return out;
 }
 
 Vec2 GridPlanner::randomReachablePoint(Vec2 from, std::mt19937& rng) const {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <queue>
 
 #include "hideseek_world/hash_uniform.h"
 #include "hideseek_world/visibility.h"
@@ -69,51 +68,6 @@ void ScriptedEvader::reset(const hideseek_world::Layout& layout) {
   }
 }
 
-void ScriptedEvader::distanceField(Vec2 from, std::vector<float>& out) const {
-  const auto& grid = planner_->grid();
-  out.assign(static_cast<size_t>(grid.width()) * grid.height(), kUnreachable);
-  // Start from the nearest free cell: an agent pressed against a box stands inside the inflation.
-  hideseek_world::GridCell start = grid.cellOf(from);
-  if (!grid.isFree(start)) {
-    double best = std::numeric_limits<double>::max();
-    for (int dy = -3; dy <= 3; ++dy) {
-      for (int dx = -3; dx <= 3; ++dx) {
-        const hideseek_world::GridCell c{start.x + dx, start.y + dy};
-        if (grid.isFree(c) && dx * dx + dy * dy < best) {
-          best = dx * dx + dy * dy;
-          start = c;
-        }
-      }
-    }
-    if (!grid.isFree(start)) return;
-  }
-  using Entry = std::pair<float, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
-  const float res = static_cast<float>(grid.resolution());
-  out[grid.index(start)] = 0.f;
-  open.push({0.f, grid.index(start)});
-  while (!open.empty()) {
-    const auto [d, i] = open.top();
-    open.pop();
-    if (d > out[i]) continue;
-    const hideseek_world::GridCell c{i % grid.width(), i / grid.width()};
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        if (!dx && !dy) continue;
-        const hideseek_world::GridCell nb{c.x + dx, c.y + dy};
-        if (!grid.isFree(nb)) continue;
-        if (dx && dy && (!grid.isFree({c.x + dx, c.y}) || !grid.isFree({c.x, c.y + dy}))) continue;
-        const float next = d + res * ((dx && dy) ? 1.41421356f : 1.f);
-        const int j = grid.index(nb);
-        if (next < out[j]) {
-          out[j] = next;
-          open.push({next, j});
-        }
-      }
-    }
-  }
-}
-
 float ScriptedEvader::fieldAt(const std::vector<float>& field, Vec2 p) const {
   const auto& grid = planner_->grid();
   const hideseek_world::GridCell c = grid.cellOf(p);
@@ -162,7 +116,7 @@ Action ScriptedEvader::act(const EvaderObservation& o) {
 }
 
 Action ScriptedEvader::backpedal(const EvaderObservation& o) {
-  distanceField(o.seeker.position, from_seeker_);
+  from_seeker_ = planner_->distancesFrom(o.seeker.position);
   const auto& grid = planner_->grid();
   const double view_limit = 0.5 * game_.camera.horizontal_fov - kInViewMargin;
   // Two decision steps ahead, the seeker standing still: the first action of the best pair.
@@ -197,8 +151,8 @@ Action ScriptedEvader::backpedal(const EvaderObservation& o) {
 }
 
 Action ScriptedEvader::flee(const EvaderObservation& o) {
-  distanceField(o.seeker.position, from_seeker_);
-  distanceField(o.hider.position, from_hider_);
+  from_seeker_ = planner_->distancesFrom(o.seeker.position);
+  from_hider_ = planner_->distancesFrom(o.hider.position);
   int far = -1;
   for (size_t i = 0; i < from_seeker_.size(); ++i) {
     if (from_hider_[i] == kUnreachable || from_seeker_[i] == kUnreachable) continue;
@@ -215,15 +169,16 @@ Action ScriptedEvader::flee(const EvaderObservation& o) {
 }
 
 Action ScriptedEvader::hide(const EvaderObservation& o) {
-  distanceField(o.seeker.position, from_seeker_);
-  distanceField(o.hider.position, from_hider_);
+  from_seeker_ = planner_->distancesFrom(o.seeker.position);
+  from_hider_ = planner_->distancesFrom(o.hider.position);
   const double hider_speed =
       game_.hider.mode == hideseek_world::SpeedMode::kConstant ? game_.hider.speed : game_.hider.max_speed;
   const double ratio = game_.seeker.speed / std::max(hider_speed, 1e-6);
-  auto safe = [&](Vec2 p) {
-    const float dh = fieldAt(from_hider_, p), ds = fieldAt(from_seeker_, p);
+  // A spot is safe when the hider gets there, at its speed, well before the seeker at its own.
+  auto safe_at = [&](float dh, float ds) {
     return dh != kUnreachable && (ds == kUnreachable || dh * ratio + options_.hide_margin < ds);
   };
+  auto safe = [&](Vec2 p) { return safe_at(fieldAt(from_hider_, p), fieldAt(from_seeker_, p)); };
   if (goal_ && hiddenFromSearch(o.seeker.position, *goal_) && safe(*goal_) &&
       fieldAt(from_seeker_, *goal_) > options_.move_on_distance) {
     if (distance(o.hider.position, *goal_) <= kArrived) return Action::kStay;
@@ -234,10 +189,7 @@ Action ScriptedEvader::hide(const EvaderObservation& o) {
   const auto& grid = planner_->grid();
   std::vector<int> candidates;
   for (size_t i = 0; i < from_hider_.size(); ++i) {
-    const float dh = from_hider_[i], ds = from_seeker_[i];
-    if (dh != kUnreachable && (ds == kUnreachable || dh * ratio + options_.hide_margin < ds)) {
-      candidates.push_back(static_cast<int>(i));
-    }
+    if (safe_at(from_hider_[i], from_seeker_[i])) candidates.push_back(static_cast<int>(i));
   }
   std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
     return from_hider_[a] != from_hider_[b] ? from_hider_[a] < from_hider_[b] : a < b;

@@ -1,6 +1,7 @@
 // Shortest collision-free paths for the seeker: A* on the map inflated by its radius.
 #pragma once
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -22,6 +23,9 @@ class GridPlanner {
   // Waypoints from `from` to `to` (both snapped to the nearest free cell), shortened to the
   // corners where the straight line would leave free space. Empty when no path exists.
   std::vector<Vec2> plan(Vec2 from, Vec2 to) const;
+  // Shortest path lengths (m) from `from` (snapped to the nearest free cell) to every cell, indexed
+  // like grid(); infinity where unreachable or occupied.
+  std::vector<float> distancesFrom(Vec2 from) const;
   // True when the straight segment stays in free cells.
   bool lineOfSight(Vec2 a, Vec2 b) const;
   // A uniformly drawn free cell centre reachable from `from`.
@@ -31,8 +35,25 @@ class GridPlanner {
 
  private:
   GridCell nearestFree(GridCell c) const;
+  // Calls visit(neighbour, step length in cells) for the free 8-neighbours of c; a diagonal step
+  // needs both cells beside it free, so paths never cut an obstacle's corner.
+  template <typename Visit>
+  void forEachNeighbour(GridCell c, Visit visit) const;
 
   hideseek_world::FreeSpaceGrid grid_;
 };
+
+template <typename Visit>
+void GridPlanner::forEachNeighbour(GridCell c, Visit visit) const {
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      if (!dx && !dy) continue;
+      const GridCell nb{c.x + dx, c.y + dy};
+      if (!grid_.isFree(nb)) continue;
+      if (dx && dy && (!grid_.isFree({c.x + dx, c.y}) || !grid_.isFree({c.x, c.y + dy}))) continue;
+      visit(nb, (dx && dy) ? std::sqrt(2.0) : 1.0);
+    }
+  }
+}
 
 }  // namespace hideseek_seeker

@@ -65,8 +65,7 @@ class ScriptedEvader {
   hideseek_world::Action hide(const EvaderObservation& o);
   // Turn towards the next point of path_ (replanned to goal_ when needed), else move forward.
   hideseek_world::Action follow(const hideseek_world::AgentState& hider);
-  // Path lengths (m) from `from` to every free cell; infinity where unreachable.
-  void distanceField(Vec2 from, std::vector<float>& out) const;
+  // A distance field's value at p (pressed against a box: the best free neighbour's, plus the way there).
   float fieldAt(const std::vector<float>& field, Vec2 p) const;
   // Whether the seeker, turned towards an agent at p, would see it past the obstacles.
   bool hiddenFrom(Vec2 seeker, Vec2 p) const;
@@ -80,7 +79,7 @@ class ScriptedEvader {
   hideseek_world::Layout layout_;
   std::unique_ptr<GridPlanner> planner_;
   std::vector<float> clearance_;  // m from each cell centre to the nearest obstacle or wall
-  std::vector<float> from_seeker_, from_hider_;
+  std::vector<float> from_seeker_, from_hider_;  // path lengths from each agent, this step
   std::optional<Vec2> goal_;
   std::optional<Vec2> last_seen_;  // the hider's position when the seeker last saw it (or its spawn)
   std::vector<Vec2> path_;
