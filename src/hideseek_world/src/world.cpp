@@ -10,7 +10,6 @@ World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int
       episodes_(num_arenas, 0),
       next_seeds_(num_arenas),
       uploaded_layouts_(num_arenas, ~uint64_t{0}),
-      step_start_(num_arenas, 0),
       results_(num_arenas) {
   if (num_arenas < 1) throw std::invalid_argument("World: num_arenas must be at least 1");
   arenas_.reserve(num_arenas);
@@ -30,7 +29,6 @@ World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int
 
 void World::startEpisode(int i, uint32_t seed) {
   arenas_[i].reset(seed);
-  step_start_[i] = 0;
   next_seeds_[i] = seed + static_cast<uint32_t>(arenas_.size());
 }
 
@@ -47,16 +45,14 @@ ArenaStep World::stepArena(int i, Action hider, const SeekerDecide& seeker) {
 }
 
 uint32_t World::seekerDecisionId(int i) const {
-  return static_cast<uint32_t>(step_start_[i] * options_.seekerDecisionsPerStep() +
-                               frame_ / options_.seeker_decision_frames);
+  // An arena whose step ended early (a capture) has counted that step already.
+  const int step = arenas_[i].stepCount() - (results_[i] ? 1 : 0);
+  return static_cast<uint32_t>(step * options_.seekerDecisionsPerStep() + frame_ / options_.seeker_decision_frames);
 }
 
 std::optional<std::vector<ArenaStep>> World::advanceFrame(const std::vector<Action>& hider,
                                                           const std::vector<Action>& seeker) {
   const int n = numArenas();
-  if (frame_ == 0) {
-    for (int i = 0; i < n; ++i) step_start_[i] = arenas_[i].stepCount();
-  }
   for (int i = 0; i < n; ++i) {
     if (!results_[i]) results_[i] = arenas_[i].advanceFrame(hider[i], seeker[i]);
   }
@@ -67,7 +63,6 @@ std::optional<std::vector<ArenaStep>> World::advanceFrame(const std::vector<Acti
   for (int i = 0; i < n; ++i) {
     out.push_back(conclude(i, *results_[i]));
     results_[i].reset();
-    step_start_[i] = arenas_[i].stepCount();
   }
   return out;
 }

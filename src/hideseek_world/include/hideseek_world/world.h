@@ -79,7 +79,6 @@ class World {
   std::vector<uint32_t> next_seeds_;
   std::vector<uint64_t> uploaded_layouts_;
   int frame_ = 0;                                    // frames played of the current step
-  std::vector<int> step_start_;                      // each arena's step count when the step began
   std::vector<std::optional<StepResult>> results_;   // each arena's step result once it is over
   std::unique_ptr<Renderer> renderer_;
   std::vector<ViewRequest> views_;
