@@ -8,7 +8,6 @@
 
 #include "hideseek_world/arena.h"
 #include "hideseek_world/config_error.h"
-#include "hideseek_world/renderer.h"
 #include "hideseek_world/visibility.h"
 #include "hideseek_world/world.h"
 #include "test_util.h"
@@ -156,13 +155,7 @@ TEST(GameV2, TheSeekersFrontColourShowsWhetherItFacesTheHider) {
   const VariantConfig v = loadVariant("basic");
   const auto map = loadMap("deterministic");
   ASSERT_TRUE(map->colors.seeker_front.has_value());
-  RendererOptions r;
-  r.camera = v.game.camera;
-  r.agent_radius = v.game.agent_radius;
-  r.agent_height = v.game.agent_height;
-  r.colors = map->colors;
-  r.render_threads = 1;
-  Renderer renderer(r);
+  Renderer renderer(test::rendererOptions(v, *map));
   Layout empty;
   renderer.setScene(0, empty);
   std::vector<uint8_t> image(static_cast<size_t>(v.game.camera.width) * v.game.camera.height * 3);

@@ -6,6 +6,7 @@
 
 #include "hideseek_world/game_options.h"
 #include "hideseek_world/map.h"
+#include "hideseek_world/renderer.h"
 
 namespace hideseek_world::test {
 
@@ -17,6 +18,17 @@ inline VariantConfig loadVariant(const std::string& name) {
 
 inline std::shared_ptr<const MapSpec> loadMap(const std::string& name) {
   return std::make_shared<const MapSpec>(loadMapFile(configPath("maps/" + name + ".yaml")));
+}
+
+// A one-view, one-thread renderer of a variant's camera with a map's colours.
+inline RendererOptions rendererOptions(const VariantConfig& v, const MapSpec& map) {
+  RendererOptions r;
+  r.camera = v.game.camera;
+  r.agent_radius = v.game.agent_radius;
+  r.agent_height = v.game.agent_height;
+  r.colors = map.colors;
+  r.render_threads = 1;
+  return r;
 }
 
 }  // namespace hideseek_world::test

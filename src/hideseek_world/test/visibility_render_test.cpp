@@ -2,7 +2,6 @@
 
 #include <random>
 
-#include "hideseek_world/renderer.h"
 #include "hideseek_world/visibility.h"
 #include "hideseek_world/world.h"
 #include "test_util.h"
@@ -74,13 +73,7 @@ TEST(Rendering, ImagesShowTheOtherAgentInItsColour) {
   const VariantConfig v = test::loadVariant("basic");
   auto map = test::loadMap("deterministic");
   World world(v.game, map, 1, 0, true);
-  RendererOptions r;
-  r.camera = v.game.camera;
-  r.agent_radius = v.game.agent_radius;
-  r.agent_height = v.game.agent_height;
-  r.colors = map->colors;
-  r.render_threads = 1;
-  Renderer renderer(r);
+  Renderer renderer(test::rendererOptions(v, *map));
   // Find a seed where the hider sees the seeker at the start; render the view with the seeker and
   // with the seeker moved behind the hider: the pixels that differ are the seeker's, and they are
   // in its colours (red body, yellow front: far redder than blue, even through the haze).
