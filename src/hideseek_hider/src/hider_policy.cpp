@@ -20,7 +20,13 @@ std::vector<uint8_t> RandomHiderPolicy::act(const std::vector<ArenaObservation>&
 std::optional<hideseek_seeker::EvaderKind> scriptedPolicy(const std::string& policy) {
   const std::string prefix = "scripted/";
   if (policy.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
-  return hideseek_seeker::evaderKind(policy.substr(prefix.size()));
+  const auto kind = hideseek_seeker::evaderKind(policy.substr(prefix.size()));
+  if (!kind) {
+    throw std::invalid_argument("'" + policy +
+                                "' names no scripted evader: scripted/random, scripted/backpedal, scripted/flee or "
+                                "scripted/hide");
+  }
+  return kind;
 }
 
 ScriptedHiderPolicy::ScriptedHiderPolicy(hideseek_seeker::EvaderKind kind, const hideseek_world::VariantConfig& variant)

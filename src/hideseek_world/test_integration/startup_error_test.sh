@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A node that cannot start says why, where roslaunch shows it: a missing checkpoint, a bad
-# precision, a misspelt variant field and the memoryless ablation asked of a hider without a GRU
-# each stop the game with a FATAL line naming the problem.
+# precision, a misspelt variant field, a misspelt scripted evader and the memoryless ablation
+# asked of a hider without a GRU each stop the game with a FATAL line naming the problem.
 # usage: startup_error_test.sh XUNIT_OUTPUT
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -27,6 +27,8 @@ expect_fatal memoryless_ff "memoryless applies to a GRU policy only, and this on
   policy:="$policies/basic.pt" memoryless:=true episodes:=1 output_dir:="$dir/eval_ff"
 expect_fatal memoryless_random "is true, but the hider is in random mode: memoryless applies to a GRU policy only" \
   evaluate.launch policy:=random memoryless:=true episodes:=1 output_dir:="$dir/eval_random"
+expect_fatal unknown_evader "/hider/policy: 'scripted/hid' names no scripted evader" evaluate.launch \
+  policy:=scripted/hid episodes:=1 output_dir:="$dir/eval_evader"
 write_xunit "$out" startup StartupErrorsAreShownByRoslaunch "${failures[@]}"
 printf 'failure: %s\n' "${failures[@]}"
 rm -rf "$dir"

@@ -50,7 +50,8 @@ class ScriptedHiderPolicy : public HiderPolicy {
   std::vector<std::optional<uint32_t>> seeds_;  // each arena's episode seed at the last act()
 };
 
-// The evader a policy name scripted/NAME asks for, or nothing for any other name.
+// The evader a policy name scripted/NAME asks for, nothing for a name without the prefix; throws
+// std::invalid_argument for scripted/ and a name that is no evader.
 std::optional<hideseek_seeker::EvaderKind> scriptedPolicy(const std::string& policy);
 
 // Inference from a checkpoint: one batched forward pass per step, no autograd. A GRU network
