@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The calibration table: the random hider and the scripted evaders (backpedal, flee, hide) on every
 # variant over seeds 0..99, beside the paper's random-hider living steps, with the median and the
-# share of episodes in which the seeker sees the hider at step 0. Writes docs/calibration.md and
-# docs/calibration.csv (or the folder given) and prints the table. GAME (environment) names another
+# share of episodes in which the seeker sees the hider at step 0. Writes docs/calibration_table.md and
+# docs/calibration_table.csv (or the folder given) and prints the table. GAME (environment) names another
 # game file, such as config/game_v1.yaml. The in-process game is the one the ROS graph plays
 # (evaluate_test.sh checks that episode by episode); it takes about 3 minutes.
 set -euo pipefail
@@ -10,4 +10,4 @@ out=$(realpath -m "${1:-$(dirname "$0")/../docs}")
 cd "$(dirname "$0")/.."
 source scripts/env.sh
 mkdir -p "$out"
-devel/lib/hideseek_seeker/calibration_table --game "${GAME:-config/game.yaml}" --csv "$out/calibration.csv" | tee "$out/calibration.md"
+devel/lib/hideseek_seeker/calibration_table --game "${GAME:-config/game.yaml}" --csv "$out/calibration_table.csv" | tee "$out/calibration_table.md"

@@ -2,7 +2,7 @@
 # The paper's Table 2 side by side with this project's: every shipped policy (policies/<variant>.pt,
 # greedy) and the uniformly random hider on all seven variants, seeds 0..99 through the ROS graph
 # (evaluate.launch), beside the paper's figures (config/paper_reference.yaml).
-# Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/). Writes table2.md, table2.csv, gru_vs_ff.md, gru_vs_ff.csv
+# Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/report, as make reproduce). Writes table2.md, table2.csv, gru_vs_ff.md, gru_vs_ff.csv
 # and, per evaluation, OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv.
 # A shipped GRU hider (policies/<variant>_gru.pt) is evaluated too, as <variant>_gru_trained, and once more
 # with its state zeroed at every step (memoryless:=true, what its memory does) as <variant>_gru_memoryless; so is
@@ -11,7 +11,7 @@
 # HIDESEEK_VARIANTS="v1 v2" evaluates those variants only and keeps the other evaluations already in
 # OUTPUT_DIR/evaluations (made by the same code: use it after training a policy, not after changing the game).
 set -euo pipefail
-out=$(realpath -m "${1:-$(dirname "$0")/../docs}")
+out=$(realpath -m "${1:-$(dirname "$0")/../docs/report}")
 cd "$(dirname "$0")/.."
 source scripts/env.sh
 port=${HIDESEEK_PORT:-11477}

@@ -97,6 +97,13 @@ def main(paper_file, evaluations, stem, policies):
     if os.path.exists(os.path.join(policies, "policies.yaml")):
         with open(os.path.join(policies, "policies.yaml")) as f:
             shipped = yaml.safe_load(f) or {}
+    # The run registry names runs (basic_seed1, ...); the one whose weights are committed as
+    # <variant>.pt (`weights`) is the variant's shipped policy, evaluated as <variant>_trained.
+    for name, entry in list(shipped.items()):
+        file_stem = str((entry or {}).get("weights", ""))[:-len(".pt")]
+        if file_stem and file_stem != name and file_stem not in shipped:
+            shipped[file_stem] = dict(entry, shipped_run=name)
+            del shipped[name]
     for name, entry in shipped.items():
         variant = run_variant(name, entry or {})
         if variant is None:

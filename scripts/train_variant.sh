@@ -1,61 +1,72 @@
 #!/usr/bin/env bash
-# Trains one variant through train.launch (resuming when RUNS_DIR/<run> holds a checkpoint), then
-# ships what it produced: the exported policy, the training log and its learning curve.
+# Trains one run through train.launch (resuming when RUNS_DIR/<run> holds a checkpoint) and records
+# it: the exported weights go to RUNS_DIR/<run>/policy.pt (outside the repository), the training
+# log, learning curve, evaluation and trajectories to docs/runs/<run>/, and an entry to the run registry
+# (policies/policies.yaml: variant, network, game, training seed, steps, wall time, precision and
+# the commit it trained with). SHIP=1 also ships it as the variant's policy
+# (scripts/hideseek_registry.py ship); otherwise shipping is a separate, deliberate step.
 # usage: scripts/train_variant.sh VARIANT [SEED=0] [STEPS=2000000] [RUNS_DIR=~/hideseek_runs] [NETWORK=ff] [NAME]
-# Seed 0 ships as policies/<variant>.pt; other seeds as policies/<variant>_seed<S>.pt (the spread).
-# NETWORK gru trains the recurrent hider and ships policies/<variant>_gru.pt (_gru_seed<S> likewise).
-# NAME overrides the run's name (its folder in RUNS_DIR and its policy file).
-# PRECISION (environment, default auto) is train.launch's precision; the one the hider chose is
-# recorded in policies/policies.yaml.
+#   NAME defaults to <variant>_seed<S> (<variant>_gru_seed<S> for the GRU).
+#   GAME (environment, default v2) is the game (train.launch's game); PRECISION (default auto) its
+#   precision; the one the hider chose is recorded.
 set -euo pipefail
 variant=$1
 seed=${2:-0}
 steps=${3:-2000000}
 runs=$(realpath -m "${4:-$HOME/hideseek_runs}")
 network=${5:-ff}
+game=${GAME:-v2}
 cd "$(dirname "$0")/.."
 source scripts/env.sh
 name=$variant
 [ "$network" = ff ] || name=${name}_$network
-[ "$seed" = 0 ] || name=${name}_seed$seed
-name=${6:-$name}
+name=${6:-${name}_seed$seed}
 case "$name" in
   ''|*/*|.*) echo "train_variant: NAME '$name' must be a plain file name (no '/', not starting with '.')" >&2; exit 2 ;;
 esac
+/usr/bin/python3 scripts/hideseek_registry.py variants | grep -qx "$variant" \
+  || { echo "train_variant: no variant '$variant' in config/variants" >&2; exit 2; }
 run="$runs/$name"
 port=$((11700 + seed + $([ "$network" = gru ] && echo 50 || echo 0)))
 export ROS_MASTER_URI=http://localhost:$port
 mkdir -p "$run"
-echo "train_variant: $name (network $network), $steps steps, into $run (log: $run/launch.log)"
-roslaunch -p "$port" hideseek_world train.launch variant:="$variant" seed:="$seed" steps:="$steps" \
+# The commit the run trained with: the one it started at; a resume at another commit is noted.
+commit=$(git describe --always --dirty --abbrev=12 2>/dev/null || echo unknown)
+if [ ! -s "$run/commit" ]; then
+  echo "$commit" > "$run/commit"
+elif [ "$(head -n 1 "$run/commit")" != "$commit" ] && ! grep -qx "resumed at $commit" "$run/commit"; then
+  echo "resumed at $commit" >> "$run/commit"
+  echo "train_variant: $name started at commit $(head -n 1 "$run/commit"), resumes at $commit"
+fi
+echo "train_variant: $name (variant $variant, network $network, game $game, training seed $seed), $steps steps, into $run (log: $run/launch.log)"
+roslaunch -p "$port" hideseek_world train.launch variant:="$variant" game:="$game" seed:="$seed" steps:="$steps" \
   network:="$network" precision:="${PRECISION:-auto}" output_dir:="$run" > "$run/launch.log" 2>&1
-# roslaunch exits 0 even when the hider dies: ship only a run that trained all its steps.
+# roslaunch exits 0 even when the hider dies: record only a run that trained all its steps.
 trained=$(tail -n 1 "$run/training_log.csv" | cut -d, -f2)
 if [ "${trained:-0}" -lt "$steps" ]; then
-  echo "train_variant: $name stopped at ${trained:-0} of $steps steps (see $run/launch.log); nothing shipped" >&2
+  echo "train_variant: $name stopped at ${trained:-0} of $steps steps (see $run/launch.log); nothing recorded" >&2
   exit 1
 fi
-devel/lib/hideseek_hider/export_policy "$run/checkpoint.pt" "policies/$name.pt"
-# A partial export committed while the run was unfinished is superseded.
-rm -f "policies/${name}_partial.pt" "docs/training_log_${name}_partial.csv" "docs/learning_curve_${name}_partial.png"
-cp "$run/training_log.csv" "docs/training_log_$name.csv"
-/usr/bin/python3 scripts/plot_learning_curve.py "docs/training_log_$name.csv" "docs/learning_curve_$name.png" \
-  "$variant, network $network, training seed $seed, $(tail -n 1 "$run/training_log.csv" | cut -d, -f2) steps"
+devel/lib/hideseek_hider/export_policy "$run/checkpoint.pt" "$run/policy.pt"
+docs="docs/runs/$name"
+mkdir -p "$docs"
+cp "$run/training_log.csv" "$docs/training_log.csv"
+/usr/bin/python3 scripts/plot_learning_curve.py "$docs/training_log.csv" "$docs/learning_curve.png" \
+  "$variant, network $network, game $game, training seed $seed, $trained steps"
 # The precision the hider chose, from its start-up line ("... on cpu in auto: bf16, ..."): the last
 # start's, since each resume rewrites launch.log.
 precision=$(grep -oE 'PPO, network [a-z]+, on [^ ]+ in [^,]*' "$run/launch.log" | tail -n 1 | grep -oE 'bf16|fp32' | head -n 1)
-# Record what was shipped: steps and wall time of training up to the exported checkpoint.
-/usr/bin/python3 - "$name" "$seed" "$run/training_log.csv" "docs/training_log_$name.csv" "$variant" "$network" "${precision:-unknown}" <<'PY'
-import csv, sys
-import yaml
-name, seed, log, shipped_log, variant, network, precision = sys.argv[1:]
-last = list(csv.DictReader(open(log)))[-1]
-path = "policies/policies.yaml"
-text = open(path).read()
-header = "".join(l for l in text.splitlines(True) if l.startswith("#"))
-entries = yaml.safe_load(text) or {}
-entries[name] = {"variant": variant, "network": network, "training_seed": int(seed), "steps": int(last["steps"]), "wall_s": round(float(last["wall_s"])),
-                 "precision": precision, "log": shipped_log}
-with open(path, "w") as f:
-    f.write(header + yaml.safe_dump(entries, sort_keys=False))
-PY
+wall=$(tail -n 1 "$run/training_log.csv" | cut -d, -f3)
+commits=$(paste -sd ';' "$run/commit" | sed 's/;/; /g')
+/usr/bin/python3 scripts/hideseek_registry.py record "$name" variant="$variant" network="$network" game="$game" \
+  training_seed="$seed" steps="$trained" wall_s="${wall%.*}" precision="${precision:-unknown}" commit="$commits" \
+  log="$docs/training_log.csv" curve="$docs/learning_curve.png" \
+  command="scripts/train_variant.sh $variant $seed $steps RUNS_DIR $network $name"
+echo "train_variant: $name recorded in policies/policies.yaml; weights in $run/policy.pt"
+# What the run learned, beside its log: the evaluation (seeds 0-99, greedy, fp32) and six seeded
+# episodes drawn from above (seeds 0-5).
+scripts/evaluate_run.sh "$name" "$run/policy.pt"
+if [ "${SHIP:-0}" = 1 ]; then
+  /usr/bin/python3 scripts/hideseek_registry.py ship "$name" "$run/policy.pt"
+  echo "train_variant: $name shipped as the $variant policy"
+fi

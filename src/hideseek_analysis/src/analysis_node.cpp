@@ -15,6 +15,7 @@
 #include "hideseek_analysis/analysis_job.h"
 #include "hideseek_hider/hider_net.h"
 #include "hideseek_world/params.h"
+#include "hideseek_world/run_registry.h"
 #include "hideseek_world/topic_names.h"
 #include "hideseek_world/world_node_options.h"
 
@@ -84,7 +85,17 @@ int main(int argc, char** argv) {
     ros::NodeHandle nh, pnh("~");
     try {
       job.variant = hideseek_world::loadVariantParams(pnh);
-      job.policy = hideseek_world::requireString(pnh, "policy", "a checkpoint file");
+      job.policy = hideseek_world::requireString(pnh, "policy", "a checkpoint file, or 'shipped'");
+      if (job.policy == hideseek_world::kShippedPolicy) {
+        const std::string registry = hideseek_world::requireString(pnh, "policy_registry", "the run registry file");
+        const std::string network = hideseek_world::readString(pnh, "network", "auto") == "gru" ? "gru" : "ff";
+        job.policy = hideseek_world::shippedPolicyFile(registry, job.variant.name, network, job.variant.game.name);
+        if (job.policy.empty()) {
+          throw std::runtime_error("parameter " + pnh.resolveName("policy") + " is 'shipped', but " + registry +
+                                   " ships no " + network + " policy for variant " + job.variant.name + " on game " +
+                                   job.variant.game.name + ": give a checkpoint file");
+        }
+      }
       job.inputs_dir = hideseek_world::requireString(pnh, "output_dir", "a folder");
       job.report_dir = hideseek_world::readString(pnh, "report_dir", job.inputs_dir + "/report");
       job.report_script = hideseek_world::requireString(pnh, "report_script", "report.py");

@@ -13,6 +13,8 @@
 
 #include "hideseek_hider/episode_tally.h"
 #include "hideseek_world/params.h"
+#include "hideseek_world/run_registry.h"
+#include "hideseek_world/world_node_options.h"
 #include "hideseek_world/topic_names.h"
 
 int main(int argc, char** argv) {
@@ -27,6 +29,14 @@ int main(int argc, char** argv) {
     variant = hideseek_world::readString(pnh, "variant", "unknown");
     // A network policy is evaluated either greedily or sampling its actions: the table says which.
     policy = hideseek_world::readString(pnh, "policy", "random");
+    if (policy == hideseek_world::kShippedPolicy) {
+      // The table names the file the hider plays (the hider node resolves it the same way).
+      const hideseek_world::VariantConfig played = hideseek_world::loadVariantParams(pnh);
+      policy = hideseek_world::shippedPolicyFile(
+          hideseek_world::requireString(pnh, "policy_registry", "the run registry file"), played.name,
+          hideseek_world::readString(pnh, "network", "auto") == "gru" ? "gru" : "ff", played.game.name);
+      if (policy.empty()) policy = "random";
+    }
     if (policy != "random" && policy != "human") {
       policy += hideseek_world::readBool(pnh, "greedy", true) ? " (greedy" : " (sampled";
       policy += hideseek_world::readBool(pnh, "memoryless", false) ? ", memoryless)" : ")";

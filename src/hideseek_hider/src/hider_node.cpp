@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "hideseek_world/params.h"
+#include "hideseek_world/run_registry.h"
 #include "hideseek_world/topic_names.h"
 #include "hideseek_world/wall_throttle.h"
 #include "hideseek_world/world_node_options.h"
@@ -32,14 +33,26 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   HiderNodeOptions o;
   o.variant = hideseek_world::loadVariantParams(pnh);
   o.policy = readString(pnh, "policy", "random");
-  const std::string mode =
-      hideseek_world::readChoice(pnh, "mode", o.policy == "random" ? "random" : "policy", {"random", "policy", "train"});
-  o.mode = mode == "random" ? HiderMode::kRandom : mode == "policy" ? HiderMode::kPolicy : HiderMode::kTrain;
-  o.threads = hideseek_world::readInt(pnh, "threads", 2, 1, 64);
   // Parsed in every mode, so that a typo is refused even where the network is not used.
-  o.precision = parsePrecision(readString(pnh, "precision", "auto"), pnh.resolveName("precision"));
   const std::string network = hideseek_world::readChoice(pnh, "network", "auto", {"auto", "ff", "gru"});
   if (network != "auto") o.network = parseNetwork(network, pnh.resolveName("network"));
+  std::string mode =
+      hideseek_world::readChoice(pnh, "mode", o.policy == "random" ? "random" : "policy", {"random", "policy", "train"});
+  if (o.policy == hideseek_world::kShippedPolicy && mode == "policy") {
+    const std::string registry = hideseek_world::requireString(pnh, "policy_registry", "the run registry file");
+    o.policy = hideseek_world::shippedPolicyFile(registry, o.variant.name, network == "gru" ? "gru" : "ff",
+                                                 o.variant.game.name);
+    if (o.policy.empty()) {
+      ROS_WARN("hider: no policy is shipped for variant '%s' on game %s (%s); playing the uniformly random hider. "
+               "policy:=FILE plays a checkpoint; scripts/train_variant.sh trains one.",
+               o.variant.name.c_str(), o.variant.game.name.c_str(), registry.c_str());
+      o.policy = "random";
+      mode = "random";
+    }
+  }
+  o.mode = mode == "random" ? HiderMode::kRandom : mode == "policy" ? HiderMode::kPolicy : HiderMode::kTrain;
+  o.threads = hideseek_world::readInt(pnh, "threads", 2, 1, 64);
+  o.precision = parsePrecision(readString(pnh, "precision", "auto"), pnh.resolveName("precision"));
   o.memoryless = hideseek_world::readBool(pnh, "memoryless", false);
   if (o.memoryless && o.mode != HiderMode::kPolicy) {
     throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true, but the hider is in " + mode +

@@ -36,6 +36,7 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
     // Only a game file says where its maps are; `extends` was followed by the caller.
     f.text("extends", "", {});
     *maps_dir = f.text("maps_dir", *maps_dir, {});
+    g.name = f.text("game", g.name, {});
   }
   if (variant) {
     variant->name = f.text("variant", "", {});

@@ -1,10 +1,9 @@
 #!/usr/bin/env python3
 """Loads every launch file of a folder with roslaunch's own loader (arguments, includes,
 substitutions) and checks that each node's package and executable exist, that every
-argument a user can set carries a doc= (roslaunch --ros-args lists it), and that a `policy`
-argument of a variant's launch file defaults to `random` or to a policy file that exists, and to
-policies/<variant>.pt wherever that is shipped (a trained variant whose launch file still plays
-the random hider).
+argument a user can set carries a doc= (roslaunch --ros-args lists it), and that the `policy`
+argument of a variant's launch file defaults to `shipped` (the policy policies/policies.yaml ships
+for the variant, else the random hider).
 Writes an xunit result. The agents' packages cannot be declared as dependencies of hideseek_world (they depend
 on it), so roslaunch-check's dependency test does not apply; this checks what it would run.
 
@@ -30,8 +29,8 @@ def undocumented_arguments(path):
 
 
 def policy_default_problems(path):
-    """A variant launch file's `policy` default: random or an existing file; the shipped policy
-    if there is one."""
+    """A variant launch file's `policy` defaults to `shipped`: the policy the run registry ships
+    for the variant, or the random hider (with a warning) where none is shipped."""
     if not path.endswith(".launch"):
         return []
     package = rospkg.RosPack().get_path("hideseek_world")
@@ -41,18 +40,9 @@ def policy_default_problems(path):
     defaults = [a.get("default") for a in ET.parse(path).getroot().findall("arg") if a.get("name") == "policy"]
     if not defaults or defaults[0] is None:
         return ["a variant launch file without a 'policy' argument with a default"]
-    try:
-        value = roslaunch.substitution_args.resolve_args(defaults[0])
-    except Exception as e:  # an $(arg ...) or an unset $(env ...): not a default a user can rely on
-        return ["argument 'policy' default %s does not resolve: %s" % (defaults[0], e)]
-    shipped = os.path.join(package, "policies", variant + ".pt")
-    if value != "random" and not os.path.isabs(value):
-        return ["argument 'policy' defaults to the relative path %s (it would depend on where roslaunch "
-                "starts; use $(find hideseek_world)/policies/...)" % value]
-    if value != "random" and not os.path.isfile(value):
-        return ["argument 'policy' defaults to %s, which does not exist" % value]
-    if os.path.isfile(shipped) and (value == "random" or os.path.realpath(value) != os.path.realpath(shipped)):
-        return ["argument 'policy' defaults to %s although %s is shipped" % (value, shipped)]
+    if defaults[0] != "shipped":
+        return ["argument 'policy' defaults to %s, not 'shipped' (the registry's shipped policy, else the random "
+                "hider)" % defaults[0]]
     return []
 
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Integration tests of analyze.launch and analyze_bag. usage: analyze_test.sh XUNIT_OUTPUT
-# 1. A small analysis of the shipped basic policy (4 arenas, 800 decisions, an image every 4th)
+# 1. A small analysis of the shipped basic policy (the default, policy:=shipped; 4 arenas, 800 decisions, an image every 4th)
 #    records every decision into its bag and writes every file of the report.
 # 2. The same bag with one decision filtered out is reported as missing that step, and nothing
 #    is analysed.
@@ -11,7 +11,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 dir=$(mktemp -d /tmp/hideseek_analyze_test.XXXXXX)
 port=$((11900 + RANDOM % 100))
 failures=()
-timeout 600 roslaunch -p "$port" hideseek_world analyze.launch variant:=basic policy:="$root/policies/basic.pt" \
+timeout 600 roslaunch -p "$port" hideseek_world analyze.launch variant:=basic \
   steps:=3200 num_arenas:=4 image_every:=4 tsne_samples:=200 output_dir:="$dir/work" report_dir:="$dir/report" \
   > "$dir/launch.log" 2>&1
 grep -q "800 decisions of 4 arenas (3200 steps), 800 images, no step missing" "$dir/launch.log" ||
@@ -31,7 +31,7 @@ first_failed=${#failures[@]}
 failures=()
 if [ -s "$dir/work/rollout.bag" ]; then
   rosbag filter "$dir/work/rollout.bag" "$dir/gap.bag" "topic != '/world/steps' or m.decision != 100" > /dev/null 2>&1
-  "$(catkin_find hideseek_analysis analyze_bag --first-only)" basic "$root/policies/basic.pt" "$dir/gap.bag" \
+  "$(catkin_find hideseek_analysis analyze_bag --first-only)" basic "$(/usr/bin/python3 "$root/../../scripts/hideseek_registry.py" shipped basic)" "$dir/gap.bag" \
     "$dir/gap" > "$dir/gap.log" 2>&1
   status=$?
   [ "$status" -eq 1 ] || failures+=("analyze_bag exited $status on a bag with a missing step")

@@ -1,24 +1,29 @@
 #!/usr/bin/env bash
 # Integration tests of evaluate.launch. usage: evaluate_test.sh XUNIT_OUTPUT
-# 1. On the shipped basic policy: evaluation.md, evaluation.csv and episodes.csv appear, with the
-#    documented columns and 100 episodes.
+# 1. On the shipped basic policy (policy:=shipped): evaluation.md, evaluation.csv and episodes.csv
+#    appear, with the documented columns and 100 episodes, and name the registry's file.
 # 2. The random hider through the ROS graph (4 arenas) plays exactly the episodes that the
 #    in-process calibration table plays (calibration_table): the calibration is the real game,
 #    and an episode's draws do not depend on the number of arenas.
-# 3. The same for a scripted evader (scripted/hide) and for game v1's random hider (game:=v1).
+# 3. The same for a scripted evader (scripted/hide), for game v1's random hider (game:=v1), and for
+#    policy:=shipped on a variant that ships none (the random hider, with a warning).
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
 out=$1
 root="$(cd "$(dirname "$0")/.." && pwd)"
-policy="$root/policies/basic.pt"
+policy=$(/usr/bin/python3 "$root/../../scripts/hideseek_registry.py" shipped basic)
 dir=$(mktemp -d /tmp/hideseek_eval_test.XXXXXX)
 port=$((11800 + RANDOM % 100))
 failures=()
 if [ ! -f "$policy" ]; then
-  failures+=("no shipped policy at $policy")
+  failures+=("no basic policy is shipped (policies/policies.yaml)")
 else
-  timeout 600 roslaunch -p "$port" hideseek_world evaluate.launch variant:=basic policy:="$policy" episodes:=100 \
+  timeout 600 roslaunch -p "$port" hideseek_world evaluate.launch variant:=basic policy:=shipped episodes:=100 \
     output_dir:="$dir" > "$dir/launch.log" 2>&1
+  # The table names the file policy:=shipped resolved to, the one the registry ships.
+  named=$(tail -n 1 "$dir/evaluation.csv" 2>/dev/null | cut -d, -f2)
+  [ "$(readlink -f "${named% (greedy)}")" = "$(readlink -f "$policy")" ] && [ "${named% (greedy)}" != "$named" ] ||
+    failures+=("evaluation.csv names '$named', not the shipped $policy (greedy)")
   [ -f "$dir/evaluation.md" ] || failures+=("no evaluation.md")
   [ -f "$dir/evaluation.csv" ] || failures+=("no evaluation.csv")
   [ "$(head -n 1 "$dir/evaluation.csv" 2>/dev/null)" = "variant,policy,episodes,avg_living_steps,success_rate" ] ||
@@ -67,6 +72,10 @@ compare() {  # NAME VARIANT POLICY EVADER GAME_FILE [LAUNCH ARGS...]
 }
 compare hide stochasticmaps scripted/hide hide "$root/config/game.yaml"
 compare v1 basic random random "$root/config/game_v1.yaml" game:=v1
+# A variant without a shipped policy of its game plays the random hider by default, and says so.
+compare unshipped slowerhider shipped random "$root/config/game.yaml"
+grep -q "no policy is shipped for variant 'slowerhider' on game v2" "$dir/unshipped/launch.log" ||
+  failures+=("unshipped: no warning that slowerhider has no shipped policy")
 write_xunit "${out%.xml}-scripted.xml" evaluate ScriptedEvaderAndGameV1ThroughTheGraphPlayTheCalibratedEpisodes "${failures[@]}"
 printf 'failure: %s\n' "${failures[@]}"
 rm -rf "$dir"

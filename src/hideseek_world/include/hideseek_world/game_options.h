@@ -38,6 +38,9 @@ struct RewardOptions {
 };
 
 struct GameOptions {
+  // The game's name (a game file's `game`: v2, v1): the run registry records which game a
+  // policy trained on, and a variant plays by default only a policy of its own game.
+  std::string name = "v2";
   double physics_dt = 0.02;
   int action_repeat = 6;
   int max_steps = 1000;

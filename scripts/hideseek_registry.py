@@ -1,0 +1,247 @@
+#!/usr/bin/env python3
+"""The project's two registries, read in one place by the scripts, the report and CMake:
+
+- the variants: config/variants/*.yaml (discovered, never listed; a file's `variant` is its name);
+- the runs: policies/policies.yaml, one entry per training run (variant, network, game, training
+  seed, steps, wall time, precision, the commit it trained with, its log and curve). The run whose
+  exported weights are committed names them in `weights` (relative to policies/): the policy a
+  variant's launch file plays by default (policy:=shipped). At most one run ships weights for a
+  variant, network and game.
+
+The C++ nodes read the runs through hideseek_world/run_registry.h, under the same rules.
+
+usage:
+  hideseek_registry.py variants                       the variant names, one per line
+  hideseek_registry.py runs [--variant V] [--game G] [--network N]
+                                                      run names, one per line
+  hideseek_registry.py shipped VARIANT [--network N] [--game G]
+                                                      the shipped weights' path (exit 1: none)
+  hideseek_registry.py record RUN key=value ...       adds or updates a run's entry
+  hideseek_registry.py ship RUN WEIGHTS               copies WEIGHTS to policies/<variant>[_gru].pt
+                                                      and makes RUN the shipped run of its key
+  hideseek_registry.py check                          exit 1, naming the problem, where the
+                                                      registries disagree with each other or the tree
+"""
+import argparse
+import glob
+import os
+import shutil
+import sys
+
+import yaml
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+VARIANTS_DIR = os.path.join(ROOT, "config", "variants")
+REGISTRY = os.path.join(ROOT, "policies", "policies.yaml")
+NETWORKS = ("ff", "gru")
+# Keys a run may carry (the C++ loader refuses any other, so that a typo is found).
+RUN_KEYS = ("variant", "network", "game", "training_seed", "steps", "wall_s", "precision", "commit", "log",
+            "curve", "command", "note", "weights")
+REQUIRED = ("variant", "network", "game")
+
+
+class RegistryError(Exception):
+    pass
+
+
+def variants(variants_dir=VARIANTS_DIR):
+    """Variant names, sorted: every config/variants/*.yaml, named by its `variant` field."""
+    names = []
+    for path in sorted(glob.glob(os.path.join(variants_dir, "*.yaml"))):
+        with open(path) as f:
+            name = (yaml.safe_load(f) or {}).get("variant")
+        stem = os.path.basename(path)[:-len(".yaml")]
+        if name != stem:
+            raise RegistryError("%s: field 'variant' is %r; it must be the file's name, %r" % (path, name, stem))
+        names.append(name)
+    return names
+
+
+def _header(text):
+    """The registry's leading comment block, kept when it is rewritten."""
+    lines = []
+    for line in text.splitlines(True):
+        if not line.startswith("#"):
+            break
+        lines.append(line)
+    return "".join(lines)
+
+
+def runs(registry=REGISTRY):
+    """Run name -> entry (a dict), in file order."""
+    if not os.path.exists(registry):
+        return {}
+    with open(registry) as f:
+        entries = yaml.safe_load(f) or {}
+    if not isinstance(entries, dict):
+        raise RegistryError("%s: must map run names to runs" % registry)
+    for name, entry in entries.items():
+        if not isinstance(entry, dict):
+            raise RegistryError("%s: run %s: must be a mapping of the run's fields" % (registry, name))
+        for key in entry:
+            if key not in RUN_KEYS:
+                raise RegistryError("%s: run %s: unknown field %r" % (registry, name, key))
+        for key in REQUIRED:
+            if not entry.get(key):
+                raise RegistryError("%s: run %s: field %r is required" % (registry, name, key))
+        if entry["network"] not in NETWORKS:
+            raise RegistryError("%s: run %s: field 'network' is %r, not one of %s" % (registry, name, entry["network"],
+                                                                                      ", ".join(NETWORKS)))
+    return entries
+
+
+def weights_path(entry, registry=REGISTRY):
+    return os.path.join(os.path.dirname(registry), entry["weights"]) if entry.get("weights") else None
+
+
+def shipped(variant, network="ff", game="v2", registry=REGISTRY):
+    """(run name, absolute weights path) of the shipped run, or (None, None)."""
+    for name, entry in runs(registry).items():
+        if (entry["variant"], entry["network"], entry["game"]) == (variant, network, game) and entry.get("weights"):
+            return name, weights_path(entry, registry)
+    return None, None
+
+
+def select(variant=None, game=None, network=None, registry=REGISTRY):
+    return [n for n, e in runs(registry).items()
+            if (variant is None or e["variant"] == variant) and (game is None or e["game"] == game)
+            and (network is None or e["network"] == network)]
+
+
+def _write(entries, registry=REGISTRY):
+    header = ""
+    if os.path.exists(registry):
+        with open(registry) as f:
+            header = _header(f.read())
+    tmp = registry + ".tmp"
+    with open(tmp, "w") as f:
+        f.write(header + (yaml.safe_dump(entries, sort_keys=False) if entries else ""))
+    os.replace(tmp, registry)
+
+
+def _value(text):
+    """key=value on the command line: numbers as numbers, the rest as text."""
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
+
+
+def record(name, fields, registry=REGISTRY):
+    entries = runs(registry)
+    entry = dict(entries.get(name, {}))
+    entry.update(fields)
+    entries[name] = {k: entry[k] for k in RUN_KEYS if k in entry}
+    _write(entries, registry)
+    runs(registry)  # refuse what was just written if it is malformed
+
+
+def ship(name, weights, registry=REGISTRY):
+    entries = runs(registry)
+    if name not in entries:
+        raise RegistryError("%s: no run %s to ship" % (registry, name))
+    entry = entries[name]
+    file_name = entry["variant"] + ("" if entry["network"] == "ff" else "_" + entry["network"]) + ".pt"
+    target = os.path.join(os.path.dirname(registry), file_name)
+    if os.path.abspath(weights) != os.path.abspath(target):
+        shutil.copyfile(weights, target)
+    for other, e in entries.items():
+        if other != name and (e["variant"], e["network"], e["game"]) == (entry["variant"], entry["network"],
+                                                                         entry["game"]):
+            e.pop("weights", None)
+    entry["weights"] = file_name
+    _write(entries, registry)
+
+
+def problems(registry=REGISTRY, variants_dir=VARIANTS_DIR):
+    """Where the registries disagree with each other or with the tree."""
+    found = []
+    try:
+        names = set(variants(variants_dir))
+        entries = runs(registry)
+    except RegistryError as e:
+        return [str(e)]
+    keys = {}
+    for name, e in entries.items():
+        if e["variant"] not in names:
+            found.append("run %s: variant %r has no file in %s" % (name, e["variant"], variants_dir))
+        path = weights_path(e, registry)
+        if path:
+            if not os.path.isfile(path):
+                found.append("run %s: weights %s do not exist" % (name, path))
+            key = (e["variant"], e["network"], e["game"])
+            if key in keys:
+                found.append("runs %s and %s both ship weights for variant %s, network %s, game %s"
+                             % (keys[key], name, *key))
+            keys[key] = name
+        for field in ("log", "curve"):
+            if e.get(field) and not os.path.isfile(os.path.join(ROOT, e[field])):
+                found.append("run %s: %s %s does not exist" % (name, field, e[field]))
+    listed = {os.path.realpath(weights_path(e, registry)) for e in entries.values() if e.get("weights")}
+    for path in sorted(glob.glob(os.path.join(os.path.dirname(registry), "*.pt"))):
+        if os.path.realpath(path) not in listed:
+            found.append("%s is shipped by no run of %s (one set of weights per variant: remove it or "
+                         "record its run)" % (path, registry))
+    return found
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--registry", default=REGISTRY, help="the run registry (default: policies/policies.yaml)")
+    parser.add_argument("--variants-dir", default=VARIANTS_DIR, help="the variants (default: config/variants)")
+    sub = parser.add_subparsers(dest="command", required=True)
+    sub.add_parser("variants")
+    p = sub.add_parser("runs")
+    p.add_argument("--variant")
+    p.add_argument("--game")
+    p.add_argument("--network", choices=NETWORKS)
+    p = sub.add_parser("shipped")
+    p.add_argument("variant")
+    p.add_argument("--network", default="ff", choices=NETWORKS)
+    p.add_argument("--game", default="v2")
+    p = sub.add_parser("record")
+    p.add_argument("run")
+    p.add_argument("fields", nargs="+", metavar="key=value")
+    p = sub.add_parser("ship")
+    p.add_argument("run")
+    p.add_argument("weights")
+    sub.add_parser("check")
+    args = parser.parse_args(argv)
+    try:
+        if args.command == "variants":
+            print("\n".join(variants(args.variants_dir)))
+        elif args.command == "runs":
+            print("\n".join(select(args.variant, args.game, args.network, args.registry)))
+        elif args.command == "shipped":
+            name, path = shipped(args.variant, args.network, args.game, args.registry)
+            if not path:
+                print("hideseek_registry: no %s policy is shipped for variant %s on game %s"
+                      % (args.network, args.variant, args.game), file=sys.stderr)
+                return 1
+            print(path)
+        elif args.command == "record":
+            fields = {}
+            for item in args.fields:
+                key, sep, value = item.partition("=")
+                if not sep or key not in RUN_KEYS:
+                    raise RegistryError("record: %r is not key=value with a key among %s" % (item, ", ".join(RUN_KEYS)))
+                fields[key] = _value(value) if key not in ("commit", "game", "log", "curve") else value
+            record(args.run, fields, args.registry)
+        elif args.command == "ship":
+            ship(args.run, args.weights, args.registry)
+        elif args.command == "check":
+            found = problems(args.registry, args.variants_dir)
+            for problem in found:
+                print("hideseek_registry: " + problem, file=sys.stderr)
+            return 1 if found else 0
+    except RegistryError as e:
+        print("hideseek_registry: %s" % e, file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
