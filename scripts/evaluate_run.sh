@@ -8,8 +8,8 @@ name=$1
 weights=$(realpath "$2")
 cd "$(dirname "$0")/.."
 source scripts/env.sh
-variant=$(/usr/bin/python3 -c 'import sys; sys.path.insert(0, "scripts"); import hideseek_registry as r; print(r.runs()[sys.argv[1]]["variant"])' "$name")
-game=$(/usr/bin/python3 -c 'import sys; sys.path.insert(0, "scripts"); import hideseek_registry as r; print(r.runs()[sys.argv[1]]["game"])' "$name")
+read -r variant game < <(/usr/bin/python3 -c 'import sys; sys.path.insert(0, "scripts"); import hideseek_registry as r
+e = r.runs()[sys.argv[1]]; print(e["variant"], e["game"])' "$name")
 docs="docs/runs/$name"
 mkdir -p "$docs"
 port=${HIDESEEK_PORT:-11479}

@@ -1,5 +1,6 @@
 #include "hideseek_world/run_registry.h"
 
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <tuple>
@@ -10,11 +11,6 @@
 namespace hideseek_world {
 
 namespace {
-
-std::string directoryOf(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? "." : path.substr(0, slash);
-}
 
 constexpr long long kMaxSteps = 1000000000000LL;
 
@@ -46,7 +42,7 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
     }
     f.rejectUnknown();
     if (!weights.empty()) {
-      r.weights = weights.front() == '/' ? weights : directoryOf(registry_file) + "/" + weights;
+      r.weights = weights.front() == '/' ? weights : (std::filesystem::path(registry_file).parent_path() / weights).string();
       if (!std::ifstream(r.weights).good()) {
         throw ConfigError(registry_file, f.field("weights"), "names " + r.weights + ", which cannot be read");
       }

@@ -16,7 +16,6 @@ import xml.etree.ElementTree as ET
 from xml.sax.saxutils import escape
 
 import roslaunch.config
-import roslaunch.substitution_args
 import roslaunch.xmlloader
 import rospkg
 from roslib.packages import find_node

@@ -28,7 +28,7 @@ steps=$(tail -n 1 "$run/training_log.csv" 2>/dev/null | cut -d, -f2)
 [ "${steps:-0}" -ge 512 ] || failures+=("the GRU run logged ${steps:-no} steps, wanted 512")
 exported=$(rosrun hideseek_hider export_policy "$run/checkpoint.pt" "$run/policy.pt" 2>&1)
 [[ "$exported" == *"network gru"* ]] || failures+=("export_policy does not see a GRU checkpoint: $exported")
-# --info (what train_pending.sh lists a run by): variant, network, the checkpoint's steps, wall s, episodes.
+# --info (what a checkpoint holds): variant, network, the checkpoint's steps, wall s, episodes.
 info_variant="" info_network="" info_steps="" info_wall="" info_episodes=""
 read -r info_variant info_network info_steps info_wall info_episodes < <(rosrun hideseek_hider export_policy --info "$run/checkpoint.pt")
 [ "$info_variant $info_network $info_steps" = "tiny_basic gru $steps" ] && [ "${info_episodes:-0}" -gt 0 ] ||
