@@ -23,8 +23,8 @@ std::optional<hideseek_seeker::EvaderKind> scriptedPolicy(const std::string& pol
   const auto kind = hideseek_seeker::evaderKind(policy.substr(prefix.size()));
   if (!kind) {
     throw std::invalid_argument("'" + policy +
-                                "' names no scripted evader: scripted/random, scripted/backpedal, scripted/flee or "
-                                "scripted/hide");
+                                "' names no scripted evader: scripted/random, scripted/backpedal, scripted/flee, "
+                                "scripted/hide or scripted/lap");
   }
   return kind;
 }

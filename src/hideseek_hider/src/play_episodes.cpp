@@ -4,7 +4,7 @@
 // usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]
 //   memoryless (GRU policies only, an ablation): every step starts from the zero state, so the
 //   trained GRU acts on the current image alone.
-//   POLICY: a checkpoint, "random", or scripted/EVADER (backpedal, flee, hide). Columns: seed,step,hider_x,hider_y,hider_yaw,seeker_x,
+//   POLICY: a checkpoint, "random", or scripted/EVADER (backpedal, flee, hide, lap). Columns: seed,step,hider_x,hider_y,hider_yaw,seeker_x,
 //   seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome (outcome on the last step of an
 //   episode: captured or survived; empty before). Beside it, OUTPUT_layouts.yaml (OUTPUT's name
 //   without .csv) holds each episode's obstacles and arena size, which differ per episode on

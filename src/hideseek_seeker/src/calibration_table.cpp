@@ -2,7 +2,8 @@
 // (the files of config/variants/), over seeds 0..99 by default, beside the paper's random-hider
 // living steps (config/paper_reference.yaml).
 // Usage: calibration_table [--config DIR] [--game FILE] [--csv FILE] [--episodes N] [--first-seed S]
-//                          [--evaders random,backpedal,flee,hide] [--episodes-csv FILE] [VARIANT...]
+//                          [--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE] [VARIANT...]
+// --lap-radius: the ring the lap evader aims for (m from the centre; default 5.5, game v2's outer ring).
 // --game: the game file (default DIR/game.yaml; DIR/game_v1.yaml is the first game).
 // --episodes-csv writes one variant's episodes of one evader (seed,living_steps,outcome) as
 // evaluate.launch does.
@@ -29,7 +30,7 @@ constexpr double kTolerance = 0.20;  // the calibration target: the random hider
 int usage(const std::string& why) {
   std::cerr << "calibration_table: " << why
             << "\nusage: calibration_table [--config DIR] [--game FILE] [--csv FILE] [--episodes N] [--first-seed S] "
-               "[--evaders random,backpedal,flee,hide] [--episodes-csv FILE] [VARIANT...]\n";
+               "[--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE] [VARIANT...]\n";
   return 2;
 }
 
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
   long first_seed = 0;
   std::vector<std::string> variants;
   std::vector<hs::EvaderKind> evaders(std::begin(hs::kAllEvaders), std::end(hs::kAllEvaders));
+  hs::EvaderOptions evader_options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
@@ -70,12 +72,15 @@ int main(int argc, char** argv) {
     } else if (a == "--first-seed" && has_value) {
       first_seed = std::atol(argv[++i]);
       if (first_seed < 0) return usage("--first-seed must not be negative");
+    } else if (a == "--lap-radius" && has_value) {
+      evader_options.lap_radius = std::atof(argv[++i]);
+      if (!(evader_options.lap_radius > 0.0)) return usage("--lap-radius must be positive (m)");
     } else if (a == "--evaders" && has_value) {
       evaders.clear();
       std::stringstream list(argv[++i]);
       for (std::string name; std::getline(list, name, ',');) {
         const auto kind = hs::evaderKind(name);
-        if (!kind) return usage("--evaders: unknown evader '" + name + "' (random, backpedal, flee, hide)");
+        if (!kind) return usage("--evaders: unknown evader '" + name + "' (random, backpedal, flee, hide, lap)");
         evaders.push_back(*kind);
       }
     } else if (!a.empty() && a[0] == '-') {
@@ -108,7 +113,7 @@ int main(int argc, char** argv) {
       const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(v.map_file));
       const double reference = paper[name] ? paper[name]["living_random"].as<double>() : NAN;
       for (const hs::EvaderKind evader : evaders) {
-        const auto played = hs::playScriptedHider(v, map, evader, static_cast<uint32_t>(first_seed), episodes);
+        const auto played = hs::playScriptedHider(v, map, evader, static_cast<uint32_t>(first_seed), episodes, {}, evader_options);
         const auto s = hs::summarize(played);
         if (!episodes_csv_path.empty()) {
           std::ofstream rows(episodes_csv_path);

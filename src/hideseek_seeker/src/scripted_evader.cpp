@@ -33,6 +33,8 @@ const char* evaderName(EvaderKind kind) {
       return "flee";
     case EvaderKind::kHide:
       return "hide";
+    case EvaderKind::kLap:
+      return "lap";
     default:
       return "random";
   }
@@ -52,6 +54,7 @@ void ScriptedEvader::reset(const hideseek_world::Layout& layout) {
   goal_.reset();
   last_seen_.reset();
   path_.clear();
+  lap_sign_ = 0;
   if (kind_ == EvaderKind::kRandom) return;
   if (planner_ && sameFootprints(layout, layout_)) return;
   layout_ = layout;
@@ -110,6 +113,8 @@ Action ScriptedEvader::act(const EvaderObservation& o) {
       return backpedal(o);
     case EvaderKind::kFlee:
       return flee(o);
+    case EvaderKind::kLap:
+      return lap(o);
     default:
       return hide(o);
   }
@@ -229,16 +234,50 @@ Action ScriptedEvader::hide(const EvaderObservation& o) {
   return flee(o);
 }
 
-Action ScriptedEvader::follow(const AgentState& hider) {
+Vec2 ScriptedEvader::lapTarget(Vec2 p, int sign) const {
+  const double angle = std::atan2(p.y, p.x) + sign * options_.lap_step_deg * hideseek_world::kPi / 180.0;
+  const Vec2 direction{std::cos(angle), std::sin(angle)};
+  // The ring's point ahead, moved inwards where reaching it means a detour into a pocket.
+  for (double r = options_.lap_radius; r > 0.5; r -= 0.5) {
+    const Vec2 target = r * direction;
+    const float way = fieldAt(from_hider_, target);
+    if (way != kUnreachable && way <= options_.lap_detour * distance(p, target)) return target;
+  }
+  return options_.lap_radius * direction;
+}
+
+Action ScriptedEvader::lap(const EvaderObservation& o) {
+  from_seeker_ = planner_->distancesFrom(o.seeker.position);
+  from_hider_ = planner_->distancesFrom(o.hider.position);
+  const float here = fieldAt(from_seeker_, o.hider.position);
+  // The sense that leads away from the seeker; turn round when the seeker is ahead.
+  if (lap_sign_ == 0) {
+    lap_sign_ = fieldAt(from_seeker_, lapTarget(o.hider.position, +1)) >=
+                        fieldAt(from_seeker_, lapTarget(o.hider.position, -1))
+                    ? +1
+                    : -1;
+  } else if (fieldAt(from_seeker_, lapTarget(o.hider.position, lap_sign_)) < here) {
+    lap_sign_ = -lap_sign_;
+  }
+  const Vec2 target = lapTarget(o.hider.position, lap_sign_);
+  if (!goal_ || distance(*goal_, target) > 0.5 * options_.retarget_distance) {
+    goal_ = target;
+    path_ = planner_->plan(o.hider.position, target);
+  }
+  return follow(o.hider, /*backward=*/true);
+}
+
+Action ScriptedEvader::follow(const AgentState& hider, bool backward) {
   const Vec2 here = hider.position;
   while (path_.size() > 1 && distance(here, path_.front()) <= kArrived) path_.erase(path_.begin());
   if (path_.empty()) return Action::kStay;
   size_t target = 0;
   while (target + 1 < path_.size() && planner_->lineOfSight(here, path_[target + 1])) ++target;
   const Vec2 t = path_[target];
-  const double error = wrapAngle(std::atan2(t.y - here.y, t.x - here.x) - hider.yaw);
+  const double heading = backward ? hider.yaw + hideseek_world::kPi : hider.yaw;
+  const double error = wrapAngle(std::atan2(t.y - here.y, t.x - here.x) - heading);
   const double turn_step = game_.hider.turn_rate * game_.stepDuration();
-  if (std::abs(error) <= 0.5 * turn_step) return Action::kForward;
+  if (std::abs(error) <= 0.5 * turn_step) return backward ? Action::kBackward : Action::kForward;
   return error > 0 ? Action::kTurnLeft : Action::kTurnRight;
 }
 

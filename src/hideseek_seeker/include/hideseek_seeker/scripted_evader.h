@@ -22,11 +22,13 @@ enum class EvaderKind {
   kFlee,       // turn away and run to the reachable free point farthest from the seeker
   kHide,       // go to a reachable point an obstacle hides from the seeker, stay while hidden, move on
                // when the seeker comes round
+  kLap,        // lap the arena's centre backward, facing the seeker that follows: what the first
+               // learned hiders of game v2 did
 };
 constexpr EvaderKind kAllEvaders[] = {EvaderKind::kRandom, EvaderKind::kBackpedal, EvaderKind::kFlee,
-                                      EvaderKind::kHide};
+                                      EvaderKind::kHide, EvaderKind::kLap};
 const char* evaderName(EvaderKind kind);
-// The evader called `name` (random, backpedal, flee, hide), or nothing.
+// The evader called `name` (random, backpedal, flee, hide, lap), or nothing.
 std::optional<EvaderKind> evaderKind(const std::string& name);
 
 // The true state an evader decides on.
@@ -46,6 +48,10 @@ struct EvaderOptions {
   double retarget_distance = 1.0; // m: flee replans when its goal moved this far
   double move_on_distance = 3.0;  // m: hide leaves its spot when the seeker's way to it is this short
   double hide_search_radius = 8.0;  // m: hide takes the safest spot within this path length
+  double lap_radius = 5.5;        // m from the arena's centre: the ring lap aims for (game v2's outer ring)
+  double lap_step_deg = 40.0;     // lap aims this far ahead round the centre
+  double lap_detour = 2.0;        // lap takes a smaller radius where the way ahead is longer than this
+                                  // many times the straight line (a pocket, not the ring)
 };
 
 class ScriptedEvader {
@@ -63,8 +69,12 @@ class ScriptedEvader {
   hideseek_world::Action backpedal(const EvaderObservation& o);
   hideseek_world::Action flee(const EvaderObservation& o);
   hideseek_world::Action hide(const EvaderObservation& o);
-  // Turn towards the next point of path_ (replanned to goal_ when needed), else move forward.
-  hideseek_world::Action follow(const hideseek_world::AgentState& hider);
+  hideseek_world::Action lap(const EvaderObservation& o);
+  // The point lap aims for, `sign` (+1 anticlockwise) round the centre from p.
+  Vec2 lapTarget(Vec2 p, int sign) const;
+  // Turn towards the next point of path_ (replanned to goal_ when needed), else move forward; with
+  // `backward`, turn the back towards it and move backward.
+  hideseek_world::Action follow(const hideseek_world::AgentState& hider, bool backward = false);
   // A distance field's value at p (pressed against a box: the best free neighbour's, plus the way there).
   float fieldAt(const std::vector<float>& field, Vec2 p) const;
   // Whether the seeker, turned towards an agent at p, would see it past the obstacles.
@@ -83,6 +93,7 @@ class ScriptedEvader {
   std::optional<Vec2> goal_;
   std::optional<Vec2> last_seen_;  // the hider's position when the seeker last saw it (or its spawn)
   std::vector<Vec2> path_;
+  int lap_sign_ = 0;  // lap's sense round the centre: +1 anticlockwise, -1 clockwise, 0 not chosen yet
 };
 
 }  // namespace hideseek_seeker
