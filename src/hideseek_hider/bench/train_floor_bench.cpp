@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "hideseek_hider/heap.h"
 #include "hideseek_hider/ppo.h"
 
 int main(int argc, char** argv) {
@@ -17,6 +18,9 @@ int main(int argc, char** argv) {
   const int threads = argc > 4 ? std::atoi(argv[4]) : 2;
   const std::string precision = argc > 5 ? argv[5] : "auto";
   const hideseek_hider::NetworkKind network = hideseek_hider::parseNetwork(argc > 6 ? argv[6] : "ff", "NETWORK");
+  // As the hider node does (hideseek_hider/heap.h); HIDESEEK_DEFAULT_HEAP=1 measures without it.
+  const char* default_heap = std::getenv("HIDESEEK_DEFAULT_HEAP");
+  if (!(default_heap && std::string(default_heap) == "1")) hideseek_hider::keepFreedMemoryInHeap();
   torch::set_num_threads(threads);
   torch::manual_seed(0);
   const hideseek_hider::PrecisionChoice choice = hideseek_hider::choosePrecision(

@@ -61,6 +61,15 @@ TEST(Calibration, BackpedalRarelySurvivesOnBasic) {
   EXPECT_LE(s.success_rate, 0.15) << describe("basic", EvaderKind::kBackpedal, s);
 }
 
+// Lapping the outer ring backward, facing the seeker, was what the first pilot of game v2 learned
+// (840 living steps, 83 % success on its first map, where the lap evader survived 97 %). The map's
+// second revision cuts that ring with spurs and bars, so lapping it must not win any more.
+TEST(Calibration, LappingTheOuterRingNoLongerWins) {
+  const ScriptedSummary s = summarize(play("basic", EvaderKind::kLap));
+  RecordProperty("lap_avg_living_steps", std::to_string(s.avg_living_steps));
+  EXPECT_LE(s.success_rate, 0.15) << describe("basic", EvaderKind::kLap, s);
+}
+
 // Occlusion pays: hiding outlives backing away on basic, and running on slowerhider.
 TEST(Calibration, HidingPays) {
   const ScriptedSummary hide = summarize(play("basic", EvaderKind::kHide));
