@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The calibration table: the random hider and the scripted evaders (backpedal, flee, hide) on every
+# The calibration table: the random hider and the scripted evaders (backpedal, flee, hide, lap) on every
 # variant over seeds 0..99, beside the paper's random-hider living steps, with the median and the
 # share of episodes in which the seeker sees the hider at step 0. Writes docs/calibration_table.md and
 # docs/calibration_table.csv (or the folder given) and prints the table. GAME (environment) names another
