@@ -64,15 +64,17 @@ TEST(Calibration, BackpedalRarelySurvivesOnBasic) {
 
 // Lapping the outer ring backward, facing the seeker, was what the first pilot of game v2 learned
 // (840 living steps, 83 % success on its first map, where the lap evader survived 97 %). The map's
-// second revision cuts that ring with spurs and bars, so lapping it must not win any more.
-TEST(Calibration, LappingTheOuterRingNoLongerWins) {
+// third revision cuts that ring twice with bars, into two halves: a lapping hider must turn back
+// along a half, and the scripted lap evader, which reads the true state, must not survive more
+// often than the pilot's upper bound for a learner (70 %; 46 % on the validation seeds).
+TEST(Calibration, LappingTheOuterRingDoesNotWin) {
   const ScriptedSummary s = summarize(play("basic", EvaderKind::kLap));
   RecordProperty("lap_avg_living_steps", std::to_string(s.avg_living_steps));
-  EXPECT_LE(s.success_rate, 0.15) << describe("basic", EvaderKind::kLap, s);
+  EXPECT_LE(s.success_rate, 0.70) << describe("basic", EvaderKind::kLap, s);
 }
 
-// The lap evader does lap: on the loop the map keeps, round the central cross (2.5 m), the hider,
-// faster than the seeker, survives most episodes (74 % when the map was chosen). Validation seeds
+// The lap evader does lap: on the loop round the central cross (2.5 m), the hider, faster than the
+// seeker, survives most episodes (74 % on the map's second revision). Validation seeds
 // 1000..1049. Were it to stand still or run into walls, the bound above would hold for nothing.
 TEST(Calibration, LapSurvivesOnTheLoopRoundTheCross) {
   EvaderOptions round_the_cross;

@@ -76,7 +76,7 @@ TEST_F(WorldNodeTest, ObservationBatchesCarryEveryArena) {
   EXPECT_EQ(hider_obs_->seed[0], 5u);
   EXPECT_EQ(hider_obs_->seed[1], 6u);
   EXPECT_EQ(seeker_obs_->maps.size(), static_cast<size_t>(kArenas));
-  EXPECT_EQ(seeker_obs_->maps[0].obstacles.size(), 22u);  // config/maps/deterministic.yaml
+  EXPECT_EQ(seeker_obs_->maps[0].obstacles.size(), 20u);  // config/maps/deterministic.yaml
   for (int i = 0; i < kArenas; ++i) {
     if (!seeker_obs_->sees_hider[i]) {
       EXPECT_EQ(seeker_obs_->hider_position[i].x, 0.0) << "the seeker must not learn where an unseen hider is";
@@ -197,7 +197,7 @@ TEST_F(WorldNodeTest, MarkersShowObstaclesAgentsAndViewCones) {
   ASSERT_TRUE(waitFor([&] { return playStep(0, 0) && markers != nullptr; }, 10.0));
   std::map<std::string, int> by_ns;
   for (const auto& m : markers->markers) by_ns[m.ns]++;
-  EXPECT_EQ(by_ns["obstacles"], 18);  // config/maps/deterministic.yaml
+  EXPECT_EQ(by_ns["obstacles"], 16);  // config/maps/deterministic.yaml
   EXPECT_EQ(by_ns["wall_cuts"], 4);
   EXPECT_EQ(by_ns["walls"], 4);
   EXPECT_EQ(by_ns["hider"], 1);
