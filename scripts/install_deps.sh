@@ -15,6 +15,7 @@ PACKAGES=(
   libgtest-dev googletest
   xvfb xauth imagemagick xterm
   python3-matplotlib python3-sklearn python3-scipy python3-pytest python3-yaml
+  catkin-lint   # checks the packages' CMake and package.xml files (issue #34)
 )
 
 missing=()
