@@ -8,7 +8,7 @@
   variant's launch file plays by default (policy:=shipped). At most one run ships weights for a
   variant, network and game.
 
-The C++ nodes read the runs through hideseek_world/run_registry.h, under the same rules.
+The C++ nodes read the runs through hideseek_game/run_registry.h, under the same rules.
 
 usage:
   hideseek_registry.py variants                       the variant names, one per line

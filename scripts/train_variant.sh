@@ -51,7 +51,7 @@ devel/lib/hideseek_hider/export_policy "$run/checkpoint.pt" "$run/policy.pt"
 docs="docs/runs/$name"
 mkdir -p "$docs"
 cp "$run/training_log.csv" "$docs/training_log.csv"
-/usr/bin/python3 scripts/plot_learning_curve.py "$docs/training_log.csv" "$docs/learning_curve.png" \
+/usr/bin/python3 src/hideseek_analysis/scripts/plot_learning_curve.py "$docs/training_log.csv" "$docs/learning_curve.png" \
   "$variant, network $network, game $game, training seed $seed, $trained steps"
 # The precision the hider chose, from its start-up line ("... on cpu in auto: bf16, ..."): the last
 # start's, since each resume rewrites launch.log.

@@ -138,7 +138,7 @@ def test_reproduce_report_pairs_the_splits_and_weighs_weaknesses_against_advanta
                                           "| basic_gru |\n\n**Goal: undecided**\n\n## What the memory does\n\n"
                                           "| slowerhider |\n")
     here = os.path.dirname(os.path.abspath(__file__))
-    paper = os.path.join(here, "..", "..", "hideseek_world", "config", "paper_reference.yaml")
+    paper = os.path.join(here, "..", "..", "hideseek_game", "config", "paper_reference.yaml")
     subprocess.run([sys.executable, os.path.join(here, "reproduce_report.py"), str(report), "--paper", paper],
                    check=True, cwd=here)
     with open(report / "table3.csv") as f:

@@ -8,12 +8,12 @@
 #include <stdexcept>
 
 #include "hideseek_seeker/scripted_game.h"
-#include "hideseek_world/arena.h"
-#include "hideseek_world/renderer.h"
+#include "hideseek_game/arena.h"
+#include "hideseek_game/renderer.h"
 
 namespace hideseek_analysis {
 
-namespace hw = hideseek_world;
+namespace hw = hideseek_game;
 
 namespace {
 

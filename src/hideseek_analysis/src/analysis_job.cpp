@@ -44,8 +44,8 @@ void runAnalysis(const AnalysisJob& job) {
               net->recurrent() ? "; GRU states of every step, re-rendered from the recorded poses" : "");
   std::fflush(stdout);
   const AnalysisInputsSummary s = writeAnalysisInputs(log, net, job.variant,
-                                                      std::make_shared<const hideseek_world::MapSpec>(
-                                                          hideseek_world::loadMapFile(job.variant.map_file)),
+                                                      std::make_shared<const hideseek_game::MapSpec>(
+                                                          hideseek_game::loadMapFile(job.variant.map_file)),
                                                       job.inputs, job.inputs_dir);
   if (net->recurrent()) {
     std::printf("analysis: GRU states replayed; %ld recorded images match their re-rendering (largest pixel "

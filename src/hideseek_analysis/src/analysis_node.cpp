@@ -14,10 +14,11 @@
 
 #include "hideseek_analysis/analysis_job.h"
 #include "hideseek_hider/hider_net.h"
-#include "hideseek_world/params.h"
-#include "hideseek_world/run_registry.h"
-#include "hideseek_world/topic_names.h"
-#include "hideseek_world/world_node_options.h"
+#include "hideseek_game/package_paths.h"
+#include "hideseek_game/params.h"
+#include "hideseek_game/run_registry.h"
+#include "hideseek_game/topic_names.h"
+#include "hideseek_game/world_node_options.h"
 
 namespace {
 
@@ -28,7 +29,7 @@ class Recorder {
     bag_.open(path, rosbag::bagmode::Write);
     bag_.setCompression(rosbag::compression::LZ4);
     // A deep queue: the bag is written in the callback, and lockstep may run ahead for a while.
-    sub_ = nh.subscribe(hideseek_world::kStepsTopic, 100000, &Recorder::onSteps, this);
+    sub_ = nh.subscribe(hideseek_game::kStepsTopic, 100000, &Recorder::onSteps, this);
   }
 
   bool complete() const { return recorded_ == wanted_; }
@@ -84,31 +85,33 @@ int main(int argc, char** argv) {
   {
     ros::NodeHandle nh, pnh("~");
     try {
-      job.variant = hideseek_world::loadVariantParams(pnh);
-      job.policy = hideseek_world::requireString(pnh, "policy", "a checkpoint file, or 'shipped'");
-      if (job.policy == hideseek_world::kShippedPolicy) {
-        const std::string registry = hideseek_world::requireString(pnh, "policy_registry", "the run registry file");
-        const std::string network = hideseek_world::readString(pnh, "network", "auto") == "gru" ? "gru" : "ff";
-        job.policy = hideseek_world::shippedPolicyFile(registry, job.variant.name, network, job.variant.game.name);
+      job.variant = hideseek_game::loadVariantParams(pnh);
+      job.policy = hideseek_game::requireString(pnh, "policy", "a checkpoint file, or 'shipped'");
+      if (job.policy == hideseek_game::kShippedPolicy) {
+        const std::string registry = hideseek_game::requireString(pnh, "policy_registry", "the run registry file");
+        const std::string network = hideseek_game::readString(pnh, "network", "auto") == "gru" ? "gru" : "ff";
+        job.policy = hideseek_game::shippedPolicyFile(registry, job.variant.name, network, job.variant.game.name);
         if (job.policy.empty()) {
           throw std::runtime_error("parameter " + pnh.resolveName("policy") + " is 'shipped', but " + registry +
                                    " ships no " + network + " policy for variant " + job.variant.name + " on game " +
                                    job.variant.game.name + ": give a checkpoint file");
         }
       }
-      job.inputs_dir = hideseek_world::requireString(pnh, "output_dir", "a folder");
-      job.report_dir = hideseek_world::readString(pnh, "report_dir", job.inputs_dir + "/report");
-      job.report_script = hideseek_world::requireString(pnh, "report_script", "report.py");
-      job.bag = hideseek_world::readString(pnh, "bag", job.inputs_dir + "/rollout.bag");
-      job.inputs.random_init_seed = static_cast<uint32_t>(hideseek_world::readInt(pnh, "random_init_seed", 0, 0, 1 << 30));
-      job.tsne_samples = hideseek_world::readInt(pnh, "tsne_samples", 3000, 100, 100000);
-      job.probe_splits = hideseek_world::readInt(pnh, "probe_splits", 5, 1, 100);
-      job.inputs.pixel_tolerance = hideseek_world::readInt(pnh, "pixel_tolerance", 0, 0, 255);
-      const std::string precision = hideseek_world::readString(pnh, "precision", "fp32");
+      job.inputs_dir = hideseek_game::requireString(pnh, "output_dir", "a folder");
+      job.report_dir = hideseek_game::readString(pnh, "report_dir", job.inputs_dir + "/report");
+      // The report script hideseek_analysis installs, unless a parameter names another.
+      job.report_script = hideseek_game::readString(pnh, "report_script", "");
+      if (job.report_script.empty()) job.report_script = hideseek_game::packageExecutable("hideseek_analysis", "report.py");
+      job.bag = hideseek_game::readString(pnh, "bag", job.inputs_dir + "/rollout.bag");
+      job.inputs.random_init_seed = static_cast<uint32_t>(hideseek_game::readInt(pnh, "random_init_seed", 0, 0, 1 << 30));
+      job.tsne_samples = hideseek_game::readInt(pnh, "tsne_samples", 3000, 100, 100000);
+      job.probe_splits = hideseek_game::readInt(pnh, "probe_splits", 5, 1, 100);
+      job.inputs.pixel_tolerance = hideseek_game::readInt(pnh, "pixel_tolerance", 0, 0, 255);
+      const std::string precision = hideseek_game::readString(pnh, "precision", "fp32");
       if (!pnh.hasParam("decisions")) {
         throw std::runtime_error("parameter " + pnh.resolveName("decisions") + " is required (decision steps to record)");
       }
-      const int decisions = hideseek_world::readInt(pnh, "decisions", 0, 1, 1 << 24);
+      const int decisions = hideseek_game::readInt(pnh, "decisions", 0, 1, 1 << 24);
       if (!std::filesystem::is_regular_file(job.policy)) {
         throw std::runtime_error("parameter " + pnh.resolveName("policy") + ": no checkpoint at " + job.policy);
       }

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "hideseek_analysis/analysis_job.h"
+#include "hideseek_game/package_paths.h"
 
 int main(int argc, char** argv) {
   if (argc < 5 || argc > 6) {
@@ -18,14 +19,14 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const std::string config = HIDESEEK_CONFIG_DIR;
+    const std::string config = hideseek_game::configDirectory();
     hideseek_analysis::AnalysisJob job;
-    job.variant = hideseek_world::loadVariantConfig(config + "/game.yaml", config + "/variants/" + argv[1] + ".yaml");
+    job.variant = hideseek_game::loadVariantConfig(config + "/game.yaml", config + "/variants/" + argv[1] + ".yaml");
     job.policy = argv[2];
     job.bag = argv[3];
     job.inputs_dir = argv[4];
     job.report_dir = argc > 5 ? argv[5] : job.inputs_dir + "/report";
-    job.report_script = HIDESEEK_REPORT_SCRIPT;
+    job.report_script = hideseek_game::packageExecutable("hideseek_analysis", "report.py");
     // GRU policies: a bag recorded with another Mesa may differ from its re-rendering by a level or two.
     if (const char* tolerance = std::getenv("HIDESEEK_PIXEL_TOLERANCE")) {
       char* end = nullptr;

@@ -8,13 +8,13 @@
 #include <sstream>
 
 #include "hideseek_seeker/scripted_game.h"
-#include "hideseek_world/hash_uniform.h"
-#include "hideseek_world/world.h"
+#include "hideseek_game/hash_uniform.h"
+#include "hideseek_game/world.h"
 
 namespace hideseek_analysis {
 namespace {
 
-namespace hw = hideseek_world;
+namespace hw = hideseek_game;
 const std::string kConfig = HIDESEEK_CONFIG_DIR;
 
 hw::VariantConfig variant(const std::string& name) {

@@ -12,10 +12,10 @@
 #include <utility>
 
 #include "hideseek_hider/episode_tally.h"
-#include "hideseek_world/params.h"
-#include "hideseek_world/run_registry.h"
-#include "hideseek_world/world_node_options.h"
-#include "hideseek_world/topic_names.h"
+#include "hideseek_game/params.h"
+#include "hideseek_game/run_registry.h"
+#include "hideseek_game/world_node_options.h"
+#include "hideseek_game/topic_names.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "evaluator");
@@ -23,23 +23,23 @@ int main(int argc, char** argv) {
   int episodes = 0, first_seed = 0;
   std::string output_dir, variant, policy;
   try {
-    episodes = hideseek_world::readInt(pnh, "episodes", 100, 1, 1 << 24);
-    first_seed = hideseek_world::readInt(pnh, "first_seed", 0, 0, 1 << 30);
-    output_dir = hideseek_world::readString(pnh, "output_dir", ".");
-    variant = hideseek_world::readString(pnh, "variant", "unknown");
+    episodes = hideseek_game::readInt(pnh, "episodes", 100, 1, 1 << 24);
+    first_seed = hideseek_game::readInt(pnh, "first_seed", 0, 0, 1 << 30);
+    output_dir = hideseek_game::readString(pnh, "output_dir", ".");
+    variant = hideseek_game::readString(pnh, "variant", "unknown");
     // A network policy is evaluated either greedily or sampling its actions: the table says which.
-    policy = hideseek_world::readString(pnh, "policy", "random");
-    if (policy == hideseek_world::kShippedPolicy) {
+    policy = hideseek_game::readString(pnh, "policy", "random");
+    if (policy == hideseek_game::kShippedPolicy) {
       // The table names the file the hider plays (the hider node resolves it the same way).
-      const hideseek_world::VariantConfig played = hideseek_world::loadVariantParams(pnh);
-      policy = hideseek_world::shippedPolicyFile(
-          hideseek_world::requireString(pnh, "policy_registry", "the run registry file"), played.name,
-          hideseek_world::readString(pnh, "network", "auto") == "gru" ? "gru" : "ff", played.game.name);
+      const hideseek_game::VariantConfig played = hideseek_game::loadVariantParams(pnh);
+      policy = hideseek_game::shippedPolicyFile(
+          hideseek_game::requireString(pnh, "policy_registry", "the run registry file"), played.name,
+          hideseek_game::readString(pnh, "network", "auto") == "gru" ? "gru" : "ff", played.game.name);
       if (policy.empty()) policy = "random";
     }
     if (policy != "random" && policy != "human") {
-      policy += hideseek_world::readBool(pnh, "greedy", true) ? " (greedy" : " (sampled";
-      policy += hideseek_world::readBool(pnh, "memoryless", false) ? ", memoryless)" : ")";
+      policy += hideseek_game::readBool(pnh, "greedy", true) ? " (greedy" : " (sampled";
+      policy += hideseek_game::readBool(pnh, "memoryless", false) ? ", memoryless)" : ")";
     }
   } catch (const std::exception& e) {
     ROS_FATAL("evaluator: %s", e.what());
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
   // Every episode result, however far behind the world this node falls: the world publishes them
   // with a deep queue, and evaluate.launch holds lockstep until this subscription is connected.
   auto sub = nh.subscribe<hideseek_msgs::EpisodeResult>(
-      hideseek_world::kEpisodesTopic, 10000, [&](const hideseek_msgs::EpisodeResult::ConstPtr& m) {
+      hideseek_game::kEpisodesTopic, 10000, [&](const hideseek_msgs::EpisodeResult::ConstPtr& m) {
         tally.record(m->seed, m->steps, m->outcome == hideseek_msgs::EpisodeResult::OUTCOME_SURVIVED);
         if (tally.collected() >= reported + 10) {
           reported = tally.collected();

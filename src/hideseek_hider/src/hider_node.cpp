@@ -5,11 +5,11 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "hideseek_world/params.h"
-#include "hideseek_world/run_registry.h"
-#include "hideseek_world/topic_names.h"
-#include "hideseek_world/wall_throttle.h"
-#include "hideseek_world/world_node_options.h"
+#include "hideseek_game/params.h"
+#include "hideseek_game/run_registry.h"
+#include "hideseek_game/topic_names.h"
+#include "hideseek_game/wall_throttle.h"
+#include "hideseek_game/world_node_options.h"
 
 namespace hideseek_hider {
 
@@ -29,18 +29,18 @@ torch::Device deviceFrom(const std::string& name, const std::string& param) {
 }  // namespace
 
 HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
-  using hideseek_world::readString;
+  using hideseek_game::readString;
   HiderNodeOptions o;
-  o.variant = hideseek_world::loadVariantParams(pnh);
+  o.variant = hideseek_game::loadVariantParams(pnh);
   o.policy = readString(pnh, "policy", "random");
   // Parsed in every mode, so that a typo is refused even where the network is not used.
-  const std::string network = hideseek_world::readChoice(pnh, "network", "auto", {"auto", "ff", "gru"});
+  const std::string network = hideseek_game::readChoice(pnh, "network", "auto", {"auto", "ff", "gru"});
   if (network != "auto") o.network = parseNetwork(network, pnh.resolveName("network"));
   std::string mode =
-      hideseek_world::readChoice(pnh, "mode", o.policy == "random" ? "random" : "policy", {"random", "policy", "train"});
-  if (o.policy == hideseek_world::kShippedPolicy && mode == "policy") {
-    const std::string registry = hideseek_world::requireString(pnh, "policy_registry", "the run registry file");
-    o.policy = hideseek_world::shippedPolicyFile(registry, o.variant.name, network == "gru" ? "gru" : "ff",
+      hideseek_game::readChoice(pnh, "mode", o.policy == "random" ? "random" : "policy", {"random", "policy", "train"});
+  if (o.policy == hideseek_game::kShippedPolicy && mode == "policy") {
+    const std::string registry = hideseek_game::requireString(pnh, "policy_registry", "the run registry file");
+    o.policy = hideseek_game::shippedPolicyFile(registry, o.variant.name, network == "gru" ? "gru" : "ff",
                                                  o.variant.game.name);
     if (o.policy.empty()) {
       ROS_WARN("hider: no policy is shipped for variant '%s' on game %s (%s); playing the uniformly random hider. "
@@ -51,28 +51,28 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
     }
   }
   o.mode = mode == "random" ? HiderMode::kRandom : mode == "policy" ? HiderMode::kPolicy : HiderMode::kTrain;
-  o.threads = hideseek_world::readInt(pnh, "threads", 2, 1, 64);
+  o.threads = hideseek_game::readInt(pnh, "threads", 2, 1, 64);
   o.precision = parsePrecision(readString(pnh, "precision", "auto"), pnh.resolveName("precision"));
-  o.memoryless = hideseek_world::readBool(pnh, "memoryless", false);
+  o.memoryless = hideseek_game::readBool(pnh, "memoryless", false);
   if (o.memoryless && o.mode != HiderMode::kPolicy) {
     throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true, but the hider is in " + mode +
                                 " mode: memoryless applies to a GRU policy only");
   }
   if (o.mode == HiderMode::kRandom) return o;
   o.device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
-  o.greedy = hideseek_world::readBool(pnh, "greedy", true);
+  o.greedy = hideseek_game::readBool(pnh, "greedy", true);
   if (o.mode == HiderMode::kPolicy) return o;
   TrainingOptions& t = o.training;
   t.variant = o.variant.name;
   t.image_height = o.variant.game.camera.height;
   t.image_width = o.variant.game.camera.width;
-  t.output_dir = hideseek_world::requireString(pnh, "output_dir", "a folder, in train mode");
+  t.output_dir = hideseek_game::requireString(pnh, "output_dir", "a folder, in train mode");
   // A double: launch files write large step counts as 2e6.
-  t.total_steps = static_cast<int64_t>(hideseek_world::readDouble(pnh, "total_steps", 1e6, 1.0, 1e12));
-  t.checkpoint_interval_s = hideseek_world::readDouble(pnh, "checkpoint_interval", 300.0, 1e-3, 1e6);
-  o.ppo = loadPpoOptions(hideseek_world::requireString(pnh, "ppo_config", "a file path, in train mode"));
-  o.num_arenas = hideseek_world::readInt(pnh, "num_arenas", 16, 1, 64);
-  o.seed = hideseek_world::readInt(pnh, "seed", 0, 0, 1 << 30);
+  t.total_steps = static_cast<int64_t>(hideseek_game::readDouble(pnh, "total_steps", 1e6, 1.0, 1e12));
+  t.checkpoint_interval_s = hideseek_game::readDouble(pnh, "checkpoint_interval", 300.0, 1e-3, 1e6);
+  o.ppo = loadPpoOptions(hideseek_game::requireString(pnh, "ppo_config", "a file path, in train mode"));
+  o.num_arenas = hideseek_game::readInt(pnh, "num_arenas", 16, 1, 64);
+  o.seed = hideseek_game::readInt(pnh, "seed", 0, 0, 1 << 30);
   return o;
 }
 
@@ -116,8 +116,8 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
   } else {
     startTraining(o);
   }
-  actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kHiderActionsTopic, 2);
-  observations_sub_ = nh_.subscribe(hideseek_world::kHiderObservationsTopic, 2, &HiderNode::onObservations, this,
+  actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_game::kHiderActionsTopic, 2);
+  observations_sub_ = nh_.subscribe(hideseek_game::kHiderObservationsTopic, 2, &HiderNode::onObservations, this,
                                     ros::TransportHints().tcpNoDelay());
 }
 
@@ -154,7 +154,7 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
       msg->images.size() != n * bytes || msg->step.size() != n || msg->seed.size() != n ||
       msg->rewards.size() != n || msg->done.size() != n) {
     ++malformed_;
-    static hideseek_world::WallThrottle throttle(2.0);
+    static hideseek_game::WallThrottle throttle(2.0);
     if (throttle.ready()) {
       ROS_WARN(
           "hider: ignored an observation batch that does not hold %zu %dx%d images with step ids (%lu so far; %lu more "

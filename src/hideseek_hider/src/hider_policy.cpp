@@ -3,16 +3,16 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "hideseek_world/hash_uniform.h"
+#include "hideseek_game/hash_uniform.h"
 
 namespace hideseek_hider {
 
-using hideseek_world::hashUniform;
+using hideseek_game::hashUniform;
 
 std::vector<uint8_t> RandomHiderPolicy::act(const std::vector<ArenaObservation>& batch) {
   std::vector<uint8_t> actions(batch.size());
   for (size_t i = 0; i < batch.size(); ++i) {
-    actions[i] = hideseek_world::hashAction(batch[i].seed, batch[i].step, hideseek_world::kSaltRandomHider);
+    actions[i] = hideseek_game::hashAction(batch[i].seed, batch[i].step, hideseek_game::kSaltRandomHider);
   }
   return actions;
 }
@@ -29,10 +29,10 @@ std::optional<hideseek_seeker::EvaderKind> scriptedPolicy(const std::string& pol
   return kind;
 }
 
-ScriptedHiderPolicy::ScriptedHiderPolicy(hideseek_seeker::EvaderKind kind, const hideseek_world::VariantConfig& variant)
+ScriptedHiderPolicy::ScriptedHiderPolicy(hideseek_seeker::EvaderKind kind, const hideseek_game::VariantConfig& variant)
     : kind_(kind),
       variant_(variant),
-      layout_source_(variant.game, std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(variant.map_file))) {}
+      layout_source_(variant.game, std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(variant.map_file))) {}
 
 std::vector<uint8_t> ScriptedHiderPolicy::act(const std::vector<ArenaObservation>& batch) {
   if (evaders_.size() != batch.size()) {
@@ -98,7 +98,7 @@ std::vector<uint8_t> NetworkHiderPolicy::act(const std::vector<ArenaObservation>
       continue;
     }
     // Inverse-CDF sampling with a reproducible draw.
-    const double u = hashUniform(batch[i].seed, batch[i].step, hideseek_world::kSaltSampledPolicy);
+    const double u = hashUniform(batch[i].seed, batch[i].step, hideseek_game::kSaltSampledPolicy);
     double cumulative = 0.0;
     actions[i] = kActions - 1;
     for (int a = 0; a < kActions; ++a) {

@@ -20,7 +20,8 @@
 
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_seeker/scripted_game.h"
-#include "hideseek_world/world.h"
+#include "hideseek_game/package_paths.h"
+#include "hideseek_game/world.h"
 
 int main(int argc, char** argv) {
   if (argc < 6 || argc > 8) {
@@ -34,7 +35,7 @@ int main(int argc, char** argv) {
                  mode.c_str(), memory.c_str());
     return 2;
   }
-  const std::string config = HIDESEEK_CONFIG_DIR, variant_name = argv[1], policy_path = argv[2];
+  const std::string variant_name = argv[1], policy_path = argv[2];
   const long first_seed = std::atol(argv[3]), count = std::atol(argv[4]);
   const bool greedy = mode == "greedy";
   if (first_seed < 0 || count < 1 || count > 64) {
@@ -42,7 +43,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    namespace hw = hideseek_world;
+    namespace hw = hideseek_game;
+    const std::string config = hw::configDirectory();
     const auto variant = hw::loadVariantConfig(config + "/game.yaml", config + "/variants/" + variant_name + ".yaml");
     const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(variant.map_file));
     const int n = static_cast<int>(count);

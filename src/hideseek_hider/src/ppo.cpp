@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "hideseek_world/yaml_fields.h"
+#include "hideseek_game/yaml_fields.h"
 
 namespace hideseek_hider {
 
 PpoOptions loadPpoOptions(const std::string& path) {
-  const YAML::Node root = hideseek_world::loadYamlFile(path);
-  hideseek_world::YamlFields f(root, path, "");
+  const YAML::Node root = hideseek_game::loadYamlFile(path);
+  hideseek_game::YamlFields f(root, path, "");
   PpoOptions o;
   o.rollout_steps = f.integer("rollout_steps", o.rollout_steps, 1, 100000);
   o.epochs = f.integer("epochs", o.epochs, 1, 1000);

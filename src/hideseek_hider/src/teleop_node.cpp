@@ -14,8 +14,8 @@
 #include <string>
 
 #include "hideseek_hider/teleop.h"
-#include "hideseek_world/params.h"
-#include "hideseek_world/topic_names.h"
+#include "hideseek_game/params.h"
+#include "hideseek_game/topic_names.h"
 
 namespace {
 
@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   ros::NodeHandle nh, pnh("~");
   double key_timeout = 0.0;
   try {
-    key_timeout = hideseek_world::readDouble(pnh, "key_timeout", 0.7, 0.0, 60.0);
+    key_timeout = hideseek_game::readDouble(pnh, "key_timeout", 0.7, 0.0, 60.0);
   } catch (const std::exception& e) {
     ROS_FATAL("teleop: %s", e.what());
     return 1;
@@ -83,9 +83,9 @@ int main(int argc, char** argv) {
   hideseek_hider::TeleopAction action(key_timeout);
   std::string last_outcome = "no episode finished yet";
   uint32_t previous_step = 0;
-  auto pub = nh.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kHiderActionsTopic, 2);
+  auto pub = nh.advertise<hideseek_msgs::ActionBatch>(hideseek_game::kHiderActionsTopic, 2);
   auto sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
-      hideseek_world::kHiderObservationsTopic, 1, [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) {
+      hideseek_game::kHiderObservationsTopic, 1, [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) {
         const size_t n = m->num_arenas, bytes = static_cast<size_t>(m->height) * m->width * 3;
         if (n == 0 || m->step.size() != n || m->images.size() != n * bytes || m->done.size() != n ||
             m->outcome.size() != n || m->episode.size() != n) {

@@ -6,17 +6,17 @@
 #include <vector>
 
 #include "hideseek_hider/hider_net.h"
-#include "hideseek_world/hash_uniform.h"
-#include "hideseek_world/world.h"
+#include "hideseek_game/hash_uniform.h"
+#include "hideseek_game/world.h"
 
 namespace hideseek_hider {
 
 TEST(InferencePrecision, Bf16AndFp32PickTheSameGreedyActionOn99PercentOf10000Observations) {
   const std::string config = HIDESEEK_CONFIG_DIR;
-  const auto variant = hideseek_world::loadVariantConfig(config + "/game.yaml", config + "/variants/basic.yaml");
-  const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(variant.map_file));
+  const auto variant = hideseek_game::loadVariantConfig(config + "/game.yaml", config + "/variants/basic.yaml");
+  const auto map = std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(variant.map_file));
   constexpr int kArenas = 16, kObservations = 10000;
-  hideseek_world::World world(variant.game, map, kArenas, 0, true, 1);
+  hideseek_game::World world(variant.game, map, kArenas, 0, true, 1);
   const int h = variant.game.camera.height, w = variant.game.camera.width;
 
   HiderNet fp32 = loadCheckpoint(std::string(HIDESEEK_POLICY_DIR) + "/basic.pt", h, w);
@@ -37,9 +37,9 @@ TEST(InferencePrecision, Bf16AndFp32PickTheSameGreedyActionOn99PercentOf10000Obs
     // The policy plays its own games (fp32 greedy) against a randomly walking seeker.
     for (int i = 0; i < kArenas; ++i) {
       const auto& arena = world.arena(i);
-      const auto seeker = hideseek_world::hashAction(arena.seed(), static_cast<uint32_t>(arena.stepCount()), 0x5e);
-      world.stepArena(i, static_cast<hideseek_world::Action>(a[i].item<int64_t>()),
-                      static_cast<hideseek_world::Action>(seeker));
+      const auto seeker = hideseek_game::hashAction(arena.seed(), static_cast<uint32_t>(arena.stepCount()), 0x5e);
+      world.stepArena(i, static_cast<hideseek_game::Action>(a[i].item<int64_t>()),
+                      static_cast<hideseek_game::Action>(seeker));
     }
   }
   const double agreement = static_cast<double>(agree) / seen;

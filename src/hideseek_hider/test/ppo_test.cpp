@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "hideseek_hider/ppo.h"
-#include "hideseek_world/config_error.h"
+#include "hideseek_game/config_error.h"
 
 namespace hideseek_hider {
 
@@ -39,7 +39,7 @@ TEST(PpoOptions, ShippedConfigLoadsAndTyposAreRejected) {
   EXPECT_EQ(o.rollout_steps * 16, 1024);
   const std::string bad = testing::TempDir() + "ppo_typo.yaml";
   std::ofstream(bad) << "learning_rat: 0.1\n";
-  EXPECT_THROW(loadPpoOptions(bad), hideseek_world::ConfigError);
+  EXPECT_THROW(loadPpoOptions(bad), hideseek_game::ConfigError);
 }
 
 namespace {

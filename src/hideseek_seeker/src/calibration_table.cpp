@@ -21,7 +21,8 @@
 #include <vector>
 
 #include "hideseek_seeker/scripted_game.h"
-#include "hideseek_world/config_error.h"
+#include "hideseek_game/config_error.h"
+#include "hideseek_game/package_paths.h"
 
 namespace {
 
@@ -48,7 +49,7 @@ std::vector<std::string> discoverVariants(const std::string& config_dir) {
 
 int main(int argc, char** argv) {
   namespace hs = hideseek_seeker;
-  std::string config_dir = HIDESEEK_CONFIG_DIR;
+  std::string config_dir;  // --config DIR, else hideseek_game's installed config/
   std::string game_file, csv_path, episodes_csv_path;
   int episodes = 100;
   long first_seed = 0;
@@ -89,6 +90,14 @@ int main(int argc, char** argv) {
       variants.push_back(a);
     }
   }
+  if (config_dir.empty()) {
+    try {
+      config_dir = hideseek_game::configDirectory();
+    } catch (const std::exception& e) {
+      std::cerr << "calibration_table: " << e.what() << " (or give --config DIR)\n";
+      return 2;
+    }
+  }
   if (game_file.empty()) game_file = config_dir + "/game.yaml";
   if (variants.empty()) variants = discoverVariants(config_dir);
   if (!episodes_csv_path.empty() && (variants.size() != 1 || evaders.size() != 1)) {
@@ -109,8 +118,8 @@ int main(int argc, char** argv) {
                 "seeker sees hider at step 0 |\n");
     std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
     for (const auto& name : variants) {
-      const auto v = hideseek_world::loadVariantConfig(game_file, config_dir + "/variants/" + name + ".yaml");
-      const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(v.map_file));
+      const auto v = hideseek_game::loadVariantConfig(game_file, config_dir + "/variants/" + name + ".yaml");
+      const auto map = std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(v.map_file));
       const double reference = paper[name] ? paper[name]["living_random"].as<double>() : NAN;
       for (const hs::EvaderKind evader : evaders) {
         const auto played = hs::playScriptedHider(v, map, evader, static_cast<uint32_t>(first_seed), episodes, {}, evader_options);
@@ -139,7 +148,7 @@ int main(int argc, char** argv) {
         }
       }
     }
-  } catch (const hideseek_world::ConfigError& e) {
+  } catch (const hideseek_game::ConfigError& e) {
     std::cerr << "calibration_table: " << e.what() << '\n';
     return 1;
   } catch (const YAML::Exception& e) {

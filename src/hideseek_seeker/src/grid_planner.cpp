@@ -10,8 +10,8 @@ namespace hideseek_seeker {
 bool sameFootprints(const Layout& a, const Layout& b) {
   if (a.half_extent != b.half_extent || a.obstacles.size() != b.obstacles.size()) return false;
   for (size_t i = 0; i < a.obstacles.size(); ++i) {
-    const hideseek_world::Box& p = a.obstacles[i];
-    const hideseek_world::Box& q = b.obstacles[i];
+    const hideseek_game::Box& p = a.obstacles[i];
+    const hideseek_game::Box& q = b.obstacles[i];
     if (p.center.x != q.center.x || p.center.y != q.center.y || p.size.x != q.size.x || p.size.y != q.size.y ||
         p.yaw != q.yaw) {
       return false;
@@ -48,7 +48,7 @@ GridCell GridPlanner::nearestFree(GridCell c) const {
 }
 
 bool GridPlanner::lineOfSight(Vec2 a, Vec2 b) const {
-  const double len = hideseek_world::distance(a, b);
+  const double len = hideseek_game::distance(a, b);
   const int samples = std::max(1, static_cast<int>(std::ceil(len / (0.5 * grid_.resolution()))));
   for (int i = 0; i <= samples; ++i) {
     const double t = static_cast<double>(i) / samples;

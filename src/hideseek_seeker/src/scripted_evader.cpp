@@ -4,21 +4,21 @@
 #include <cmath>
 #include <limits>
 
-#include "hideseek_world/hash_uniform.h"
-#include "hideseek_world/visibility.h"
+#include "hideseek_game/hash_uniform.h"
+#include "hideseek_game/visibility.h"
 
 namespace hideseek_seeker {
 
-using hideseek_world::Action;
-using hideseek_world::AgentState;
-using hideseek_world::distance;
-using hideseek_world::wrapAngle;
+using hideseek_game::Action;
+using hideseek_game::AgentState;
+using hideseek_game::distance;
+using hideseek_game::wrapAngle;
 
 namespace {
 
 constexpr float kUnreachable = std::numeric_limits<float>::infinity();
 constexpr double kOutOfViewPenalty = 100.0;  // m: backpedal never trades the seeker's view for distance
-constexpr double kInViewMargin = 10.0 * hideseek_world::kPi / 180.0;  // keep the seeker this far inside the image
+constexpr double kInViewMargin = 10.0 * hideseek_game::kPi / 180.0;  // keep the seeker this far inside the image
 constexpr double kArrived = 0.3;             // m: a path point or hiding spot counts as reached
 constexpr Action kLookahead[] = {Action::kBackward, Action::kStay, Action::kTurnLeft, Action::kTurnRight,
                                  Action::kForward};
@@ -47,10 +47,10 @@ std::optional<EvaderKind> evaderKind(const std::string& name) {
   return std::nullopt;
 }
 
-ScriptedEvader::ScriptedEvader(EvaderKind kind, const hideseek_world::GameOptions& game, const EvaderOptions& options)
+ScriptedEvader::ScriptedEvader(EvaderKind kind, const hideseek_game::GameOptions& game, const EvaderOptions& options)
     : kind_(kind), game_(game), options_(options) {}
 
-void ScriptedEvader::reset(const hideseek_world::Layout& layout) {
+void ScriptedEvader::reset(const hideseek_game::Layout& layout) {
   goal_.reset();
   last_seen_.reset();
   path_.clear();
@@ -65,7 +65,7 @@ void ScriptedEvader::reset(const hideseek_world::Layout& layout) {
     for (int x = 0; x < grid.width(); ++x) {
       const Vec2 c = grid.centerOf({x, y});
       double d = layout.half_extent - std::max(std::abs(c.x), std::abs(c.y));
-      for (const auto& b : layout.obstacles) d = std::min(d, hideseek_world::footprintDistance(b, c));
+      for (const auto& b : layout.obstacles) d = std::min(d, hideseek_game::footprintDistance(b, c));
       clearance_[grid.index({x, y})] = static_cast<float>(std::max(0.0, d - game_.agent_radius));
     }
   }
@@ -73,13 +73,13 @@ void ScriptedEvader::reset(const hideseek_world::Layout& layout) {
 
 float ScriptedEvader::fieldAt(const std::vector<float>& field, Vec2 p) const {
   const auto& grid = planner_->grid();
-  const hideseek_world::GridCell c = grid.cellOf(p);
+  const hideseek_game::GridCell c = grid.cellOf(p);
   if (grid.isFree(c)) return field[grid.index(c)];
   // Inside the inflation (pressed against a box): the best free neighbour plus the step to it.
   float best = kUnreachable;
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
-      const hideseek_world::GridCell n{c.x + dx, c.y + dy};
+      const hideseek_game::GridCell n{c.x + dx, c.y + dy};
       if (grid.isFree(n)) best = std::min(best, field[grid.index(n)] + static_cast<float>(distance(p, grid.centerOf(n))));
     }
   }
@@ -89,7 +89,7 @@ float ScriptedEvader::fieldAt(const std::vector<float>& field, Vec2 p) const {
 bool ScriptedEvader::hiddenFrom(Vec2 seeker, Vec2 p) const {
   AgentState viewer{seeker, std::atan2(p.y - seeker.y, p.x - seeker.x), 0.0};
   AgentState target{p, 0.0, 0.0};
-  return !hideseek_world::agentSeesAgent(viewer, target, layout_, game_);
+  return !hideseek_game::agentSeesAgent(viewer, target, layout_, game_);
 }
 
 bool ScriptedEvader::hiddenFromSearch(Vec2 seeker, Vec2 p) const {
@@ -101,11 +101,11 @@ bool ScriptedEvader::hiddenFromSearch(Vec2 seeker, Vec2 p) const {
 
 Action ScriptedEvader::act(const EvaderObservation& o) {
   if (kind_ == EvaderKind::kRandom) {
-    return static_cast<Action>(hideseek_world::hashAction(o.seed, o.step, hideseek_world::kSaltRandomHider));
+    return static_cast<Action>(hideseek_game::hashAction(o.seed, o.step, hideseek_game::kSaltRandomHider));
   }
   // What the seeker knows of the hider, read off the true state as the seeker would perceive it.
   if ((o.step == 0 && game_.seeker_knows_spawn) ||
-      hideseek_world::agentSeesAgent(o.seeker, o.hider, layout_, game_)) {
+      hideseek_game::agentSeesAgent(o.seeker, o.hider, layout_, game_)) {
     last_seen_ = o.hider.position;
   }
   switch (kind_) {
@@ -127,14 +127,14 @@ Action ScriptedEvader::backpedal(const EvaderObservation& o) {
   // Two decision steps ahead, the seeker standing still: the first action of the best pair.
   auto play = [&](AgentState s, Action a) {
     for (int f = 0; f < game_.action_repeat; ++f) {
-      hideseek_world::advanceAgent(s, a, game_.hider, game_.physics_dt, layout_, game_.agent_radius);
+      hideseek_game::advanceAgent(s, a, game_.hider, game_.physics_dt, layout_, game_.agent_radius);
     }
     return s;
   };
   auto score = [&](const AgentState& s) {
     const Vec2 to_seeker = o.seeker.position - s.position;
     const double off = std::abs(wrapAngle(std::atan2(to_seeker.y, to_seeker.x) - s.yaw));
-    const hideseek_world::GridCell c = grid.cellOf(s.position);
+    const hideseek_game::GridCell c = grid.cellOf(s.position);
     const double clearance = grid.isFree(c) ? clearance_[grid.index(c)] : 0.0;
     return static_cast<double>(fieldAt(from_seeker_, s.position)) +
            options_.clearance_weight * std::min(clearance, options_.clearance_cap) -
@@ -177,7 +177,7 @@ Action ScriptedEvader::hide(const EvaderObservation& o) {
   from_seeker_ = planner_->distancesFrom(o.seeker.position);
   from_hider_ = planner_->distancesFrom(o.hider.position);
   const double hider_speed =
-      game_.hider.mode == hideseek_world::SpeedMode::kConstant ? game_.hider.speed : game_.hider.max_speed;
+      game_.hider.mode == hideseek_game::SpeedMode::kConstant ? game_.hider.speed : game_.hider.max_speed;
   const double ratio = game_.seeker.speed / std::max(hider_speed, 1e-6);
   // A spot is safe when the hider gets there, at its speed, well before the seeker at its own.
   auto safe_at = [&](float dh, float ds) {
@@ -235,7 +235,7 @@ Action ScriptedEvader::hide(const EvaderObservation& o) {
 }
 
 Vec2 ScriptedEvader::lapTarget(Vec2 p, int sign) const {
-  const double angle = std::atan2(p.y, p.x) + sign * options_.lap_step_deg * hideseek_world::kPi / 180.0;
+  const double angle = std::atan2(p.y, p.x) + sign * options_.lap_step_deg * hideseek_game::kPi / 180.0;
   const Vec2 direction{std::cos(angle), std::sin(angle)};
   // The ring's point ahead, moved inwards where reaching it means a detour into a pocket.
   for (double r = options_.lap_radius; r > 0.5; r -= 0.5) {
@@ -274,7 +274,7 @@ Action ScriptedEvader::follow(const AgentState& hider, bool backward) {
   size_t target = 0;
   while (target + 1 < path_.size() && planner_->lineOfSight(here, path_[target + 1])) ++target;
   const Vec2 t = path_[target];
-  const double heading = backward ? hider.yaw + hideseek_world::kPi : hider.yaw;
+  const double heading = backward ? hider.yaw + hideseek_game::kPi : hider.yaw;
   const double error = wrapAngle(std::atan2(t.y - here.y, t.x - here.x) - heading);
   const double turn_step = game_.hider.turn_rate * game_.stepDuration();
   if (std::abs(error) <= 0.5 * turn_step) return backward ? Action::kBackward : Action::kForward;

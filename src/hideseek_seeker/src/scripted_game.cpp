@@ -2,14 +2,14 @@
 
 #include <algorithm>
 
-#include "hideseek_world/arena.h"
+#include "hideseek_game/arena.h"
 
 namespace hideseek_seeker {
 
-using hideseek_world::Action;
-using hideseek_world::Arena;
+using hideseek_game::Action;
+using hideseek_game::Arena;
 
-SeekerOptions seekerOptionsFor(const hideseek_world::VariantConfig& variant, double grid_resolution) {
+SeekerOptions seekerOptionsFor(const hideseek_game::VariantConfig& variant, double grid_resolution) {
   SeekerOptions o;
   o.type = variant.seeker_policy == "stochastic" ? SeekerPolicyType::kStochastic : SeekerPolicyType::kDeterministic;
   o.radius = variant.game.agent_radius;
@@ -18,14 +18,14 @@ SeekerOptions seekerOptionsFor(const hideseek_world::VariantConfig& variant, dou
   return o;
 }
 
-std::vector<ScriptedEpisode> playScriptedHider(const hideseek_world::VariantConfig& variant,
-                                               std::shared_ptr<const hideseek_world::MapSpec> map, EvaderKind evader,
+std::vector<ScriptedEpisode> playScriptedHider(const hideseek_game::VariantConfig& variant,
+                                               std::shared_ptr<const hideseek_game::MapSpec> map, EvaderKind evader,
                                                uint32_t first_seed, int episodes, const ScriptedStepObserver& observe,
                                                const EvaderOptions& evader_options) {
   Arena arena(variant.game, map);
   SeekerPolicy seeker(seekerOptionsFor(variant));
   ScriptedEvader hider(evader, variant.game, evader_options);
-  const hideseek_world::SeekerDecide decide = [&](const hideseek_world::SeekerPerception& p) { return seeker.act(p); };
+  const hideseek_game::SeekerDecide decide = [&](const hideseek_game::SeekerPerception& p) { return seeker.act(p); };
   std::vector<ScriptedEpisode> out;
   for (int e = 0; e < episodes; ++e) {
     ScriptedEpisode episode;
@@ -40,10 +40,10 @@ std::vector<ScriptedEpisode> playScriptedHider(const hideseek_world::VariantConf
       const auto step = static_cast<uint32_t>(arena.stepCount());
       const Action hider_action = hider.act({arena.hider(), arena.seeker(), episode.seed, step});
       if (observe) observe({episode.seed, static_cast<int>(step), arena.hider(), arena.seeker(), arena.labels(), hider_action});
-      const hideseek_world::StepResult r = hideseek_world::playDecisionStep(arena, hider_action, decide);
+      const hideseek_game::StepResult r = hideseek_game::playDecisionStep(arena, hider_action, decide);
       if (r.done()) {
         episode.living_steps = arena.stepCount();
-        episode.survived = r.outcome == hideseek_world::Outcome::kSurvived;
+        episode.survived = r.outcome == hideseek_game::Outcome::kSurvived;
         break;
       }
     }

@@ -5,10 +5,10 @@
 #include <stdexcept>
 
 #include "hideseek_seeker/scripted_game.h"
-#include "hideseek_world/params.h"
-#include "hideseek_world/topic_names.h"
-#include "hideseek_world/wall_throttle.h"
-#include "hideseek_world/world_node_options.h"
+#include "hideseek_game/params.h"
+#include "hideseek_game/topic_names.h"
+#include "hideseek_game/wall_throttle.h"
+#include "hideseek_game/world_node_options.h"
 
 namespace hideseek_seeker {
 
@@ -16,7 +16,7 @@ Layout toLayout(const hideseek_msgs::ArenaMap& map) {
   Layout layout;
   layout.half_extent = map.half_extent;
   for (const auto& b : map.obstacles) {
-    layout.obstacles.push_back(hideseek_world::Box::make({b.x, b.y}, {b.size_x, b.size_y}, b.height, b.yaw));
+    layout.obstacles.push_back(hideseek_game::Box::make({b.x, b.y}, {b.size_x, b.size_y}, b.height, b.yaw));
   }
   for (const auto& w : map.waypoints) layout.waypoints.push_back({w.x, w.y});
   return layout;
@@ -31,12 +31,12 @@ SeekerPerception toPerception(const hideseek_msgs::SeekerObservationBatch& batch
 }
 
 SeekerNode::SeekerNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
-  const hideseek_world::VariantConfig v = hideseek_world::loadVariantParams(pnh);
-  const double grid_resolution = hideseek_world::readDouble(pnh, "grid_resolution", 0.1, 0.02, 1.0);
+  const hideseek_game::VariantConfig v = hideseek_game::loadVariantParams(pnh);
+  const double grid_resolution = hideseek_game::readDouble(pnh, "grid_resolution", 0.1, 0.02, 1.0);
   // The same seeker the in-process calibration plays.
   options_ = seekerOptionsFor(v, grid_resolution);
-  actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kSeekerActionsTopic, 2);
-  observations_sub_ = nh_.subscribe(hideseek_world::kSeekerObservationsTopic, 2, &SeekerNode::onObservations, this,
+  actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_game::kSeekerActionsTopic, 2);
+  observations_sub_ = nh_.subscribe(hideseek_game::kSeekerObservationsTopic, 2, &SeekerNode::onObservations, this,
                                     ros::TransportHints().tcpNoDelay());
   ROS_INFO("seeker: %s policy, planning on a %.2f m grid", v.seeker_policy.c_str(), options_.grid_resolution);
 }
@@ -46,7 +46,7 @@ void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::Con
   if (msg->pose.size() != n || msg->sees_hider.size() != n || msg->hider_position.size() != n ||
       msg->step.size() != n || msg->episode.size() != n || msg->seed.size() != n || msg->maps.size() != n) {
     ++malformed_;
-    static hideseek_world::WallThrottle throttle(2.0);
+    static hideseek_game::WallThrottle throttle(2.0);
     if (throttle.ready()) {
       ROS_WARN(
           "seeker: ignored an observation batch whose arrays do not all hold %zu arenas (%lu so far; %lu more like it "

@@ -4,9 +4,9 @@
 
 namespace hideseek_seeker {
 
-using hideseek_world::distance;
-using hideseek_world::kPi;
-using hideseek_world::wrapAngle;
+using hideseek_game::distance;
+using hideseek_game::kPi;
+using hideseek_game::wrapAngle;
 
 const char* modeName(SeekerMode mode) {
   switch (mode) {

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "hideseek_seeker/scripted_game.h"
-#include "hideseek_world/arena.h"
+#include "hideseek_game/arena.h"
 
 namespace hideseek_seeker {
 namespace {
@@ -24,14 +24,14 @@ std::string gameFile() {
   return game && *game ? game : kConfig + "/game.yaml";
 }
 
-hideseek_world::VariantConfig variant(const std::string& name) {
-  return hideseek_world::loadVariantConfig(gameFile(), kConfig + "/variants/" + name + ".yaml");
+hideseek_game::VariantConfig variant(const std::string& name) {
+  return hideseek_game::loadVariantConfig(gameFile(), kConfig + "/variants/" + name + ".yaml");
 }
 
 std::vector<ScriptedEpisode> play(const std::string& name, EvaderKind evader, uint32_t first = 0, int n = 100,
                                   const EvaderOptions& options = {}) {
   const auto v = variant(name);
-  const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(v.map_file));
+  const auto map = std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(v.map_file));
   return playScriptedHider(v, map, evader, first, n, {}, options);
 }
 
@@ -107,7 +107,7 @@ TEST(Calibration, ThePapersStateSpaceIsInPlay) {
     int previous = -1;
     uint32_t previous_seed = 0;
     const auto v = variant("basic");
-    const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(v.map_file));
+    const auto map = std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(v.map_file));
     playScriptedHider(v, map, evader, 0, 100, [&](const ScriptedStep& s) {
       const int state = 4 * s.labels.hider_sees_seeker + 2 * s.labels.seeker_sees_hider + s.labels.obstacle_in_view;
       ++count[state];
@@ -156,30 +156,30 @@ TEST(Calibration, SummaryCountsMedianAndRates) {
 TEST(Calibration, SeekerCatchesAHiderThatStaysPutOnceItHasSeenIt) {
   for (const std::string v : {"basic", "slowerhider", "stochasticseeker"}) {
     const auto config = variant(v);
-    const auto map = std::make_shared<const hideseek_world::MapSpec>(hideseek_world::loadMapFile(config.map_file));
-    hideseek_world::Arena arena(config.game, map);
+    const auto map = std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(config.map_file));
+    hideseek_game::Arena arena(config.game, map);
     SeekerPolicy seeker(seekerOptionsFor(config));
-    const hideseek_world::SeekerDecide decide = [&](const hideseek_world::SeekerPerception& p) { return seeker.act(p); };
+    const hideseek_game::SeekerDecide decide = [&](const hideseek_game::SeekerPerception& p) { return seeker.act(p); };
     int seen_episodes = 0;
     for (uint32_t seed = 1000; seed < 1200; ++seed) {
       arena.reset(seed);
       seeker.reset(arena.layout(), seed);
       int first_seen = -1;
-      hideseek_world::StepResult r;
+      hideseek_game::StepResult r;
       do {
         if (first_seen < 0 && arena.stepCount() >= static_cast<int>(seed % 60) && arena.labels().seeker_sees_hider) first_seen = arena.stepCount();
         const int run = static_cast<int>(seed % 60);
-        const auto hider_action = arena.stepCount() < run                 ? hideseek_world::Action::kForward
-                                 : arena.stepCount() % 2 ? hideseek_world::Action::kBackward : hideseek_world::Action::kForward;
-        r = hideseek_world::playDecisionStep(arena, hider_action, decide);
+        const auto hider_action = arena.stepCount() < run                 ? hideseek_game::Action::kForward
+                                 : arena.stepCount() % 2 ? hideseek_game::Action::kBackward : hideseek_game::Action::kForward;
+        r = hideseek_game::playDecisionStep(arena, hider_action, decide);
       } while (!r.done());
       if (first_seen < 0) continue;
       ++seen_episodes;
-      EXPECT_EQ(r.outcome, hideseek_world::Outcome::kCaptured)
+      EXPECT_EQ(r.outcome, hideseek_game::Outcome::kCaptured)
           << v << " seed " << seed << ": seen at step " << first_seen << ", seeker left at ("
           << arena.seeker().position.x << ", " << arena.seeker().position.y << "), hider at ("
           << arena.hider().position.x << ", " << arena.hider().position.y << "), "
-          << hideseek_world::distance(arena.seeker().position, arena.hider().position) << " m apart, mode "
+          << hideseek_game::distance(arena.seeker().position, arena.hider().position) << " m apart, mode "
           << modeName(seeker.mode()) << ", path of " << seeker.path().size() << " points";
     }
     EXPECT_GE(seen_episodes, 50) << v;

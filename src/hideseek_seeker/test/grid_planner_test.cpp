@@ -3,21 +3,21 @@
 #include <random>
 
 #include "hideseek_seeker/grid_planner.h"
-#include "hideseek_world/map.h"
+#include "hideseek_game/map.h"
 
 namespace hideseek_seeker {
 
 namespace {
 
 Layout deterministicLayout() {
-  const auto spec = hideseek_world::loadMapFile(std::string(HIDESEEK_CONFIG_DIR) + "/maps/deterministic.yaml");
+  const auto spec = hideseek_game::loadMapFile(std::string(HIDESEEK_CONFIG_DIR) + "/maps/deterministic.yaml");
   std::mt19937 unused;
-  return hideseek_world::makeLayout(spec, unused);
+  return hideseek_game::makeLayout(spec, unused);
 }
 
 double clearance(const Layout& layout, Vec2 p) {
   double d = layout.half_extent - std::max(std::abs(p.x), std::abs(p.y));
-  for (const auto& b : layout.obstacles) d = std::min(d, hideseek_world::footprintDistance(b, p));
+  for (const auto& b : layout.obstacles) d = std::min(d, hideseek_game::footprintDistance(b, p));
   return d;
 }
 
@@ -42,7 +42,7 @@ TEST(GridPlanner, PathsNeverCrossInflatedObstacles) {
       }
       from = to;
     }
-    EXPECT_LT(hideseek_world::distance(path.back(), b), 0.1);
+    EXPECT_LT(hideseek_game::distance(path.back(), b), 0.1);
   }
   EXPECT_EQ(planned, 200);
 }
@@ -55,8 +55,8 @@ TEST(GridPlanner, GoesAroundTheCrossNotThroughIt) {
   EXPECT_FALSE(planner.lineOfSight(south, north));
   const auto path = planner.plan(south, north);
   ASSERT_GE(path.size(), 2u);
-  double length = hideseek_world::distance(south, path.front());
-  for (size_t i = 1; i < path.size(); ++i) length += hideseek_world::distance(path[i - 1], path[i]);
+  double length = hideseek_game::distance(south, path.front());
+  for (size_t i = 1; i < path.size(); ++i) length += hideseek_game::distance(path[i - 1], path[i]);
   // Around the arm tip (1 m out, plus 0.4 m radius: about 2 x 1.44 m): longer than the straight
   // 2.4 m, far shorter than a loop round the whole cross.
   EXPECT_GT(length, 2.4 + 0.3);
@@ -67,7 +67,7 @@ TEST(GridPlanner, UnreachableGoalGivesNoPath) {
   Layout layout;
   layout.half_extent = 7.0;
   // A wall across the arena splits it in two.
-  layout.obstacles.push_back(hideseek_world::Box::make({0.0, 0.0}, {0.5, 14.0}, 1.5, 0.0));
+  layout.obstacles.push_back(hideseek_game::Box::make({0.0, 0.0}, {0.5, 14.0}, 1.5, 0.0));
   const GridPlanner planner(layout, 0.4, 0.1);
   EXPECT_TRUE(planner.plan({-3.0, 0.0}, {3.0, 0.0}).empty());
   EXPECT_FALSE(planner.plan({-3.0, 0.0}, {-3.0, 5.0}).empty());

@@ -5,28 +5,28 @@
 
 #include "hideseek_seeker/seeker_node.h"
 #include "hideseek_seeker/seeker_policy.h"
-#include "hideseek_world/arena.h"
-#include "hideseek_world/visibility.h"
+#include "hideseek_game/arena.h"
+#include "hideseek_game/visibility.h"
 
 namespace hideseek_seeker {
 
 namespace {
 
-using hideseek_world::GameOptions;
+using hideseek_game::GameOptions;
 
 const std::string kConfig = HIDESEEK_CONFIG_DIR;
 
 Layout deterministicLayout() {
-  const auto spec = hideseek_world::loadMapFile(kConfig + "/maps/deterministic.yaml");
+  const auto spec = hideseek_game::loadMapFile(kConfig + "/maps/deterministic.yaml");
   std::mt19937 unused;
-  return hideseek_world::makeLayout(spec, unused);
+  return hideseek_game::makeLayout(spec, unused);
 }
 
 // Moves the seeker by its own action for one decision step, as the world would.
 void advance(AgentState& s, Action a, const Layout& layout) {
-  hideseek_world::MotionOptions m;
+  hideseek_game::MotionOptions m;
   m.speed = 1.5;
-  for (int i = 0; i < 6; ++i) hideseek_world::advanceAgent(s, a, m, 0.02, layout, 0.4);
+  for (int i = 0; i < 6; ++i) hideseek_game::advanceAgent(s, a, m, 0.02, layout, 0.4);
 }
 
 }  // namespace
@@ -36,15 +36,15 @@ TEST(SeekerPolicy, ReachesAGoalBehindTheCrossFromLastKnownPosition) {
   SeekerPolicy seeker({});
   seeker.reset(layout, 1);
   // South of the cross's east arm; the hider was glimpsed once north of it, then never again.
-  AgentState s{{0.6, -1.2}, hideseek_world::kPi / 2, 0.0};
+  AgentState s{{0.6, -1.2}, hideseek_game::kPi / 2, 0.0};
   const Vec2 behind{0.6, 1.2};
   seeker.act({s, behind});
-  for (int step = 0; step < 200 && hideseek_world::distance(s.position, behind) > 0.5; ++step) {
+  for (int step = 0; step < 200 && hideseek_game::distance(s.position, behind) > 0.5; ++step) {
     const Action a = seeker.act({s, std::nullopt});
-    if (hideseek_world::distance(s.position, behind) > 0.5) EXPECT_EQ(seeker.mode(), SeekerMode::kLastKnown);
+    if (hideseek_game::distance(s.position, behind) > 0.5) EXPECT_EQ(seeker.mode(), SeekerMode::kLastKnown);
     advance(s, a, layout);
   }
-  EXPECT_LE(hideseek_world::distance(s.position, behind), 0.5);
+  EXPECT_LE(hideseek_game::distance(s.position, behind), 0.5);
   // Once there and still seeing nothing, it goes back to its patrol.
   seeker.act({s, std::nullopt});
   EXPECT_EQ(seeker.mode(), SeekerMode::kPatrol);
@@ -56,13 +56,13 @@ TEST(SeekerPolicy, PlansOnTheLayoutOfTheCurrentEpisode) {
   Layout open;
   open.waypoints = {{0.0, 0.0}};
   const Layout cross = deterministicLayout();
-  const AgentState s{{0.6, -1.2}, hideseek_world::kPi / 2, 0.0};
+  const AgentState s{{0.6, -1.2}, hideseek_game::kPi / 2, 0.0};
   const Vec2 behind{0.6, 1.2};
   auto pathLength = [&](SeekerPolicy& seeker) {
     seeker.act({s, behind});
     double length = 0.0;
     Vec2 from = s.position;
-    for (const Vec2& p : seeker.path()) length += hideseek_world::distance(from, p), from = p;
+    for (const Vec2& p : seeker.path()) length += hideseek_game::distance(from, p), from = p;
     return length;
   };
   SeekerPolicy seeker({});
@@ -96,7 +96,7 @@ TEST(SeekerPolicy, DeterministicSeekerPatrolsWaypointsInOrder) {
   for (int step = 0; step < 3000 && visited.size() < 4; ++step) {
     advance(s, seeker.act({s, std::nullopt}), layout);
     for (size_t w = 0; w < layout.waypoints.size(); ++w) {
-      if (hideseek_world::distance(s.position, layout.waypoints[w]) < 0.5 && (visited.empty() || visited.back() != w)) {
+      if (hideseek_game::distance(s.position, layout.waypoints[w]) < 0.5 && (visited.empty() || visited.back() != w)) {
         visited.push_back(w);
       }
     }
@@ -156,11 +156,11 @@ TEST(SeekerPolicy, DeterministicSeekerCatchesAStandingHiderItCanSee) {
   AgentState s{{-5.0, -5.0}, 2.0, 0.0};
   const AgentState hider{{4.0, 3.0}, 0.0, 0.0};
   int step = 0;
-  for (; step < 400 && hideseek_world::distance(s.position, hider.position) > g.capture_distance; ++step) {
-    const bool sees = hideseek_world::agentSeesAgent(s, hider, open, g);
+  for (; step < 400 && hideseek_game::distance(s.position, hider.position) > g.capture_distance; ++step) {
+    const bool sees = hideseek_game::agentSeesAgent(s, hider, open, g);
     advance(s, seeker.act({s, sees ? std::optional<Vec2>(hider.position) : std::nullopt}), open);
   }
-  EXPECT_LE(hideseek_world::distance(s.position, hider.position), g.capture_distance) << "after " << step << " steps";
+  EXPECT_LE(hideseek_game::distance(s.position, hider.position), g.capture_distance) << "after " << step << " steps";
 }
 
 }  // namespace hideseek_seeker

@@ -8,9 +8,9 @@
 
 #include <cstdint>
 
-#include "hideseek_world/agent.h"
-#include "hideseek_world/hash_uniform.h"
-#include "hideseek_world/topic_names.h"
+#include "hideseek_game/agent.h"
+#include "hideseek_game/hash_uniform.h"
+#include "hideseek_game/topic_names.h"
 
 namespace {
 
@@ -19,7 +19,7 @@ hideseek_msgs::ActionBatch answer(const Batch& obs, uint32_t salt) {
   hideseek_msgs::ActionBatch out;
   out.header.stamp = obs.header.stamp;
   out.step = obs.step;
-  for (uint32_t i = 0; i < obs.num_arenas; ++i) out.actions.push_back(hideseek_world::hashAction(obs.seed[i], obs.step[i], salt));
+  for (uint32_t i = 0; i < obs.num_arenas; ++i) out.actions.push_back(hideseek_game::hashAction(obs.seed[i], obs.step[i], salt));
   return out;
 }
 
@@ -38,14 +38,14 @@ int main(int argc, char** argv) {
   ros::Publisher pub;
   ros::Subscriber sub;
   if (role == "hider") {
-    pub = nh.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kHiderActionsTopic, 2);
+    pub = nh.advertise<hideseek_msgs::ActionBatch>(hideseek_game::kHiderActionsTopic, 2);
     sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
-        hideseek_world::kHiderObservationsTopic, 2,
+        hideseek_game::kHiderObservationsTopic, 2,
         [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) { pub.publish(answer(*m, 0x51)); }, ros::VoidConstPtr(), hints);
   } else {
-    pub = nh.advertise<hideseek_msgs::ActionBatch>(hideseek_world::kSeekerActionsTopic, 2);
+    pub = nh.advertise<hideseek_msgs::ActionBatch>(hideseek_game::kSeekerActionsTopic, 2);
     sub = nh.subscribe<hideseek_msgs::SeekerObservationBatch>(
-        hideseek_world::kSeekerObservationsTopic, 2,
+        hideseek_game::kSeekerObservationsTopic, 2,
         [&](const hideseek_msgs::SeekerObservationBatch::ConstPtr& m) { pub.publish(answer(*m, 0x5e)); },
         ros::VoidConstPtr(), hints);
   }

@@ -11,11 +11,13 @@
 #include <sensor_msgs/image_encodings.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "hideseek_world/msg_conversion.h"
-#include "hideseek_world/topic_names.h"
-#include "hideseek_world/wall_throttle.h"
+#include "hideseek_game/msg_conversion.h"
+#include "hideseek_game/topic_names.h"
+#include "hideseek_game/wall_throttle.h"
 
 namespace hideseek_world {
+
+using namespace hideseek_game;  // NOLINT(google-build-using-namespace): the node is the game's ROS face
 
 namespace {
 

@@ -4,8 +4,8 @@ substitutions) and checks that each node's package and executable exist, that ev
 argument a user can set carries a doc= (roslaunch --ros-args lists it), and that the `policy`
 argument of a variant's launch file defaults to `shipped` (the policy policies/policies.yaml ships
 for the variant, else the random hider).
-Writes an xunit result. The agents' packages cannot be declared as dependencies of hideseek_world (they depend
-on it), so roslaunch-check's dependency test does not apply; this checks what it would run.
+Writes an xunit result. hideseek_world's package.xml declares the packages its launch files start
+(catkin_lint checks that); this checks that each named executable exists.
 
 usage: check_launch_files.py LAUNCH_DIR XUNIT_OUTPUT
 """
@@ -32,7 +32,7 @@ def policy_default_problems(path):
     for the variant, or the random hider (with a warning) where none is shipped."""
     if not path.endswith(".launch"):
         return []
-    package = rospkg.RosPack().get_path("hideseek_world")
+    package = rospkg.RosPack().get_path("hideseek_game")
     variant = os.path.basename(path)[:-len(".launch")]
     if not os.path.isfile(os.path.join(package, "config", "variants", variant + ".yaml")):
         return []

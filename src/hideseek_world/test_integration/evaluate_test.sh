@@ -70,10 +70,10 @@ compare() {  # NAME VARIANT POLICY EVADER GAME_FILE [LAUNCH ARGS...]
     failures+=("$name: graph and in-process differ: $(head -c 300 "$dir/$name/diff.txt" | tr '\n' ' ')")
   fi
 }
-compare hide stochasticmaps scripted/hide hide "$root/config/game.yaml"
-compare v1 basic random random "$root/config/game_v1.yaml" game:=v1
+compare hide stochasticmaps scripted/hide hide "$root/../../config/game.yaml"
+compare v1 basic random random "$root/../../config/game_v1.yaml" game:=v1
 # A variant without a shipped policy of its game plays the random hider by default, and says so.
-compare unshipped slowerhider shipped random "$root/config/game.yaml"
+compare unshipped slowerhider shipped random "$root/../../config/game.yaml"
 grep -q "no policy is shipped for variant 'slowerhider' on game v2" "$dir/unshipped/launch.log" ||
   failures+=("unshipped: no warning that slowerhider has no shipped policy")
 write_xunit "${out%.xml}-scripted.xml" evaluate ScriptedEvaderAndGameV1ThroughTheGraphPlayTheCalibratedEpisodes "${failures[@]}"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# play_episodes and scripts/plot_trajectories.py, as the README uses them to show a strategy.
+# play_episodes and plot_trajectories.py (hideseek_analysis), as the README uses them to show a strategy.
 # usage: trajectories_test.sh XUNIT_OUTPUT
 # 1. stochasticmaps (new boxes every episode), random hider, seeds 0-2: every episode's rows end
 #    with its outcome, the layouts file holds each episode's own boxes (not all the same), and
@@ -19,10 +19,10 @@ if [ -z "$play" ]; then
 else
   "$play" stochasticmaps random 0 3 "$dir/sm.csv" > "$dir/sm.log" 2>&1 || failures+=("play_episodes stochasticmaps failed: $(tail -n 1 "$dir/sm.log")")
   "$play" basic random 0 2 "$dir/basic.csv" > "$dir/basic.log" 2>&1 || failures+=("play_episodes basic failed: $(tail -n 1 "$dir/basic.log")")
-  /usr/bin/python3 "$workspace/scripts/plot_trajectories.py" "$dir/sm.csv" "$root/config/maps/stochastic.yaml" "$dir/sm.png" \
+  /usr/bin/python3 "$workspace/src/hideseek_analysis/scripts/plot_trajectories.py" "$dir/sm.csv" "$root/../../config/maps/stochastic.yaml" "$dir/sm.png" \
     "stochasticmaps, random" > "$dir/plot.log" 2>&1 || failures+=("plot_trajectories failed: $(tail -n 1 "$dir/plot.log")")
   [ -s "$dir/sm.png" ] || failures+=("no figure")
-  /usr/bin/python3 - "$dir" "$root/config/maps/deterministic.yaml" > "$dir/problems.txt" 2> "$dir/check.log" <<'PY'
+  /usr/bin/python3 - "$dir" "$root/../../config/maps/deterministic.yaml" > "$dir/problems.txt" 2> "$dir/check.log" <<'PY'
 import csv, sys, yaml
 d, fixed_map = sys.argv[1:]
 problems = []

@@ -14,8 +14,8 @@
 #include <map>
 #include <set>
 
-#include "hideseek_world/hash_uniform.h"
-#include "hideseek_world/topic_names.h"
+#include "hideseek_game/hash_uniform.h"
+#include "hideseek_game/topic_names.h"
 #include "test_helpers.h"
 
 namespace {
@@ -92,7 +92,7 @@ TEST(Variant, EveryDecisionAppliesTheActionChosenForItsOwnStep) {
     ASSERT_EQ(b.hider_action.size(), b.num_arenas);
     ASSERT_EQ(b.seed.size(), b.num_arenas);
     for (size_t i = 0; i < b.num_arenas; ++i, ++checked) {
-      const uint8_t expected = hideseek_world::hashAction(b.seed[i], b.step[i], hideseek_world::kSaltRandomHider);
+      const uint8_t expected = hideseek_game::hashAction(b.seed[i], b.step[i], hideseek_game::kSaltRandomHider);
       if (b.hider_action[i] != expected) ++mismatches;
     }
   }
@@ -105,7 +105,7 @@ TEST(Variant, DiagnosticsReportRateAndNoRejectedActions) {
   std::vector<diagnostic_msgs::DiagnosticStatus> reports;
   auto sub = nh.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
     for (const auto& st : m->status) {
-      if (st.name == hideseek_world::worldDiagnosticName(ros::this_node::getNamespace())) reports.push_back(st);
+      if (st.name == hideseek_game::worldDiagnosticName(ros::this_node::getNamespace())) reports.push_back(st);
     }
   });
   // The first report after subscribing may cover less than a second: take the third.

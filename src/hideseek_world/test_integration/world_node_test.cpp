@@ -15,7 +15,7 @@
 #include <functional>
 #include <map>
 
-#include "hideseek_world/params.h"
+#include "hideseek_game/params.h"
 #include "test_helpers.h"
 
 namespace {
@@ -123,11 +123,11 @@ TEST(Params, CheckTypeAndRangeAndNameTheParameter) {
   pnh.setParam("word", std::string("lockstep"));
   pnh.setParam("flag", true);
   pnh.setParam("rate", 2.5);
-  EXPECT_EQ(hideseek_world::readInt(pnh, "count", 1, 1, 10), 5);
-  EXPECT_EQ(hideseek_world::readInt(pnh, "missing", 3, 1, 10), 3);
-  EXPECT_DOUBLE_EQ(hideseek_world::readDouble(pnh, "rate", 1.0, 0.0, 10.0), 2.5);
-  EXPECT_TRUE(hideseek_world::readBool(pnh, "flag", false));
-  EXPECT_EQ(hideseek_world::readChoice(pnh, "word", "realtime", {"realtime", "lockstep"}), "lockstep");
+  EXPECT_EQ(hideseek_game::readInt(pnh, "count", 1, 1, 10), 5);
+  EXPECT_EQ(hideseek_game::readInt(pnh, "missing", 3, 1, 10), 3);
+  EXPECT_DOUBLE_EQ(hideseek_game::readDouble(pnh, "rate", 1.0, 0.0, 10.0), 2.5);
+  EXPECT_TRUE(hideseek_game::readBool(pnh, "flag", false));
+  EXPECT_EQ(hideseek_game::readChoice(pnh, "word", "realtime", {"realtime", "lockstep"}), "lockstep");
   auto message = [](const std::function<void()>& f) {
     try {
       f();
@@ -136,15 +136,15 @@ TEST(Params, CheckTypeAndRangeAndNameTheParameter) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(message([&] { hideseek_world::readInt(pnh, "count", 1, 6, 10); }).find("params_test/count must be in [6, 10], got 5"),
+  EXPECT_NE(message([&] { hideseek_game::readInt(pnh, "count", 1, 6, 10); }).find("params_test/count must be in [6, 10], got 5"),
             std::string::npos);
-  EXPECT_NE(message([&] { hideseek_world::readInt(pnh, "word", 1, 0, 10); }).find("params_test/word must be an integer"),
+  EXPECT_NE(message([&] { hideseek_game::readInt(pnh, "word", 1, 0, 10); }).find("params_test/word must be an integer"),
             std::string::npos);
-  EXPECT_NE(message([&] { hideseek_world::readBool(pnh, "count", false); }).find("must be true or false"),
+  EXPECT_NE(message([&] { hideseek_game::readBool(pnh, "count", false); }).find("must be true or false"),
             std::string::npos);
-  EXPECT_NE(message([&] { hideseek_world::readChoice(pnh, "word", "a", {"a", "b"}); }).find("must be one of 'a', 'b', got 'lockstep'"),
+  EXPECT_NE(message([&] { hideseek_game::readChoice(pnh, "word", "a", {"a", "b"}); }).find("must be one of 'a', 'b', got 'lockstep'"),
             std::string::npos);
-  EXPECT_NE(message([&] { hideseek_world::requireString(pnh, "nothing", "a file path"); }).find("params_test/nothing is required (a file path)"),
+  EXPECT_NE(message([&] { hideseek_game::requireString(pnh, "nothing", "a file path"); }).find("params_test/nothing is required (a file path)"),
             std::string::npos);
 }
 

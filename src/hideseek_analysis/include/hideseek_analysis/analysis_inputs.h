@@ -13,8 +13,8 @@
 
 #include "hideseek_analysis/step_log.h"
 #include "hideseek_hider/hider_net.h"
-#include "hideseek_world/game_options.h"
-#include "hideseek_world/map.h"
+#include "hideseek_game/game_options.h"
+#include "hideseek_game/map.h"
 
 namespace hideseek_analysis {
 
@@ -55,8 +55,8 @@ struct MemoryReplay {
 // recording of another variant or map), or when an arena's first logged step does not start an
 // episode (the state before it is unknown); std::invalid_argument for a feed-forward network.
 MemoryReplay replayMemory(const StepLog& log, const std::vector<hideseek_hider::HiderNet*>& nets,
-                          const hideseek_world::VariantConfig& variant,
-                          std::shared_ptr<const hideseek_world::MapSpec> map, int tolerance = 0,
+                          const hideseek_game::VariantConfig& variant,
+                          std::shared_ptr<const hideseek_game::MapSpec> map, int tolerance = 0,
                           int render_threads = 2);
 
 // The mid-level features of `count` RGB8 images ([count, 512], fp32, in batches, no gradients);
@@ -75,8 +75,8 @@ void writeNpy(const std::string& path, const float* data, int64_t rows, int64_t 
 // (replayMemory), of the trained network and of the random-init one. Throws
 // std::runtime_error naming what does not fit (image size, an unwritable file).
 AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::HiderNet& trained,
-                                          const hideseek_world::VariantConfig& variant,
-                                          std::shared_ptr<const hideseek_world::MapSpec> map,
+                                          const hideseek_game::VariantConfig& variant,
+                                          std::shared_ptr<const hideseek_game::MapSpec> map,
                                           const AnalysisInputsOptions& options, const std::string& dir);
 
 }  // namespace hideseek_analysis

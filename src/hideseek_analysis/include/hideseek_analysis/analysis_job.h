@@ -5,7 +5,7 @@
 #include <string>
 
 #include "hideseek_analysis/analysis_inputs.h"
-#include "hideseek_world/game_options.h"
+#include "hideseek_game/game_options.h"
 
 namespace hideseek_analysis {
 
@@ -15,7 +15,7 @@ struct AnalysisJob {
   std::string inputs_dir;     // receives the arrays (large: features of every recorded image)
   std::string report_dir;     // receives the report (tables and figures)
   std::string report_script;  // report.py
-  hideseek_world::VariantConfig variant;
+  hideseek_game::VariantConfig variant;
   AnalysisInputsOptions inputs;
   int tsne_samples = 3000;
   int probe_splits = 5;  // train/test splits by episode each probe is scored over

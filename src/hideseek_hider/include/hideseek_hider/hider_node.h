@@ -12,7 +12,7 @@
 
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_hider/training_run.h"
-#include "hideseek_world/world_node_options.h"
+#include "hideseek_game/world_node_options.h"
 
 namespace hideseek_hider {
 
@@ -21,7 +21,7 @@ enum class HiderMode { kRandom, kPolicy, kTrain };
 // Everything the hider node reads from the parameter server, read once and validated: a bad value
 // throws before the node publishes, naming the parameter (or the file and field).
 struct HiderNodeOptions {
-  hideseek_world::VariantConfig variant;
+  hideseek_game::VariantConfig variant;
   HiderMode mode = HiderMode::kRandom;
   std::string policy = "random";            // checkpoint path (policy mode)
   int threads = 2;                          // intra-op threads of the network

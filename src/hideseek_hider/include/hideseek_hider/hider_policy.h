@@ -9,8 +9,8 @@
 
 #include "hideseek_hider/hider_net.h"
 #include "hideseek_seeker/scripted_evader.h"
-#include "hideseek_world/arena.h"
-#include "hideseek_world/game_options.h"
+#include "hideseek_game/arena.h"
+#include "hideseek_game/game_options.h"
 
 namespace hideseek_hider {
 
@@ -20,8 +20,8 @@ struct ArenaObservation {
   const uint8_t* image = nullptr;  // H x W x 3, rgb8
   uint32_t seed = 0;               // episode seed
   uint32_t step = 0;
-  hideseek_world::AgentState hider;
-  hideseek_world::AgentState seeker;
+  hideseek_game::AgentState hider;
+  hideseek_game::AgentState seeker;
 };
 
 class HiderPolicy {
@@ -39,13 +39,13 @@ class RandomHiderPolicy : public HiderPolicy {
 // Each episode's layout is drawn again from its seed, as the world draws it.
 class ScriptedHiderPolicy : public HiderPolicy {
  public:
-  ScriptedHiderPolicy(hideseek_seeker::EvaderKind kind, const hideseek_world::VariantConfig& variant);
+  ScriptedHiderPolicy(hideseek_seeker::EvaderKind kind, const hideseek_game::VariantConfig& variant);
   std::vector<uint8_t> act(const std::vector<ArenaObservation>& batch) override;
 
  private:
   hideseek_seeker::EvaderKind kind_;
-  hideseek_world::VariantConfig variant_;
-  hideseek_world::Arena layout_source_;  // reset with an episode's seed, it holds that episode's layout
+  hideseek_game::VariantConfig variant_;
+  hideseek_game::Arena layout_source_;  // reset with an episode's seed, it holds that episode's layout
   std::vector<hideseek_seeker::ScriptedEvader> evaders_;
   std::vector<std::optional<uint32_t>> seeds_;  // each arena's episode seed at the last act()
 };

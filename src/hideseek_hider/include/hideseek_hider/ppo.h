@@ -36,7 +36,7 @@ struct PpoOptions {
   int sequence_length = 32;
 };
 
-// Reads config/ppo.yaml; throws hideseek_world::ConfigError naming the file and field.
+// Reads config/ppo.yaml; throws hideseek_game::ConfigError naming the file and field.
 PpoOptions loadPpoOptions(const std::string& path);
 
 struct Gae {

@@ -5,13 +5,13 @@
 #include <random>
 #include <vector>
 
-#include "hideseek_world/free_space_grid.h"
+#include "hideseek_game/free_space_grid.h"
 
 namespace hideseek_seeker {
 
-using hideseek_world::GridCell;
-using hideseek_world::Layout;
-using hideseek_world::Vec2;
+using hideseek_game::GridCell;
+using hideseek_game::Layout;
+using hideseek_game::Vec2;
 
 // Whether two layouts have the same arena and obstacle footprints: all a planner's grid depends on.
 bool sameFootprints(const Layout& a, const Layout& b);
@@ -31,7 +31,7 @@ class GridPlanner {
   // A uniformly drawn free cell centre reachable from `from`.
   Vec2 randomReachablePoint(Vec2 from, std::mt19937& rng) const;
   bool isFree(Vec2 p) const { return grid_.isFree(grid_.cellOf(p)); }
-  const hideseek_world::FreeSpaceGrid& grid() const { return grid_; }
+  const hideseek_game::FreeSpaceGrid& grid() const { return grid_; }
 
  private:
   GridCell nearestFree(GridCell c) const;
@@ -40,7 +40,7 @@ class GridPlanner {
   template <typename Visit>
   void forEachNeighbour(GridCell c, Visit visit) const;
 
-  hideseek_world::FreeSpaceGrid grid_;
+  hideseek_game::FreeSpaceGrid grid_;
 };
 
 template <typename Visit>

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "hideseek_seeker/grid_planner.h"
-#include "hideseek_world/agent.h"
-#include "hideseek_world/game_options.h"
+#include "hideseek_game/agent.h"
+#include "hideseek_game/game_options.h"
 
 namespace hideseek_seeker {
 
@@ -33,8 +33,8 @@ std::optional<EvaderKind> evaderKind(const std::string& name);
 
 // The true state an evader decides on.
 struct EvaderObservation {
-  hideseek_world::AgentState hider;
-  hideseek_world::AgentState seeker;
+  hideseek_game::AgentState hider;
+  hideseek_game::AgentState seeker;
   uint32_t seed = 0;  // the episode's seed
   uint32_t step = 0;  // decision step in the episode
 };
@@ -56,25 +56,25 @@ struct EvaderOptions {
 
 class ScriptedEvader {
  public:
-  ScriptedEvader(EvaderKind kind, const hideseek_world::GameOptions& game, const EvaderOptions& options = {});
+  ScriptedEvader(EvaderKind kind, const hideseek_game::GameOptions& game, const EvaderOptions& options = {});
 
   EvaderKind kind() const { return kind_; }
   // Starts an episode on `layout`; the grid is rebuilt only when the obstacles changed.
-  void reset(const hideseek_world::Layout& layout);
-  hideseek_world::Action act(const EvaderObservation& observation);
+  void reset(const hideseek_game::Layout& layout);
+  hideseek_game::Action act(const EvaderObservation& observation);
   // Where flee or hide is heading, if anywhere.
   std::optional<Vec2> goal() const { return goal_; }
 
  private:
-  hideseek_world::Action backpedal(const EvaderObservation& o);
-  hideseek_world::Action flee(const EvaderObservation& o);
-  hideseek_world::Action hide(const EvaderObservation& o);
-  hideseek_world::Action lap(const EvaderObservation& o);
+  hideseek_game::Action backpedal(const EvaderObservation& o);
+  hideseek_game::Action flee(const EvaderObservation& o);
+  hideseek_game::Action hide(const EvaderObservation& o);
+  hideseek_game::Action lap(const EvaderObservation& o);
   // The point lap aims for, `sign` (+1 anticlockwise) round the centre from p.
   Vec2 lapTarget(Vec2 p, int sign) const;
   // Turn towards the next point of path_ (replanned to goal_ when needed), else move forward; with
   // `backward`, turn the back towards it and move backward.
-  hideseek_world::Action follow(const hideseek_world::AgentState& hider, bool backward = false);
+  hideseek_game::Action follow(const hideseek_game::AgentState& hider, bool backward = false);
   // A distance field's value at p (pressed against a box: the best free neighbour's, plus the way there).
   float fieldAt(const std::vector<float>& field, Vec2 p) const;
   // Whether the seeker, turned towards an agent at p, would see it past the obstacles.
@@ -84,9 +84,9 @@ class ScriptedEvader {
   bool hiddenFromSearch(Vec2 seeker, Vec2 p) const;
 
   EvaderKind kind_;
-  hideseek_world::GameOptions game_;
+  hideseek_game::GameOptions game_;
   EvaderOptions options_;
-  hideseek_world::Layout layout_;
+  hideseek_game::Layout layout_;
   std::unique_ptr<GridPlanner> planner_;
   std::vector<float> clearance_;  // m from each cell centre to the nearest obstacle or wall
   std::vector<float> from_seeker_, from_hider_;  // path lengths from each agent, this step

@@ -11,9 +11,9 @@
 
 #include "hideseek_seeker/scripted_evader.h"
 #include "hideseek_seeker/seeker_policy.h"
-#include "hideseek_world/arena.h"
-#include "hideseek_world/game_options.h"
-#include "hideseek_world/map.h"
+#include "hideseek_game/arena.h"
+#include "hideseek_game/game_options.h"
+#include "hideseek_game/map.h"
 
 namespace hideseek_seeker {
 
@@ -28,19 +28,19 @@ struct ScriptedEpisode {
 struct ScriptedStep {
   uint32_t seed = 0;
   int step = 0;
-  hideseek_world::AgentState hider, seeker;
-  hideseek_world::Labels labels;
-  hideseek_world::Action hider_action = hideseek_world::Action::kStay;
+  hideseek_game::AgentState hider, seeker;
+  hideseek_game::Labels labels;
+  hideseek_game::Action hider_action = hideseek_game::Action::kStay;
 };
 using ScriptedStepObserver = std::function<void(const ScriptedStep&)>;
 
 // The seeker of a variant, as the seeker node builds it.
-SeekerOptions seekerOptionsFor(const hideseek_world::VariantConfig& variant, double grid_resolution = 0.1);
+SeekerOptions seekerOptionsFor(const hideseek_game::VariantConfig& variant, double grid_resolution = 0.1);
 
 // Plays the episodes with seeds first_seed .. first_seed + episodes - 1, in seed order; `observe`,
 // when given, sees every decision (the state statistics of the scripted hiders).
-std::vector<ScriptedEpisode> playScriptedHider(const hideseek_world::VariantConfig& variant,
-                                               std::shared_ptr<const hideseek_world::MapSpec> map, EvaderKind evader,
+std::vector<ScriptedEpisode> playScriptedHider(const hideseek_game::VariantConfig& variant,
+                                               std::shared_ptr<const hideseek_game::MapSpec> map, EvaderKind evader,
                                                uint32_t first_seed, int episodes,
                                                const ScriptedStepObserver& observe = {},
                                                const EvaderOptions& evader_options = {});

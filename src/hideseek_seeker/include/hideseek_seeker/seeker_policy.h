@@ -9,23 +9,23 @@
 #include <vector>
 
 #include "hideseek_seeker/grid_planner.h"
-#include "hideseek_world/agent.h"
-#include "hideseek_world/arena.h"
+#include "hideseek_game/agent.h"
+#include "hideseek_game/arena.h"
 
 namespace hideseek_seeker {
 
-using hideseek_world::Action;
-using hideseek_world::AgentState;
+using hideseek_game::Action;
+using hideseek_game::AgentState;
 
 enum class SeekerPolicyType { kDeterministic, kStochastic };
 
-using hideseek_world::SeekerPerception;
+using hideseek_game::SeekerPerception;
 
 struct SeekerOptions {
   SeekerPolicyType type = SeekerPolicyType::kDeterministic;
   double radius = 0.4;               // m: the map is inflated by this for planning
   double grid_resolution = 0.1;      // m
-  double turn_per_step = 0.12 * hideseek_world::kPi;  // rad turned by one turn action
+  double turn_per_step = 0.12 * hideseek_game::kPi;  // rad turned by one turn action
   double goal_tolerance = 0.5;       // m: a waypoint or last known position counts as reached
 };
 

@@ -1,4 +1,4 @@
-// Wires the world core to ROS: observation and action batches, standard outputs for arena 0.
+// Wires the game core to ROS: observation and action batches, standard outputs for arena 0.
 #pragma once
 
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -20,13 +20,24 @@
 #include <string>
 #include <vector>
 
-#include "hideseek_world/decision_scheduler.h"
-#include "hideseek_world/msg_conversion.h"
-#include "hideseek_world/wall_throttle.h"
-#include "hideseek_world/world.h"
-#include "hideseek_world/world_node_options.h"
+#include "hideseek_game/decision_scheduler.h"
+#include "hideseek_game/msg_conversion.h"
+#include "hideseek_game/wall_throttle.h"
+#include "hideseek_game/world.h"
+#include "hideseek_game/world_node_options.h"
 
 namespace hideseek_world {
+
+// The game's types, which the node serves over ROS.
+using hideseek_game::Action;
+using hideseek_game::ArenaMapCache;
+using hideseek_game::ArenaStep;
+using hideseek_game::DecisionScheduler;
+using hideseek_game::EpisodeSummary;
+using hideseek_game::Player;
+using hideseek_game::WallThrottle;
+using hideseek_game::World;
+using hideseek_game::WorldNodeOptions;
 
 // Counts of rejected input, published on /diagnostics.
 struct RejectionCounts {

@@ -1,0 +1,86 @@
+// When the world takes a decision step, from the agents' answers and a clock: the rules of the
+// lockstep and realtime exchange, free of ROS so that they are unit-tested with an injected time.
+//
+// Both modes: an action answers the current step of its arena (its step id), else it is refused.
+// The seeker may decide more often than the hider (seeker_decision_frames): a decision step then
+// holds several seeker decisions, the first taken with the hider's action, the others alone.
+// Lockstep: a decision is taken once both agents answered every arena (the seeker alone for its
+//   later decisions in the step); an unanswered observation is re-sent every resend_period.
+// Realtime: a decision starts once both agents answered every arena, or once stale_action_timeout
+//   has passed since it could have started (a silent agent then stands still for that step), or at
+//   once while an agent is absent; the seeker's later decisions likewise. While a decision's
+//   frames play, the hider's answers are late and refused.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "hideseek_game/agent.h"
+
+namespace hideseek_game {
+
+enum class ClockMode { kRealtime, kLockstep };
+
+enum class Player { kHider = 0, kSeeker = 1 };
+
+// What became of an offered action.
+enum class Verdict { kAccepted, kInvalidAction, kWrongStep, kLate };
+
+// A realtime decision's start: wait for answers, start with them, or start without some.
+enum class RealtimeStart { kWait, kReady, kStale };
+
+// The actions a decision applies, one per arena.
+struct DecisionActions {
+  std::vector<Action> hider;
+  std::vector<Action> seeker;
+};
+
+class DecisionScheduler {
+ public:
+  DecisionScheduler(ClockMode mode, int num_arenas, double stale_action_timeout, double resend_period);
+
+  // An action of `player` for `arena`, answering step `step_id` while the arena is at `current_step`.
+  Verdict offer(Player player, int arena, uint8_t action, uint32_t step_id, uint32_t current_step);
+  // Both agents answered every arena.
+  bool complete() const { return completeFor(Player::kHider) && completeFor(Player::kSeeker); }
+  // `player` answered every arena.
+  bool completeFor(Player player) const;
+  // Whether the pending answer of `player` for `arena` has arrived.
+  bool answered(Player player, int arena) const { return pending_[index(player, arena)].has_value(); }
+
+  // Realtime: may the next decision start at `now_s`? `agents_connected`: both agents publish.
+  RealtimeStart realtimeStart(double now_s, bool agents_connected);
+  // Realtime: may the seeker's next decision inside the step be taken at `now_s`?
+  RealtimeStart realtimeSeekerStart(double now_s, bool seeker_connected);
+  // Takes the decision: every arena's pending actions (STAY where missing), then clears them.
+  // In realtime the decision's frames now play until finishDecision(), and answers are late.
+  DecisionActions takeDecision();
+  // Takes the seeker's later decision inside a step (STAY where missing), then clears it.
+  std::vector<Action> takeSeekerDecision();
+  void finishDecision() { executing_ = false; }
+  bool executing() const { return executing_; }
+
+  // Forgets the answers of `arena` (-1: all) after a reset; a realtime wait starts afresh.
+  void reset(int arena);
+
+  // Lockstep: an observation went out at `now_s`; is a re-send due at `now_s`?
+  void observationSent(double now_s) { last_sent_ = now_s; }
+  bool resendDue(double now_s) const { return now_s - last_sent_ > resend_period_; }
+  double sinceSent(double now_s) const { return now_s - last_sent_; }
+
+ private:
+  size_t index(Player p, int arena) const { return static_cast<size_t>(p) * num_arenas_ + arena; }
+  RealtimeStart waitOrStale(bool ready, double now_s, bool connected);
+
+  ClockMode mode_;
+  int num_arenas_;
+  double stale_action_timeout_;
+  double resend_period_;
+  std::vector<std::optional<Action>> pending_;  // [player][arena]
+  bool executing_ = false;
+  std::optional<double> waiting_since_;  // realtime: when the next decision could first have started
+  double last_sent_ = 0.0;
+};
+
+}  // namespace hideseek_game

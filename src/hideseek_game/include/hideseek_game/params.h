@@ -1,0 +1,23 @@
+// Node parameters, read one way in every node: each helper returns the value or throws
+// std::runtime_error naming the parameter (fully resolved) and what it must be. Nodes read them
+// once, into their options struct, before they publish anything.
+#pragma once
+
+#include <ros/node_handle.h>
+
+#include <string>
+#include <vector>
+
+namespace hideseek_game {
+
+// A non-empty string that has no default; `what` says what it is ("a file path").
+std::string requireString(const ros::NodeHandle& nh, const std::string& name, const std::string& what = "a file path");
+std::string readString(const ros::NodeHandle& nh, const std::string& name, const std::string& fallback);
+// One of `allowed`.
+std::string readChoice(const ros::NodeHandle& nh, const std::string& name, const std::string& fallback,
+                       const std::vector<std::string>& allowed);
+int readInt(const ros::NodeHandle& nh, const std::string& name, int fallback, int min, int max);
+double readDouble(const ros::NodeHandle& nh, const std::string& name, double fallback, double min, double max);
+bool readBool(const ros::NodeHandle& nh, const std::string& name, bool fallback);
+
+}  // namespace hideseek_game

@@ -1,0 +1,33 @@
+// The run registry, policies/policies.yaml: one entry per training run (its variant, network,
+// game, training seed, steps, precision, the commit it trained with, its log). The run whose
+// exported weights are committed names them in `weights`; that is the policy a variant's launch
+// file plays by default (policy:=shipped). scripts/hideseek_registry.py reads the same file.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace hideseek_game {
+
+// The policy name that means "the weights the registry ships for this variant, network and game".
+inline constexpr char kShippedPolicy[] = "shipped";
+
+struct RunEntry {
+  std::string name;      // the run's key, e.g. basic_v2pilot_seed0
+  std::string variant;   // a config/variants/*.yaml name
+  std::string network;   // ff | gru
+  std::string game;      // the game it trained on (game.yaml's `game`: v2, v1)
+  int training_seed = 0;
+  long long steps = 0;
+  std::string weights;   // absolute path of the committed weights, or "" (not shipped)
+};
+
+// Reads the registry; throws ConfigError naming the run and field at fault, also where two runs
+// ship weights for the same variant, network and game, or where shipped weights are missing.
+std::vector<RunEntry> loadRunRegistry(const std::string& registry_file);
+
+// The weights shipped for variant, network and game, or "" when no run ships any.
+std::string shippedPolicyFile(const std::string& registry_file, const std::string& variant,
+                              const std::string& network, const std::string& game);
+
+}  // namespace hideseek_game

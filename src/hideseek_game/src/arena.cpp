@@ -1,0 +1,141 @@
+#include "hideseek_game/arena.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "hideseek_game/visibility.h"
+
+namespace hideseek_game {
+
+namespace {
+
+constexpr int kLayoutAttempts = 200;
+constexpr int kSpawnAttempts = 500;
+
+}  // namespace
+
+Arena::Arena(const GameOptions& options, std::shared_ptr<const MapSpec> map)
+    : options_(options), map_(std::move(map)) {
+  if (!map_->stochastic) {
+    std::mt19937 unused(0);
+    layout_ = makeLayout(*map_, unused);
+    fixed_grid_ = std::make_unique<FreeSpaceGrid>(layout_, options_.agent_radius, kSpawnGridResolution);
+  }
+}
+
+bool Arena::fits(Vec2 p, const FreeSpaceGrid& grid) const {
+  for (const Box& b : layout_.obstacles) {
+    if (footprintDistance(b, p) < options_.agent_radius) return false;
+  }
+  return grid.isFree(grid.cellOf(p));
+}
+
+bool Arena::trySpawn(std::mt19937& rng, const FreeSpaceGrid& grid) {
+  const double limit = layout_.half_extent - options_.agent_radius;
+  std::uniform_real_distribution<double> coordinate(-limit, limit);
+  auto sample = [&](Vec2& p) {
+    for (int i = 0; i < kSpawnAttempts; ++i) {
+      p = {coordinate(rng), coordinate(rng)};
+      if (fits(p, grid)) return true;
+    }
+    return false;
+  };
+  for (int attempt = 0; attempt < kSpawnAttempts; ++attempt) {
+    Vec2 h, s;
+    if (!sample(h) || !sample(s)) return false;
+    if (distance(h, s) < options_.min_spawn_distance || !grid.connected(h, s)) continue;
+    hider_ = {h, std::atan2(s.y - h.y, s.x - h.x), 0.0};
+    seeker_ = {s, std::atan2(h.y - s.y, h.x - s.x), 0.0};
+    return true;
+  }
+  return false;
+}
+
+void Arena::reset(uint32_t seed) {
+  seed_ = seed;
+  std::mt19937 rng(seed);
+  bool spawned = false;
+  for (int attempt = 0; attempt < kLayoutAttempts && !spawned; ++attempt) {
+    if (map_->stochastic) {
+      layout_ = makeLayout(*map_, rng);
+      ++layout_version_;
+      const FreeSpaceGrid grid(layout_, options_.agent_radius, kSpawnGridResolution);
+      spawned = trySpawn(rng, grid);
+    } else {
+      spawned = trySpawn(rng, *fixed_grid_);
+    }
+  }
+  if (!spawned) {
+    throw std::runtime_error(map_->source + ": no valid spawn pair (free, " + std::to_string(options_.min_spawn_distance) +
+                             " m apart, connected) found for seed " + std::to_string(seed));
+  }
+  step_ = 0;
+  frame_ = 0;
+  return_ = 0.0;
+  captured_ = false;
+  updateLabels();
+}
+
+StepResult Arena::step(Action hider, Action seeker) {
+  std::optional<StepResult> result;
+  while (!result) result = advanceFrame(hider, seeker);
+  return *result;
+}
+
+std::optional<StepResult> Arena::advanceFrame(Action hider, Action seeker) {
+  if (captured_ || step_ >= options_.max_steps) throw std::logic_error("Arena: stepped a finished episode");
+  advanceAgent(hider_, hider, options_.hider, options_.physics_dt, layout_, options_.agent_radius);
+  advanceAgent(seeker_, seeker, options_.seeker, options_.physics_dt, layout_, options_.agent_radius);
+  const Vec2 d = hider_.position - seeker_.position;
+  captured_ = dot(d, d) <= options_.capture_distance * options_.capture_distance;
+  if (++frame_ < options_.action_repeat && !captured_) return std::nullopt;
+  frame_ = 0;
+  ++step_;
+  updateLabels();
+  StepResult result;
+  const RewardOptions& r = options_.rewards;
+  if (captured_) {
+    result.reward = r.capture;
+    result.outcome = Outcome::kCaptured;
+  } else {
+    result.reward = r.survive;
+    if (r.visibility) result.reward += labels_.seeker_sees_hider ? r.seen : r.unseen;
+    if (step_ >= options_.max_steps) result.outcome = Outcome::kSurvived;
+  }
+  return_ += result.reward;
+  return result;
+}
+
+void Arena::updateLabels() {
+  labels_.hider_sees_seeker = agentSeesAgent(hider_, seeker_, layout_, options_);
+  labels_.seeker_sees_hider = agentSeesAgent(seeker_, hider_, layout_, options_);
+  labels_.obstacle_in_view = obstacleInView(hider_, layout_, options_);
+}
+
+uint32_t Arena::seekerDecisionIndex() const {
+  return static_cast<uint32_t>((step_ * options_.action_repeat + frame_) / options_.seeker_decision_frames);
+}
+
+bool Arena::seekerSeesHiderNow() const {
+  // At a decision step's boundary the labels are current; between them, look again.
+  if (frame_ == 0) return labels_.seeker_sees_hider;
+  return agentSeesAgent(seeker_, hider_, layout_, options_);
+}
+
+SeekerPerception seekerPerception(const Arena& arena) {
+  SeekerPerception p;
+  p.pose = arena.seeker();
+  const bool told_spawn = arena.options().seeker_knows_spawn && arena.stepCount() == 0 && arena.frameInStep() == 0;
+  if (told_spawn || arena.seekerSeesHiderNow()) p.hider_position = arena.hider().position;
+  return p;
+}
+
+StepResult playDecisionStep(Arena& arena, Action hider, const SeekerDecide& seeker) {
+  Action seeker_action = Action::kStay;
+  for (;;) {
+    if (arena.seekerDecisionDue()) seeker_action = seeker(seekerPerception(arena));
+    if (const std::optional<StepResult> r = arena.advanceFrame(hider, seeker_action)) return *r;
+  }
+}
+
+}  // namespace hideseek_game

@@ -1,0 +1,75 @@
+#include "hideseek_game/decision_scheduler.h"
+
+namespace hideseek_game {
+
+DecisionScheduler::DecisionScheduler(ClockMode mode, int num_arenas, double stale_action_timeout,
+                                     double resend_period)
+    : mode_(mode),
+      num_arenas_(num_arenas),
+      stale_action_timeout_(stale_action_timeout),
+      resend_period_(resend_period),
+      pending_(2 * static_cast<size_t>(num_arenas)) {}
+
+Verdict DecisionScheduler::offer(Player player, int arena, uint8_t action, uint32_t step_id, uint32_t current_step) {
+  if (action >= kNumActions) return Verdict::kInvalidAction;
+  if (mode_ == ClockMode::kRealtime && executing_ && player == Player::kHider) return Verdict::kLate;
+  if (step_id != current_step) return Verdict::kWrongStep;
+  pending_[index(player, arena)] = static_cast<Action>(action);
+  return Verdict::kAccepted;
+}
+
+bool DecisionScheduler::completeFor(Player player) const {
+  for (int i = 0; i < num_arenas_; ++i) {
+    if (!pending_[index(player, i)]) return false;
+  }
+  return true;
+}
+
+RealtimeStart DecisionScheduler::waitOrStale(bool ready, double now_s, bool connected) {
+  if (ready) return RealtimeStart::kReady;
+  if (!connected) return RealtimeStart::kStale;
+  if (!waiting_since_) waiting_since_ = now_s;
+  return now_s - *waiting_since_ < stale_action_timeout_ ? RealtimeStart::kWait : RealtimeStart::kStale;
+}
+
+RealtimeStart DecisionScheduler::realtimeStart(double now_s, bool agents_connected) {
+  return waitOrStale(complete(), now_s, agents_connected);
+}
+
+RealtimeStart DecisionScheduler::realtimeSeekerStart(double now_s, bool seeker_connected) {
+  return waitOrStale(completeFor(Player::kSeeker), now_s, seeker_connected);
+}
+
+std::vector<Action> DecisionScheduler::takeSeekerDecision() {
+  std::vector<Action> seeker;
+  for (int i = 0; i < num_arenas_; ++i) {
+    auto& a = pending_[index(Player::kSeeker, i)];
+    seeker.push_back(a.value_or(Action::kStay));
+    a.reset();
+  }
+  waiting_since_.reset();
+  return seeker;
+}
+
+DecisionActions DecisionScheduler::takeDecision() {
+  DecisionActions d;
+  for (int i = 0; i < num_arenas_; ++i) {
+    d.hider.push_back(pending_[index(Player::kHider, i)].value_or(Action::kStay));
+    d.seeker.push_back(pending_[index(Player::kSeeker, i)].value_or(Action::kStay));
+  }
+  for (auto& a : pending_) a.reset();
+  waiting_since_.reset();
+  executing_ = mode_ == ClockMode::kRealtime;
+  return d;
+}
+
+void DecisionScheduler::reset(int arena) {
+  for (int i = 0; i < num_arenas_; ++i) {
+    if (arena != -1 && arena != i) continue;
+    pending_[index(Player::kHider, i)].reset();
+    pending_[index(Player::kSeeker, i)].reset();
+  }
+  waiting_since_.reset();
+}
+
+}  // namespace hideseek_game

@@ -1,0 +1,70 @@
+#include "hideseek_game/run_registry.h"
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <tuple>
+
+#include "hideseek_game/config_error.h"
+#include "hideseek_game/yaml_fields.h"
+
+namespace hideseek_game {
+
+namespace {
+
+constexpr long long kMaxSteps = 1000000000000LL;
+
+}  // namespace
+
+std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
+  const YAML::Node root = loadYamlFile(registry_file);
+  std::vector<RunEntry> runs;
+  if (root.IsNull()) return runs;  // no run yet
+  if (!root.IsMap()) throw ConfigError(registry_file, "(top level)", "must map run names to runs");
+  std::map<std::tuple<std::string, std::string, std::string>, std::string> shipped;
+  for (const auto& kv : root) {
+    RunEntry r;
+    r.name = kv.first.as<std::string>();
+    if (!kv.second.IsMap()) throw ConfigError(registry_file, r.name, "must be a mapping of the run's fields");
+    YamlFields f(kv.second, registry_file, r.name);
+    r.variant = f.text("variant", "", {});
+    if (r.variant.empty()) throw ConfigError(registry_file, f.field("variant"), "is required");
+    r.network = f.text("network", "", {"ff", "gru"});
+    if (r.network.empty()) throw ConfigError(registry_file, f.field("network"), "is required (ff, gru)");
+    r.game = f.text("game", "", {});
+    if (r.game.empty()) throw ConfigError(registry_file, f.field("game"), "is required (v2, v1)");
+    r.training_seed = f.integer("training_seed", 0, 0, 1 << 30);
+    r.steps = static_cast<long long>(f.number("steps", 0, 0, static_cast<double>(kMaxSteps)));
+    const std::string weights = f.text("weights", "", {});
+    // Recorded for people and the scripts; read here so that a typo in a key is still refused.
+    for (const char* key : {"wall_s", "precision", "commit", "log", "curve", "command", "note"}) {
+      if (f.has(key)) f.child(key);
+    }
+    f.rejectUnknown();
+    if (!weights.empty()) {
+      r.weights = weights.front() == '/' ? weights : (std::filesystem::path(registry_file).parent_path() / weights).string();
+      if (!std::ifstream(r.weights).good()) {
+        throw ConfigError(registry_file, f.field("weights"), "names " + r.weights + ", which cannot be read");
+      }
+      const auto key = std::make_tuple(r.variant, r.network, r.game);
+      const auto [it, fresh] = shipped.emplace(key, r.name);
+      if (!fresh) {
+        throw ConfigError(registry_file, f.field("weights"),
+                          "run " + it->second + " already ships weights for variant " + r.variant + ", network " +
+                              r.network + ", game " + r.game + ": one shipped policy per variant");
+      }
+    }
+    runs.push_back(r);
+  }
+  return runs;
+}
+
+std::string shippedPolicyFile(const std::string& registry_file, const std::string& variant,
+                              const std::string& network, const std::string& game) {
+  for (const RunEntry& r : loadRunRegistry(registry_file)) {
+    if (r.variant == variant && r.network == network && r.game == game && !r.weights.empty()) return r.weights;
+  }
+  return "";
+}
+
+}  // namespace hideseek_game

@@ -1,0 +1,109 @@
+#include "hideseek_game/world.h"
+
+#include <stdexcept>
+
+namespace hideseek_game {
+
+World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int num_arenas, uint32_t seed,
+             bool render, int render_threads)
+    : options_(options),
+      episodes_(num_arenas, 0),
+      next_seeds_(num_arenas),
+      uploaded_layouts_(num_arenas, ~uint64_t{0}),
+      results_(num_arenas) {
+  if (num_arenas < 1) throw std::invalid_argument("World: num_arenas must be at least 1");
+  arenas_.reserve(num_arenas);
+  for (int i = 0; i < num_arenas; ++i) arenas_.emplace_back(options, map);
+  if (render) {
+    RendererOptions r;
+    r.camera = options.camera;
+    r.max_views = num_arenas;
+    r.agent_radius = options.agent_radius;
+    r.agent_height = options.agent_height;
+    r.colors = map->colors;
+    r.render_threads = render_threads;
+    renderer_ = std::make_unique<Renderer>(r);
+  }
+  for (int i = 0; i < num_arenas; ++i) startEpisode(i, seed + static_cast<uint32_t>(i));
+}
+
+void World::startEpisode(int i, uint32_t seed) {
+  arenas_[i].reset(seed);
+  next_seeds_[i] = seed + static_cast<uint32_t>(arenas_.size());
+}
+
+void World::resetArena(int i, std::optional<uint32_t> seed) {
+  if (frame_ != 0) throw std::logic_error("World: reset in the middle of a decision step");
+  startEpisode(i, seed ? *seed : next_seeds_[i]);
+  ++episodes_[i];
+}
+
+ArenaStep World::stepArena(int i, Action hider, Action seeker) { return conclude(i, arenas_[i].step(hider, seeker)); }
+
+ArenaStep World::stepArena(int i, Action hider, const SeekerDecide& seeker) {
+  return conclude(i, playDecisionStep(arenas_[i], hider, seeker));
+}
+
+uint32_t World::seekerDecisionId(int i) const {
+  // An arena whose step ended early (a capture) has counted that step already.
+  const int step = arenas_[i].stepCount() - (results_[i] ? 1 : 0);
+  return static_cast<uint32_t>(step * options_.seekerDecisionsPerStep() + frame_ / options_.seeker_decision_frames);
+}
+
+std::optional<std::vector<ArenaStep>> World::advanceFrame(const std::vector<Action>& hider,
+                                                          const std::vector<Action>& seeker) {
+  const int n = numArenas();
+  for (int i = 0; i < n; ++i) {
+    if (!results_[i]) results_[i] = arenas_[i].advanceFrame(hider[i], seeker[i]);
+  }
+  if (++frame_ < options_.action_repeat) return std::nullopt;
+  frame_ = 0;
+  std::vector<ArenaStep> out;
+  out.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    out.push_back(conclude(i, *results_[i]));
+    results_[i].reset();
+  }
+  return out;
+}
+
+ArenaStep World::conclude(int i, const StepResult& result) {
+  const Arena& a = arenas_[i];
+  ArenaStep out;
+  out.result = result;
+  if (result.done()) {
+    out.finished = EpisodeSummary{episodes_[i], a.seed(),        a.stepCount(), a.episodeReturn(),
+                                  result.outcome, a.hider(), a.seeker(),    a.labels()};
+    resetArena(i, std::nullopt);
+  }
+  return out;
+}
+
+size_t World::imageBytes() const {
+  return static_cast<size_t>(options_.camera.width) * options_.camera.height * 3;
+}
+
+void World::syncScenes() {
+  for (int i = 0; i < numArenas(); ++i) {
+    if (uploaded_layouts_[i] != arenas_[i].layoutVersion()) {
+      renderer_->setScene(i, arenas_[i].layout());
+      uploaded_layouts_[i] = arenas_[i].layoutVersion();
+    }
+  }
+}
+
+void World::renderHiderViews(uint8_t* out, RenderMode mode) {
+  if (!renderer_) throw std::logic_error("World: built without a renderer");
+  syncScenes();
+  views_.resize(arenas_.size());
+  for (int i = 0; i < numArenas(); ++i) views_[i] = {i, arenas_[i].hider(), arenas_[i].seeker(), false};
+  renderer_->render(views_, mode, out);
+}
+
+void World::renderSeekerView(int i, uint8_t* out, RenderMode mode) {
+  if (!renderer_) throw std::logic_error("World: built without a renderer");
+  syncScenes();
+  renderer_->render({{i, arenas_[i].seeker(), arenas_[i].hider(), true}}, mode, out);
+}
+
+}  // namespace hideseek_game

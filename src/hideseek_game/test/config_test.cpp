@@ -1,0 +1,97 @@
+#include <gtest/gtest.h>
+
+#include <dirent.h>
+
+#include <fstream>
+#include <functional>
+
+#include "hideseek_game/config_error.h"
+#include "hideseek_game/game_options.h"
+#include "hideseek_game/map.h"
+#include "test_util.h"
+
+namespace hideseek_game {
+
+namespace {
+
+std::vector<std::string> filesIn(const std::string& dir, const std::string& suffix) {
+  std::vector<std::string> out;
+  DIR* d = opendir(dir.c_str());
+  if (!d) return out;
+  while (dirent* e = readdir(d)) {
+    const std::string name = e->d_name;
+    if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      out.push_back(dir + "/" + name);
+    }
+  }
+  closedir(d);
+  return out;
+}
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const std::string path = testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(ShippedConfig, EveryVariantAndMapLoads) {
+  const auto variants = filesIn(test::configPath("variants"), ".yaml");
+  EXPECT_EQ(variants.size(), 7u);
+  for (const std::string& f : variants) {
+    SCOPED_TRACE(f);
+    const VariantConfig v = loadVariantConfig(test::configPath("game.yaml"), f);
+    const MapSpec map = loadMapFile(v.map_file);
+    EXPECT_FALSE(map.name.empty());
+  }
+  const auto maps = filesIn(test::configPath("maps"), ".yaml");
+  EXPECT_GE(maps.size(), 2u);
+  for (const std::string& f : maps) EXPECT_NO_THROW(loadMapFile(f)) << f;
+}
+
+TEST(ShippedConfig, VariantsMatchSpecTable) {
+  auto v = [](const std::string& n) { return test::loadVariant(n); };
+  EXPECT_EQ(v("basic").game.hider.speed, 2.0);
+  EXPECT_EQ(v("slowerhider").game.hider.speed, 1.0);
+  EXPECT_EQ(v("fasterhider").game.hider.mode, SpeedMode::kAccelerate);
+  EXPECT_EQ(v("visibilityreward_faster").game.hider.mode, SpeedMode::kAccelerate);
+  EXPECT_TRUE(v("visibilityreward_faster").game.rewards.visibility);
+  EXPECT_TRUE(v("visibilityreward").game.rewards.visibility);
+  EXPECT_FALSE(v("basic").game.rewards.visibility);
+  EXPECT_EQ(v("stochasticseeker").seeker_policy, "stochastic");
+  EXPECT_EQ(v("stochasticmaps").seeker_policy, "stochastic");
+  EXPECT_EQ(v("basic").seeker_policy, "deterministic");
+  EXPECT_TRUE(loadMapFile(v("stochasticmaps").map_file).stochastic);
+  EXPECT_EQ(v("basic").game.seeker.speed, 1.5);
+  EXPECT_EQ(v("basic").game.max_steps, 1000);
+  EXPECT_EQ(v("basic").game.action_repeat, 6);
+}
+
+TEST(BadConfig, ErrorsNameTheFileAndTheField) {
+  const std::string game = test::configPath("game.yaml");
+  const std::string typo = writeTemp("typo.yaml", "variant: x\nmap: deterministic.yaml\nhider: {sped: 2.0}\n");
+  EXPECT_NE(errorOf([&] { loadVariantConfig(game, typo); }).find("typo.yaml: field 'hider.sped': unknown field"),
+            std::string::npos);
+  const std::string range = writeTemp("range.yaml", "variant: x\nmap: deterministic.yaml\nhider: {speed: -1}\n");
+  const std::string e = errorOf([&] { loadVariantConfig(game, range); });
+  EXPECT_NE(e.find("range.yaml: field 'hider.speed': must be in [0, 20], got -1"), std::string::npos) << e;
+  const std::string map = writeTemp("badmap.yaml", "name: m\nobstacles:\n  - {center: [0, 0], size: [1]}\nwaypoints: [[1, 1]]\n");
+  EXPECT_NE(errorOf([&] { loadMapFile(map); }).find("badmap.yaml: field 'obstacles[0].size'"), std::string::npos);
+  const std::string inside = writeTemp("inside.yaml", "name: m\nobstacles:\n  - {center: [0, 0], size: [2, 2]}\nwaypoints: [[0.5, 0]]\n");
+  EXPECT_NE(errorOf([&] { loadMapFile(inside); }).find("'waypoints[0]': lies inside an obstacle"), std::string::npos);
+  EXPECT_NE(errorOf([&] { loadMapFile("/nonexistent/map.yaml"); }).find("/nonexistent/map.yaml"), std::string::npos);
+  const std::string syntax = writeTemp("syntax.yaml", "name: [unclosed\n");
+  EXPECT_NE(errorOf([&] { loadMapFile(syntax); }).find("not valid YAML"), std::string::npos);
+}
+
+}  // namespace hideseek_game

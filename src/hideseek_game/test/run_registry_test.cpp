@@ -1,0 +1,98 @@
+// The run registry (policies/policies.yaml) as the nodes read it: the shipped policy of a variant,
+// network and game, and registries that must be refused with the run and field named.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "hideseek_game/config_error.h"
+#include "hideseek_game/game_options.h"
+#include "hideseek_game/run_registry.h"
+
+namespace hideseek_game {
+namespace {
+
+class RunRegistryTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("hideseek_registry_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+    std::ofstream(dir_ / "basic.pt") << "weights";
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string write(const std::string& text) {
+    const std::string path = (dir_ / "policies.yaml").string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  std::string errorOf(const std::string& text) {
+    try {
+      loadRunRegistry(write(text));
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  std::filesystem::path dir_;
+};
+
+constexpr char kTwoRuns[] =
+    "basic_seed0: {variant: basic, network: ff, game: v2, training_seed: 0, steps: 2000896, commit: abc}\n"
+    "basic_seed1: {variant: basic, network: ff, game: v2, training_seed: 1, steps: 2000896, weights: basic.pt}\n";
+
+TEST_F(RunRegistryTest, TheShippedRunOfAVariantNamesItsWeights) {
+  const std::string registry = write(kTwoRuns);
+  EXPECT_EQ(shippedPolicyFile(registry, "basic", "ff", "v2"), (dir_ / "basic.pt").string());
+  const auto runs = loadRunRegistry(registry);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].name, "basic_seed0");
+  EXPECT_EQ(runs[0].weights, "");
+  EXPECT_EQ(runs[1].training_seed, 1);
+  EXPECT_EQ(runs[1].steps, 2000896);
+}
+
+TEST_F(RunRegistryTest, NoPolicyIsShippedForAnotherVariantNetworkOrGame) {
+  const std::string registry = write(kTwoRuns);
+  EXPECT_EQ(shippedPolicyFile(registry, "fasterhider", "ff", "v2"), "");
+  EXPECT_EQ(shippedPolicyFile(registry, "basic", "gru", "v2"), "");
+  EXPECT_EQ(shippedPolicyFile(registry, "basic", "ff", "v1"), "");
+  EXPECT_EQ(shippedPolicyFile(write("# no run yet\n"), "basic", "ff", "v2"), "");
+}
+
+TEST_F(RunRegistryTest, TwoShippedRunsOfOneVariantAreRefusedNamingBoth) {
+  std::ofstream(dir_ / "other.pt") << "weights";
+  const std::string error = errorOf(std::string(kTwoRuns) +
+                                    "basic_seed2: {variant: basic, network: ff, game: v2, weights: other.pt}\n");
+  EXPECT_NE(error.find("basic_seed2.weights"), std::string::npos) << error;
+  EXPECT_NE(error.find("run basic_seed1 already ships"), std::string::npos) << error;
+}
+
+TEST_F(RunRegistryTest, MissingWeightsUnknownFieldsAndMissingFieldsAreRefused) {
+  EXPECT_NE(errorOf("r: {variant: basic, network: ff, game: v2, weights: gone.pt}\n").find("r.weights"),
+            std::string::npos);
+  EXPECT_NE(errorOf("r: {variant: basic, network: ff, game: v2, stpes: 3}\n").find("'r.stpes': unknown field"),
+            std::string::npos);
+  EXPECT_NE(errorOf("r: {variant: basic, game: v2}\n").find("r.network"), std::string::npos);
+  EXPECT_NE(errorOf("r: {variant: basic, network: lstm, game: v2}\n").find("r.network"), std::string::npos);
+  EXPECT_NE(errorOf("r: {network: ff, game: v2}\n").find("'r.variant': is required"), std::string::npos);
+  EXPECT_NE(errorOf("r: {variant: basic, network: ff}\n").find("'r.game': is required"), std::string::npos);
+}
+
+TEST_F(RunRegistryTest, TheShippedRegistryIsReadable) {
+  // The committed registry: every run well formed, every shipped file present.
+  EXPECT_NO_THROW(loadRunRegistry(std::string(HIDESEEK_POLICY_DIR) + "/policies.yaml"));
+}
+
+TEST(GameName, GameFilesNameTheirGame) {
+  // The registry matches a policy to a game by these names.
+  const std::string config = HIDESEEK_CONFIG_DIR;
+  EXPECT_EQ(loadVariantConfig(config + "/game.yaml", config + "/variants/basic.yaml").game.name, "v2");
+  EXPECT_EQ(loadVariantConfig(config + "/game_v1.yaml", config + "/variants/basic.yaml").game.name, "v1");
+}
+
+}  // namespace
+}  // namespace hideseek_game

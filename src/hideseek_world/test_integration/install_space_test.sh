@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# The install space, as a Docker image or a binary package would use it. usage: install_space_test.sh XUNIT_OUTPUT
+# 1. A copy of the workspace's sources builds and installs into a temporary prefix (catkin_make
+#    install, tests off); then the copy is deleted.
+# 2. Nothing installed names the copy or the checkout (every file of the prefix is searched).
+# 3. With only the prefix's setup.bash sourced (a clean environment: the checkout is on no path),
+#    basic.launch plays a lockstep game with the shipped policy to finished episodes while recording
+#    a bag, evaluate.launch evaluates the shipped basic policy, and replay.launch replays the bag.
+# 4. Every file those graphs open (strace) lies outside the checkout; a failure names each file.
+set -uo pipefail
+source "$(dirname "$0")/xunit.sh"
+out=$1
+root="$(cd "$(dirname "$0")/.." && pwd)"
+workspace="$(cd "$root/../.." && pwd)"
+tmp=$(mktemp -d /tmp/hideseek_install_test.XXXXXX)
+copy=$tmp/ws
+prefix=$tmp/prefix
+port=$((12100 + RANDOM % 100))
+failures=()
+say() { echo "install_space_test: $*"; }
+
+# --- 1. build a copy and install it ---------------------------------------------------------------
+mkdir -p "$copy"
+cp -a "$workspace/src" "$workspace/config" "$workspace/policies" "$copy/"
+say "building a copy of the workspace into $prefix (about 10 min on 2 cores)"
+started=$(date +%s)
+if ! env -i HOME="$HOME" PATH=/usr/bin:/bin LANG=C.UTF-8 bash -c "cd '$copy' && catkin_make install \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX='$prefix' -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+    -DCATKIN_ENABLE_TESTING=OFF -j$(nproc)" > "$tmp/build.log" 2>&1; then
+  failures+=("catkin_make install failed: $(tail -n 5 "$tmp/build.log" | tr '\n' ' ')")
+fi
+say "built and installed in $(( $(date +%s) - started )) s"
+rm -rf "$copy"
+
+# --- 2. no installed text file names a source tree -------------------------------------------------
+# (Launch files, YAML, CMake, Python, setup files: what a node or tool would read a path from.
+# Compiled files keep their sources' names for log lines and tracebacks; step 4 checks that
+# nothing opens them.)
+for tree in "$copy" "$workspace"; do
+  while IFS= read -r file; do
+    failures+=("${file#"$prefix"/} names the source tree $tree")
+  done < <(grep -rlIF "$tree/" "$prefix" 2>/dev/null)
+done
+
+# --- 3. the graphs, from the prefix alone, each under strace ---------------------------------------
+# Runs roslaunch in a clean environment with only the prefix sourced; every open of a file goes to
+# $tmp/trace.NAME.*.
+launch() {
+  local name=$1 limit=$2
+  shift 2
+  # Started in $tmp, so that no process inherits the checkout as its working directory.
+  (cd "$tmp" && env -i HOME="$HOME" PATH=/usr/bin:/bin LANG=C.UTF-8 bash -c "source '$prefix/setup.bash' && \
+    strace -f -qq --seccomp-bpf -e trace=open,openat,execve,stat,newfstatat -e signal=none \
+    -o '$tmp/trace.$name' timeout -s INT $limit roslaunch -p $port hideseek_world $*") > "$tmp/$name.log" 2>&1
+}
+where=$(env -i HOME="$HOME" PATH=/usr/bin:/bin bash -c "source '$prefix/setup.bash' && rospack find hideseek_world" 2>&1)
+[ "$where" = "$prefix/share/hideseek_world" ] || failures+=("rospack finds hideseek_world at '$where', not in the prefix")
+
+say "basic.launch (lockstep, shipped policy, recording a bag)"
+launch basic 60 basic.launch mode:=lockstep num_arenas:=2 record:=true bag_dir:="$tmp/bags"
+episodes=$(grep -c "episode [0-9]* (seed [0-9]*): " "$tmp/basic.log")
+[ "$episodes" -ge 2 ] || failures+=("basic.launch finished $episodes episodes in 60 s: $(grep -m 3 -E 'ERROR|FATAL|rror' "$tmp/basic.log" | tr '\n' ' ')")
+grep -m 4 "episode [0-9]* (seed [0-9]*): " "$tmp/basic.log"
+
+say "evaluate.launch (the shipped basic policy, 4 episodes)"
+launch evaluate 300 evaluate.launch variant:=basic policy:=shipped episodes:=4 output_dir:="$tmp/eval"
+rows=$(tail -n +2 "$tmp/eval/episodes.csv" 2>/dev/null | wc -l)
+[ "$rows" = 4 ] || failures+=("evaluate.launch wrote $rows episodes, not 4: $(grep -m 3 -E 'ERROR|FATAL' "$tmp/evaluate.log" | tr '\n' ' ')")
+named=$(tail -n 1 "$tmp/eval/evaluation.csv" 2>/dev/null | cut -d, -f2)
+case "$named" in
+  "$prefix/share/hideseek_world/policies/"*) ;;
+  *) failures+=("evaluate.launch's shipped policy is '$named', not a file of the prefix") ;;
+esac
+cat "$tmp/eval/evaluation.md" 2>/dev/null
+
+bag=$(ls "$tmp"/bags/*.bag 2>/dev/null | head -n 1)
+if [ -z "$bag" ]; then
+  failures+=("basic.launch record:=true left no closed bag in $tmp/bags")
+else
+  say "replay.launch ($(basename "$bag"), headless, 10x)"
+  launch replay 120 replay.launch bag:="$bag" rviz:=false rate:=10
+  status=$?
+  grep -q "Done." "$tmp/replay.log" && [ $status -eq 0 ] ||
+    failures+=("replay.launch exited $status without playing the bag to its end: $(tail -n 3 "$tmp/replay.log" | tr '\n' ' ')")
+fi
+
+# --- 4. nothing opened from a source tree ----------------------------------------------------------
+for tree in "$copy" "$workspace"; do
+  while IFS= read -r file; do
+    failures+=("a node opened $file (in the source tree $tree)")
+  done < <(cat "$tmp"/trace.* 2>/dev/null | grep -oE "\"$tree/[^\"]*\"" | tr -d '"' | sort -u)
+done
+opened=$(cat "$tmp"/trace.* 2>/dev/null | grep -oE "\"$prefix/[^\"]*\"" | sort -u | wc -l)
+say "the graphs opened $opened distinct files of the prefix, none of a source tree unless listed below"
+
+write_xunit "$out" install_space InstalledPackagesRunWithoutTheCheckout "${failures[@]}"
+printf 'failure: %s\n' "${failures[@]}"
+[ ${#failures[@]} -eq 0 ] && rm -rf "$tmp"
+exit 0
