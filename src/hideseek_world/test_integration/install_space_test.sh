@@ -22,7 +22,7 @@ say() { echo "install_space_test: $*"; }
 # --- 1. build a copy and install it ---------------------------------------------------------------
 mkdir -p "$copy"
 cp -a "$workspace/src" "$workspace/config" "$workspace/policies" "$copy/"
-say "building a copy of the workspace into $prefix (about 10 min on 2 cores)"
+say "building a copy of the workspace into $prefix (about 5 min on 2 cores)"
 started=$(date +%s)
 if ! env -i HOME="$HOME" PATH=/usr/bin:/bin LANG=C.UTF-8 bash -c "cd '$copy' && catkin_make install \
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX='$prefix' -DPYTHON_EXECUTABLE=/usr/bin/python3 \
