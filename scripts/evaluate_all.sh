@@ -1,13 +1,12 @@
 #!/usr/bin/env bash
 # The paper's Table 2 side by side with this project's: every shipped policy (policies/<variant>.pt,
-# greedy) and the uniformly random hider on all seven variants, seeds 0..99 through the ROS graph
+# greedy) and the uniformly random hider on every variant (config/variants), seeds 0..99 through the ROS graph
 # (evaluate.launch), beside the paper's figures (config/paper_reference.yaml).
 # Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/report, as make reproduce). Writes table2.md, table2.csv, gru_vs_ff.md, gru_vs_ff.csv
 # and, per evaluation, OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv.
 # A shipped GRU hider (policies/<variant>_gru.pt) is evaluated too, as <variant>_gru_trained, and once more
-# with its state zeroed at every step (memoryless:=true, what its memory does) as <variant>_gru_memoryless; so is
-# every other run of the variant listed in policies/policies.yaml (another training seed, a longer run):
-# policies/<run>.pt as <run>_trained.
+# with its state zeroed at every step (memoryless:=true, what its memory does) as <variant>_gru_memoryless.
+# A run that is not shipped is evaluated into its own folder by scripts/evaluate_run.sh.
 # HIDESEEK_VARIANTS="v1 v2" evaluates those variants only and keeps the other evaluations already in
 # OUTPUT_DIR/evaluations (made by the same code: use it after training a policy, not after changing the game).
 set -euo pipefail
@@ -16,7 +15,7 @@ cd "$(dirname "$0")/.."
 source scripts/env.sh
 port=${HIDESEEK_PORT:-11477}
 export ROS_MASTER_URI=http://localhost:$port
-variants=(basic fasterhider visibilityreward_faster stochasticseeker stochasticmaps visibilityreward slowerhider)
+mapfile -t variants < <(/usr/bin/python3 scripts/hideseek_registry.py variants --paper-order)
 if [ -n "${HIDESEEK_VARIANTS:-}" ]; then
   for v in $HIDESEEK_VARIANTS; do
     [[ " ${variants[*]} " == *" $v "* ]] || { echo "evaluate_all: HIDESEEK_VARIANTS names '$v', which is not one of: ${variants[*]}" >&2; exit 2; }
@@ -41,34 +40,19 @@ evaluate() {
   rm -f "$dir/launch.log"
   echo "evaluate_all: $v $label: $(tail -n 1 "$dir/evaluation.csv" | cut -d, -f4,5 | tr , ' ') ($(($(date +%s) - start)) s)"
 }
-# The variant's other runs in policies.yaml, one per line (not <variant> or <variant>_gru: those are
-# evaluated as trained and gru_trained). table2.py lists the same runs.
-other_runs() {
-  /usr/bin/python3 - "$1" <<'PY'
-import os, sys, yaml
-v = sys.argv[1]
-entries = yaml.safe_load(open("policies/policies.yaml")) if os.path.exists("policies/policies.yaml") else {}
-for name, e in (entries or {}).items():
-    if (e or {}).get("variant") == v and name not in (v, v + "_gru") and os.path.exists("policies/%s.pt" % name):
-        print(name)
-PY
-}
+registry() { /usr/bin/python3 scripts/hideseek_registry.py "$@"; }
 for v in "${variants[@]}"; do
   evaluate "$v" random random "$out/evaluations/${v}_random"
-  if [ -f "policies/$v.pt" ]; then
-    evaluate "$v" trained "$PWD/policies/$v.pt" "$out/evaluations/${v}_trained"
+  # The registry ships at most one policy per variant and network (policies/policies.yaml).
+  if ff=$(registry shipped "$v" --network ff 2>/dev/null); then
+    evaluate "$v" trained "$ff" "$out/evaluations/${v}_trained"
   else
     echo "evaluate_all: $v: no shipped policy"
   fi
-  if [ -f "policies/${v}_gru.pt" ]; then
-    evaluate "$v" gru_trained "$PWD/policies/${v}_gru.pt" "$out/evaluations/${v}_gru_trained"
-    evaluate "$v" gru_memoryless "$PWD/policies/${v}_gru.pt" "$out/evaluations/${v}_gru_memoryless" memoryless:=true
+  if gru=$(registry shipped "$v" --network gru 2>/dev/null); then
+    evaluate "$v" gru_trained "$gru" "$out/evaluations/${v}_gru_trained"
+    evaluate "$v" gru_memoryless "$gru" "$out/evaluations/${v}_gru_memoryless" memoryless:=true
   fi
-  # A separate statement, so that set -e stops on a policies.yaml that cannot be read.
-  runs=$(other_runs "$v")
-  while IFS= read -r run; do
-    [ -z "$run" ] || evaluate "$v" "$run" "$PWD/policies/$run.pt" "$out/evaluations/${run}_trained"
-  done <<< "$runs"
 done
 /usr/bin/python3 scripts/table2.py config/paper_reference.yaml "$out/evaluations" "$out/table2" policies
 cat "$out/table2.md"

@@ -10,12 +10,18 @@
 
 The C++ nodes read the runs through hideseek_game/run_registry.h, under the same rules.
 
+A policy's label is its variant's name, with _gru for a GRU hider (basic, basic_gru): the name
+of its weights (policies/<label>.pt) and of its folders in an evaluation or a report.
+
 usage:
-  hideseek_registry.py variants                       the variant names, one per line
+  hideseek_registry.py variants [--paper-order]       the variant names, one per line (in name
+                                                      order, or Table 2's: the paper's, then others)
   hideseek_registry.py runs [--variant V] [--game G] [--network N]
                                                       run names, one per line
   hideseek_registry.py shipped VARIANT [--network N] [--game G]
                                                       the shipped weights' path (exit 1: none)
+  hideseek_registry.py shipped --all [--game G]       LABEL VARIANT PATH of every shipped policy, in
+                                                      Table 2's order
   hideseek_registry.py record RUN key=value ...       adds or updates a run's entry
   hideseek_registry.py ship RUN WEIGHTS               copies WEIGHTS to policies/<variant>[_gru].pt
                                                       and makes RUN the shipped run of its key
@@ -33,6 +39,7 @@ import yaml
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 VARIANTS_DIR = os.path.join(ROOT, "config", "variants")
 REGISTRY = os.path.join(ROOT, "policies", "policies.yaml")
+PAPER = os.path.join(ROOT, "config", "paper_reference.yaml")
 NETWORKS = ("ff", "gru")
 # Keys a run may carry (the C++ loader refuses any other, so that a typo is found).
 RUN_KEYS = ("variant", "network", "game", "training_seed", "steps", "wall_s", "precision", "commit", "log",
@@ -55,6 +62,37 @@ def variants(variants_dir=VARIANTS_DIR):
             raise RegistryError("%s: field 'variant' is %r; it must be the file's name, %r" % (path, name, stem))
         names.append(name)
     return names
+
+
+def paper_order(variants_dir=VARIANTS_DIR, paper=PAPER):
+    """The variants in Table 2's order: the paper's (config/paper_reference.yaml), then the others by name."""
+    names = variants(variants_dir)
+    with open(paper) as f:
+        listed = list((yaml.safe_load(f) or {}).get("variants") or {})
+    return [n for n in listed if n in names] + [n for n in names if n not in listed]
+
+
+def label(variant, network="ff"):
+    """The name of a variant's policy of this network: basic, basic_gru."""
+    return variant if network == "ff" else variant + "_" + network
+
+
+def run_variant(name, entry, known):
+    """The variant a run or policy label belongs to: its entry's `variant`, else read from the label."""
+    if entry.get("variant"):
+        return entry["variant"]
+    for network in NETWORKS:
+        for v in known:
+            if label(v, network) == name:
+                return v
+    return None
+
+
+def run_network(name, entry):
+    """A run's network: its entry's `network`, else read from the label."""
+    if entry.get("network"):
+        return entry["network"]
+    return next((n for n in NETWORKS if n != "ff" and name.endswith("_" + n)), "ff")
 
 
 def _header(text):
@@ -143,7 +181,7 @@ def ship(name, weights, registry=REGISTRY):
     if name not in entries:
         raise RegistryError("%s: no run %s to ship" % (registry, name))
     entry = entries[name]
-    file_name = entry["variant"] + ("" if entry["network"] == "ff" else "_" + entry["network"]) + ".pt"
+    file_name = label(entry["variant"], entry["network"]) + ".pt"
     target = os.path.join(os.path.dirname(registry), file_name)
     if os.path.abspath(weights) != os.path.abspath(target):
         shutil.copyfile(weights, target)
@@ -193,13 +231,15 @@ def main(argv=None):
     parser.add_argument("--registry", default=REGISTRY, help="the run registry (default: policies/policies.yaml)")
     parser.add_argument("--variants-dir", default=VARIANTS_DIR, help="the variants (default: config/variants)")
     sub = parser.add_subparsers(dest="command", required=True)
-    sub.add_parser("variants")
+    p = sub.add_parser("variants")
+    p.add_argument("--paper-order", action="store_true")
     p = sub.add_parser("runs")
     p.add_argument("--variant")
     p.add_argument("--game")
     p.add_argument("--network", choices=NETWORKS)
     p = sub.add_parser("shipped")
-    p.add_argument("variant")
+    p.add_argument("variant", nargs="?")
+    p.add_argument("--all", action="store_true")
     p.add_argument("--network", default="ff", choices=NETWORKS)
     p.add_argument("--game", default="v2")
     p = sub.add_parser("record")
@@ -212,10 +252,19 @@ def main(argv=None):
     args = parser.parse_args(argv)
     try:
         if args.command == "variants":
-            print("\n".join(variants(args.variants_dir)))
+            names = paper_order(args.variants_dir) if args.paper_order else variants(args.variants_dir)
+            print("\n".join(names))
         elif args.command == "runs":
             print("\n".join(select(args.variant, args.game, args.network, args.registry)))
+        elif args.command == "shipped" and args.all:
+            for v in paper_order(args.variants_dir):
+                for network in NETWORKS:
+                    _, path = shipped(v, network, args.game, args.registry)
+                    if path:
+                        print(label(v, network), v, path)
         elif args.command == "shipped":
+            if not args.variant:
+                raise RegistryError("shipped: name a VARIANT, or --all")
             name, path = shipped(args.variant, args.network, args.game, args.registry)
             if not path:
                 print("hideseek_registry: no %s policy is shipped for variant %s on game %s"

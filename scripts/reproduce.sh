@@ -22,20 +22,22 @@ start=$(date +%s)
 mkdir -p "$report" "$work"
 echo "reproduce: [1/3] Table 2: every shipped policy and the random hider, seeds 0-99, all variants"
 HIDESEEK_PORT=$port scripts/evaluate_all.sh "$report"
-# Every shipped policy: <variant>.pt, and <variant>_gru.pt for a GRU hider (analysed into <variant>_gru/).
-variants=()
-for v in ${HIDESEEK_VARIANTS:-basic fasterhider visibilityreward_faster stochasticseeker stochasticmaps visibilityreward slowerhider}; do
-  for name in "$v" "${v}_gru"; do
-    [ -f "policies/$name.pt" ] && variants+=("$name")
-  done
-done
+# Every shipped policy (policies/policies.yaml): its label (the report's folder), variant and weights.
+labels=() bases=() weights=()
+while read -r label base path; do
+  [ -z "${HIDESEEK_VARIANTS:-}" ] || [[ " $HIDESEEK_VARIANTS " == *" $base "* ]] || continue
+  labels+=("$label")
+  bases+=("$base")
+  weights+=("$path")
+done < <(/usr/bin/python3 scripts/hideseek_registry.py shipped --all)
+variants=("${labels[@]}")
 i=0
 for v in "${variants[@]}"; do
   i=$((i + 1))
   echo "reproduce: [2/3] analysis $i of ${#variants[@]}: $v ($steps steps; $(($(date +%s) - start)) s so far)"
   rm -rf "${report:?}/$v"
   # roslaunch exits 0 even when a required node dies: the report's files are the verdict.
-  roslaunch -p "$port" hideseek_world analyze.launch variant:="${v%_gru}" policy:="$PWD/policies/$v.pt" steps:="$steps" \
+  roslaunch -p "$port" hideseek_world analyze.launch variant:="${bases[$((i - 1))]}" policy:="${weights[$((i - 1))]}" steps:="$steps" \
     output_dir:="$work/$v" report_dir:="$report/$v" > "$work/$v.log" 2>&1 || true
   grep -E "^analysis:|report:" "$work/$v.log" | sed 's/^/  /' || true
   [ -s "$report/$v/distance_time.png" ] || { echo "reproduce: the analysis of $v failed, see $work/$v.log" >&2; exit 1; }

@@ -18,8 +18,11 @@ import sys
 
 import yaml
 
-VARIANTS = ["basic", "fasterhider", "visibilityreward_faster", "stochasticseeker", "stochasticmaps",
-            "visibilityreward", "slowerhider"]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import hideseek_registry as registry  # noqa: E402
+
+# Table 2's rows: the variants (config/variants) in the paper's order, then any the paper lacks.
+VARIANTS = registry.paper_order()
 
 
 def evaluation(folder):
@@ -35,18 +38,11 @@ def evaluation(folder):
 
 
 def run_variant(name, entry):
-    """The variant a shipped run belongs to: its `variant` field, else the name (older entries)."""
-    if entry.get("variant"):
-        return entry["variant"]
-    if name in VARIANTS:
-        return name
-    if name.endswith("_gru") and name[:-4] in VARIANTS:
-        return name[:-4]
-    return None
+    return registry.run_variant(name, entry, VARIANTS)
 
 
 def run_network(name, entry):
-    return entry.get("network") or ("gru" if name.endswith("_gru") else "ff")
+    return registry.run_network(name, entry)
 
 
 def runs_of(variant, shipped, evaluations):
@@ -114,7 +110,9 @@ def main(paper_file, evaluations, stem, policies):
                      % (policies, name, variant, ", ".join(VARIANTS)))
     rows = []
     for base in VARIANTS:
-        p = paper["variants"][base]
+        # A variant the paper lacks has no reference figures: "-".
+        p = paper["variants"].get(base) or {k: "-" for k in ("living_trained", "living_random", "success_trained",
+                                                              "success_random")}
         random = evaluation(os.path.join(evaluations, base + "_random"))
         for v in runs_of(base, shipped, evaluations):
             entry = shipped.get(v) or {}

@@ -25,8 +25,6 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 
-ORDER = ["basic", "fasterhider", "visibilityreward_faster", "stochasticseeker", "stochasticmaps",
-         "visibilityreward", "slowerhider"]
 STATE_NAMES = ["S%d H%d O%d" % ((i >> 2) & 1, (i >> 1) & 1, i & 1) for i in range(8)]
 
 
@@ -90,8 +88,10 @@ def base_variant(name):
     return name[:-len("_gru")] if name.endswith("_gru") else name
 
 
-WEAKER = ["slowerhider", "stochasticseeker", "visibilityreward"]  # the paper's moderate weaknesses
-STRONGER = ["fasterhider"]                                         # the paper's advantage
+# The paper's claim on representation (config/paper_reference.yaml): variants that give the hider a
+# moderate weakness, and one that gives it an advantage. Set from the paper file in main().
+WEAKER = []
+STRONGER = []
 
 
 def weakness_finding(probes, gains):
@@ -155,8 +155,11 @@ def main():
     with open(a.paper) as f:
         paper = yaml.safe_load(f)
     ref = paper["variants"]
+    WEAKER[:] = paper["moderate_weaknesses"]
+    STRONGER[:] = paper["advantages"]
     table2 = {r["variant"]: r for r in rows(os.path.join(a.report, "table2.csv"))}
-    analysed = [v for base in ORDER for v in (base, base + "_gru")
+    # The paper's Table 2 order; a variant the paper lacks has no reference numbers to print beside.
+    analysed = [v for base in ref for v in (base, base + "_gru")
                 if os.path.isfile(os.path.join(a.report, v, "probes.csv"))]
     if not analysed:
         raise SystemExit("reproduce_report: no variant folder with probes.csv in %s" % a.report)

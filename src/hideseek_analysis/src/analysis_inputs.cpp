@@ -7,9 +7,9 @@
 #include <set>
 #include <stdexcept>
 
-#include "hideseek_seeker/scripted_game.h"
 #include "hideseek_game/arena.h"
 #include "hideseek_game/renderer.h"
+#include "hideseek_seeker/scripted_game.h"
 
 namespace hideseek_analysis {
 
@@ -25,7 +25,8 @@ std::ofstream openOrThrow(const std::string& path) {
 }
 
 constexpr char kStepsHeader[] =
-    "arena,episode,step,S,H,O,distance,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw,hider_action,reward,outcome\n";
+    "arena,episode,step,S,H,O,distance,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw,hider_action,reward,"
+    "outcome\n";
 
 void writeStepRow(std::ofstream& out, const ArenaStepRecord& r) {
   out << r.arena << ',' << r.seed << ',' << r.step << ',' << r.hider_sees_seeker << ',' << r.seeker_sees_hider << ','
@@ -58,9 +59,8 @@ torch::Tensor extractFeatures(hideseek_hider::HiderNet& net, const uint8_t* imag
     const torch::Tensor x =
         torch::from_blob(const_cast<uint8_t*>(images + first * bytes), {b, height, width, 3}, torch::kUInt8);
     const torch::Tensor f =
-        net->recurrent()
-            ? net->forwardSequence(x.unsqueeze(0), net->initialHidden(b), torch::zeros({1, b})).features[0]
-            : net->forward(x).features;
+        net->recurrent() ? net->forwardSequence(x.unsqueeze(0), net->initialHidden(b), torch::zeros({1, b})).features[0]
+                         : net->forward(x).features;
     parts.push_back(f.to(torch::kFloat32).contiguous());
   }
   if (parts.empty()) return torch::zeros({0, hideseek_hider::kFeatures});
@@ -219,7 +219,8 @@ AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::Hi
       const MemoryReplay replay = replayMemory(log, {&trained, &random_init}, variant, map, options.pixel_tolerance);
       summary.memory_images_compared = replay.images_compared;
       summary.max_pixel_difference = replay.max_pixel_difference;
-      for (auto [name, k] : {std::pair<const char*, size_t>{"trained", 0}, std::pair<const char*, size_t>{"random", 1}}) {
+      for (auto [name, k] :
+           {std::pair<const char*, size_t>{"trained", 0}, std::pair<const char*, size_t>{"random", 1}}) {
         const torch::Tensor m = replay.memory[k].contiguous();
         writeNpy(dir + "/memory_" + name + ".npy", m.data_ptr<float>(), m.size(0), m.size(1));
       }
@@ -233,24 +234,25 @@ AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::Hi
     uint32_t next_seed = seeds.empty() ? 0 : *seeds.begin();
     while (summary.random_steps < summary.steps) {
       std::vector<ArenaStepRecord> episode;
-      const auto played = hideseek_seeker::playScriptedHider(
-          variant, map, hideseek_seeker::EvaderKind::kRandom, next_seed, 1, [&](const hideseek_seeker::ScriptedStep& s) {
-            ArenaStepRecord r;
-            r.seed = s.seed;
-            r.step = static_cast<uint32_t>(s.step);
-            r.hider_x = s.hider.position.x;
-            r.hider_y = s.hider.position.y;
-            r.hider_yaw = s.hider.yaw;
-            r.seeker_x = s.seeker.position.x;
-            r.seeker_y = s.seeker.position.y;
-            r.seeker_yaw = s.seeker.yaw;
-            r.distance = hw::distance(s.hider.position, s.seeker.position);
-            r.hider_sees_seeker = s.labels.hider_sees_seeker;
-            r.seeker_sees_hider = s.labels.seeker_sees_hider;
-            r.obstacle_in_view = s.labels.obstacle_in_view;
-            r.hider_action = static_cast<int>(s.hider_action);
-            episode.push_back(r);
-          });
+      const auto played = hideseek_seeker::playScriptedHider(variant, map, hideseek_seeker::EvaderKind::kRandom,
+                                                             next_seed, 1, [&](const hideseek_seeker::ScriptedStep& s) {
+                                                               ArenaStepRecord r;
+                                                               r.seed = s.seed;
+                                                               r.step = static_cast<uint32_t>(s.step);
+                                                               r.hider_x = s.hider.position.x;
+                                                               r.hider_y = s.hider.position.y;
+                                                               r.hider_yaw = s.hider.yaw;
+                                                               r.seeker_x = s.seeker.position.x;
+                                                               r.seeker_y = s.seeker.position.y;
+                                                               r.seeker_yaw = s.seeker.yaw;
+                                                               r.distance =
+                                                                   hw::distance(s.hider.position, s.seeker.position);
+                                                               r.hider_sees_seeker = s.labels.hider_sees_seeker;
+                                                               r.seeker_sees_hider = s.labels.seeker_sees_hider;
+                                                               r.obstacle_in_view = s.labels.obstacle_in_view;
+                                                               r.hider_action = static_cast<int>(s.hider_action);
+                                                               episode.push_back(r);
+                                                             });
       // The episode's last step carries how it ended (rewards are the trained rollout's only).
       if (!episode.empty()) episode.back().outcome = played.front().survived ? 2 : 1;
       for (const auto& r : episode) writeStepRow(out, r);
@@ -277,9 +279,11 @@ AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::Hi
       if (static_cast<int>(summary.trajectory_seeds.size()) >= options.trajectory_episodes) break;
       arena.reset(seed);
       const ArenaStepRecord& s = *start[seed];
-      if (std::abs(arena.hider().position.x - s.hider_x) > 1e-3 || std::abs(arena.hider().position.y - s.hider_y) > 1e-3) {
-        throw std::runtime_error("episode " + std::to_string(seed) + " of the recording does not start where variant '" +
-                                 variant.name + "' starts it: was it recorded with another variant or map?");
+      if (std::abs(arena.hider().position.x - s.hider_x) > 1e-3 ||
+          std::abs(arena.hider().position.y - s.hider_y) > 1e-3) {
+        throw std::runtime_error("episode " + std::to_string(seed) +
+                                 " of the recording does not start where variant '" + variant.name +
+                                 "' starts it: was it recorded with another variant or map?");
       }
       for (const hw::Box& b : arena.layout().obstacles) {
         out << seed << ',' << arena.layout().half_extent << ',' << b.center.x << ',' << b.center.y << ',' << b.size.x

@@ -37,20 +37,22 @@ void runAnalysis(const AnalysisJob& job) {
   const int h = job.variant.game.camera.height, w = job.variant.game.camera.width;
   hideseek_hider::CheckpointInfo info;
   hideseek_hider::HiderNet net = hideseek_hider::loadCheckpoint(job.policy, h, w, &info);
-  std::printf("analysis: features of %ld images through %s (network %s, %ld training steps) and a random network "
-              "(seed %u)%s\n",
-              static_cast<long>(log.numImages()), job.policy.c_str(), hideseek_hider::networkName(net->network()),
-              static_cast<long>(info.steps), job.inputs.random_init_seed,
-              net->recurrent() ? "; GRU states of every step, re-rendered from the recorded poses" : "");
+  std::printf(
+      "analysis: features of %ld images through %s (network %s, %ld training steps) and a random network "
+      "(seed %u)%s\n",
+      static_cast<long>(log.numImages()), job.policy.c_str(), hideseek_hider::networkName(net->network()),
+      static_cast<long>(info.steps), job.inputs.random_init_seed,
+      net->recurrent() ? "; GRU states of every step, re-rendered from the recorded poses" : "");
   std::fflush(stdout);
-  const AnalysisInputsSummary s = writeAnalysisInputs(log, net, job.variant,
-                                                      std::make_shared<const hideseek_game::MapSpec>(
-                                                          hideseek_game::loadMapFile(job.variant.map_file)),
-                                                      job.inputs, job.inputs_dir);
+  const AnalysisInputsSummary s = writeAnalysisInputs(
+      log, net, job.variant,
+      std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(job.variant.map_file)), job.inputs,
+      job.inputs_dir);
   if (net->recurrent()) {
-    std::printf("analysis: GRU states replayed; %ld recorded images match their re-rendering (largest pixel "
-                "difference %d)\n",
-                static_cast<long>(s.memory_images_compared), s.max_pixel_difference);
+    std::printf(
+        "analysis: GRU states replayed; %ld recorded images match their re-rendering (largest pixel "
+        "difference %d)\n",
+        static_cast<long>(s.memory_images_compared), s.max_pixel_difference);
   }
   std::printf("analysis: %zu episodes; random policy: %zu steps in %zu episodes; inputs in %s (%.0f s)\n", s.episodes,
               s.random_steps, s.random_episodes, job.inputs_dir.c_str(), elapsed());

@@ -13,12 +13,12 @@
 #include <string>
 
 #include "hideseek_analysis/analysis_job.h"
-#include "hideseek_hider/hider_net.h"
 #include "hideseek_game/package_paths.h"
 #include "hideseek_game/params.h"
 #include "hideseek_game/run_registry.h"
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/world_node_options.h"
+#include "hideseek_hider/hider_net.h"
 
 namespace {
 
@@ -52,8 +52,9 @@ class Recorder {
       return;
     }
     if (msg.image_every == 0) {
-      failure_ = "world/steps carries no hider images (the world's step_image_every is 0, or record_images is "
-                 "false): the probes need them";
+      failure_ =
+          "world/steps carries no hider images (the world's step_image_every is 0, or record_images is "
+          "false): the probes need them";
       close();
       ros::shutdown();
       return;
@@ -76,6 +77,59 @@ class Recorder {
   std::string failure_;
 };
 
+constexpr int kMaxDecisions = 1 << 24;  // ~decisions: a bag of this many steps is already tens of GB
+
+// What the node does, read from its private parameters; throws naming the parameter at fault.
+struct AnalysisNodeOptions {
+  hideseek_analysis::AnalysisJob job;
+  int decisions = 0;  // decision steps of world/steps to record
+};
+
+AnalysisNodeOptions loadAnalysisNodeOptions(const ros::NodeHandle& pnh) {
+  AnalysisNodeOptions o;
+  o.job.variant = hideseek_game::loadVariantParams(pnh);
+  o.job.policy = hideseek_game::requireString(pnh, "policy", "a checkpoint file, or 'shipped'");
+  if (o.job.policy == hideseek_game::kShippedPolicy) {
+    const std::string registry = hideseek_game::requireString(pnh, "policy_registry", "the run registry file");
+    const std::string network = hideseek_game::readString(pnh, "network", "auto") == "gru" ? "gru" : "ff";
+    o.job.policy = hideseek_game::shippedPolicyFile(registry, o.job.variant.name, network, o.job.variant.game.name);
+    if (o.job.policy.empty()) {
+      throw std::runtime_error("parameter " + pnh.resolveName("policy") + " is 'shipped', but " + registry +
+                               " ships no " + network + " policy for variant " + o.job.variant.name + " on game " +
+                               o.job.variant.game.name + ": give a checkpoint file");
+    }
+  }
+  o.job.inputs_dir = hideseek_game::requireString(pnh, "output_dir", "a folder");
+  o.job.report_dir = hideseek_game::readString(pnh, "report_dir", o.job.inputs_dir + "/report");
+  // The report script hideseek_analysis installs, unless a parameter names another.
+  o.job.report_script = hideseek_game::readString(pnh, "report_script", "");
+  if (o.job.report_script.empty())
+    o.job.report_script = hideseek_game::packageExecutable("hideseek_analysis", "report.py");
+  o.job.bag = hideseek_game::readString(pnh, "bag", o.job.inputs_dir + "/rollout.bag");
+  o.job.inputs.random_init_seed =
+      static_cast<uint32_t>(hideseek_game::readInt(pnh, "random_init_seed", 0, 0, hideseek_game::kMaxSeed));
+  o.job.tsne_samples = hideseek_game::readInt(pnh, "tsne_samples", 3000, 100, 100000);
+  o.job.probe_splits = hideseek_game::readInt(pnh, "probe_splits", 5, 1, 100);
+  o.job.inputs.pixel_tolerance = hideseek_game::readInt(pnh, "pixel_tolerance", 0, 0, 255);
+  const std::string precision = hideseek_game::readString(pnh, "precision", "fp32");
+  if (!pnh.hasParam("decisions")) {
+    throw std::runtime_error("parameter " + pnh.resolveName("decisions") + " is required (decision steps to record)");
+  }
+  o.decisions = hideseek_game::readInt(pnh, "decisions", 0, 1, kMaxDecisions);
+  if (!std::filesystem::is_regular_file(o.job.policy)) {
+    throw std::runtime_error("parameter " + pnh.resolveName("policy") + ": no checkpoint at " + o.job.policy);
+  }
+  // Read before recording, not after: a file that is no checkpoint stops the launch at once.
+  if (hideseek_hider::readCheckpointInfo(o.job.policy).network == hideseek_hider::NetworkKind::kGru &&
+      precision != "fp32") {
+    throw std::runtime_error("parameter " + pnh.resolveName("precision") + " is '" + precision +
+                             "': a GRU policy is analysed in fp32 only, because its state is replayed in fp32 "
+                             "and would drift from the state a " +
+                             precision + " hider acted on; set precision:=fp32");
+  }
+  return o;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -85,45 +139,10 @@ int main(int argc, char** argv) {
   {
     ros::NodeHandle nh, pnh("~");
     try {
-      job.variant = hideseek_game::loadVariantParams(pnh);
-      job.policy = hideseek_game::requireString(pnh, "policy", "a checkpoint file, or 'shipped'");
-      if (job.policy == hideseek_game::kShippedPolicy) {
-        const std::string registry = hideseek_game::requireString(pnh, "policy_registry", "the run registry file");
-        const std::string network = hideseek_game::readString(pnh, "network", "auto") == "gru" ? "gru" : "ff";
-        job.policy = hideseek_game::shippedPolicyFile(registry, job.variant.name, network, job.variant.game.name);
-        if (job.policy.empty()) {
-          throw std::runtime_error("parameter " + pnh.resolveName("policy") + " is 'shipped', but " + registry +
-                                   " ships no " + network + " policy for variant " + job.variant.name + " on game " +
-                                   job.variant.game.name + ": give a checkpoint file");
-        }
-      }
-      job.inputs_dir = hideseek_game::requireString(pnh, "output_dir", "a folder");
-      job.report_dir = hideseek_game::readString(pnh, "report_dir", job.inputs_dir + "/report");
-      // The report script hideseek_analysis installs, unless a parameter names another.
-      job.report_script = hideseek_game::readString(pnh, "report_script", "");
-      if (job.report_script.empty()) job.report_script = hideseek_game::packageExecutable("hideseek_analysis", "report.py");
-      job.bag = hideseek_game::readString(pnh, "bag", job.inputs_dir + "/rollout.bag");
-      job.inputs.random_init_seed = static_cast<uint32_t>(hideseek_game::readInt(pnh, "random_init_seed", 0, 0, 1 << 30));
-      job.tsne_samples = hideseek_game::readInt(pnh, "tsne_samples", 3000, 100, 100000);
-      job.probe_splits = hideseek_game::readInt(pnh, "probe_splits", 5, 1, 100);
-      job.inputs.pixel_tolerance = hideseek_game::readInt(pnh, "pixel_tolerance", 0, 0, 255);
-      const std::string precision = hideseek_game::readString(pnh, "precision", "fp32");
-      if (!pnh.hasParam("decisions")) {
-        throw std::runtime_error("parameter " + pnh.resolveName("decisions") + " is required (decision steps to record)");
-      }
-      const int decisions = hideseek_game::readInt(pnh, "decisions", 0, 1, 1 << 24);
-      if (!std::filesystem::is_regular_file(job.policy)) {
-        throw std::runtime_error("parameter " + pnh.resolveName("policy") + ": no checkpoint at " + job.policy);
-      }
-      // Read before recording, not after: a file that is no checkpoint stops the launch at once.
-      if (hideseek_hider::readCheckpointInfo(job.policy).network == hideseek_hider::NetworkKind::kGru &&
-          precision != "fp32") {
-        throw std::runtime_error("parameter " + pnh.resolveName("precision") + " is '" + precision +
-                                 "': a GRU policy is analysed in fp32 only, because its state is replayed in fp32 "
-                                 "and would drift from the state a " + precision + " hider acted on; set precision:=fp32");
-      }
-      recorder = std::make_unique<Recorder>(nh, job.bag, decisions);
-      ROS_INFO("analysis: recording %d decisions of world/steps into %s", decisions, job.bag.c_str());
+      const AnalysisNodeOptions options = loadAnalysisNodeOptions(pnh);
+      job = options.job;
+      recorder = std::make_unique<Recorder>(nh, job.bag, options.decisions);
+      ROS_INFO("analysis: recording %d decisions of world/steps into %s", options.decisions, job.bag.c_str());
     } catch (const std::exception& e) {
       // Logged while roscpp still runs, so that roslaunch shows it.
       ROS_FATAL("analysis: %s", e.what());

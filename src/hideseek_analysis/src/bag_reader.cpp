@@ -1,10 +1,9 @@
 #include "hideseek_analysis/bag_reader.h"
 
+#include <ros/message_traits.h>
 #include <rosbag/bag.h>
 #include <rosbag/query.h>
 #include <rosbag/view.h>
-
-#include <ros/message_traits.h>
 
 namespace hideseek_analysis {
 

@@ -13,7 +13,8 @@ std::string where(uint64_t decision, int arena) {
 void StepLog::append(DecisionRecord d) {
   const int n = static_cast<int>(d.arenas.size());
   if (n == 0) throw std::invalid_argument("decision " + std::to_string(d.decision) + " holds no arena");
-  if (!d.images.empty() && (d.height <= 0 || d.width <= 0 || d.images.size() != static_cast<size_t>(n) * d.height * d.width * 3)) {
+  if (!d.images.empty() &&
+      (d.height <= 0 || d.width <= 0 || d.images.size() != static_cast<size_t>(n) * d.height * d.width * 3)) {
     throw std::invalid_argument("decision " + std::to_string(d.decision) + ": " + std::to_string(d.images.size()) +
                                 " image bytes for " + std::to_string(n) + " arenas of " + std::to_string(d.height) +
                                 "x" + std::to_string(d.width) + " RGB8");

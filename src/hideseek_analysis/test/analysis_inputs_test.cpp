@@ -7,9 +7,9 @@
 #include <iterator>
 #include <sstream>
 
-#include "hideseek_seeker/scripted_game.h"
 #include "hideseek_game/hash_uniform.h"
 #include "hideseek_game/world.h"
+#include "hideseek_seeker/scripted_game.h"
 
 namespace hideseek_analysis {
 namespace {
@@ -36,9 +36,9 @@ size_t lines(const std::string& path) {
 }
 
 struct TempDir {
-  std::filesystem::path path = std::filesystem::temp_directory_path() /
-                               ("hideseek_analysis_test_" + std::to_string(::getpid()) + "_" +
-                                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("hideseek_analysis_test_" + std::to_string(::getpid()) + "_" +
+                                                ::testing::UnitTest::GetInstance()->current_test_info()->name());
   TempDir() { std::filesystem::create_directories(path); }
   ~TempDir() { std::filesystem::remove_all(path); }
 };
@@ -194,7 +194,8 @@ TEST(ReplayMemory, GivesTheStateOfAStepByStepRunOverEveryImage) {
     for (int i = 0; i < n; ++i) {
       const int64_t image = log.records()[d * n + i].image;
       if (image >= 0) {
-        ASSERT_TRUE(torch::allclose(replay.memory[0][image], memory[i], 1e-5, 1e-5)) << "decision " << d << ", arena " << i;
+        ASSERT_TRUE(torch::allclose(replay.memory[0][image], memory[i], 1e-5, 1e-5))
+            << "decision " << d << ", arena " << i;
       }
     }
   }

@@ -14,8 +14,7 @@ constexpr int kSpawnAttempts = 500;
 
 }  // namespace
 
-Arena::Arena(const GameOptions& options, std::shared_ptr<const MapSpec> map)
-    : options_(options), map_(std::move(map)) {
+Arena::Arena(const GameOptions& options, std::shared_ptr<const MapSpec> map) : options_(options), map_(std::move(map)) {
   if (!map_->stochastic) {
     std::mt19937 unused(0);
     layout_ = makeLayout(*map_, unused);
@@ -66,8 +65,9 @@ void Arena::reset(uint32_t seed) {
     }
   }
   if (!spawned) {
-    throw std::runtime_error(map_->source + ": no valid spawn pair (free, " + std::to_string(options_.min_spawn_distance) +
-                             " m apart, connected) found for seed " + std::to_string(seed));
+    throw std::runtime_error(map_->source + ": no valid spawn pair (free, " +
+                             std::to_string(options_.min_spawn_distance) + " m apart, connected) found for seed " +
+                             std::to_string(seed));
   }
   step_ = 0;
   frame_ = 0;

@@ -2,8 +2,7 @@
 
 namespace hideseek_game {
 
-DecisionScheduler::DecisionScheduler(ClockMode mode, int num_arenas, double stale_action_timeout,
-                                     double resend_period)
+DecisionScheduler::DecisionScheduler(ClockMode mode, int num_arenas, double stale_action_timeout, double resend_period)
     : mode_(mode),
       num_arenas_(num_arenas),
       stale_action_timeout_(stale_action_timeout),

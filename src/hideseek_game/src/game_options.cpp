@@ -81,7 +81,8 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
     YamlFields c(f.child("camera"), source, "camera");
     g.camera.width = c.integer("width", g.camera.width, 8, 1024);
     g.camera.height = c.integer("height", g.camera.height, 8, 1024);
-    g.camera.horizontal_fov = c.number("horizontal_fov_deg", g.camera.horizontal_fov * 180.0 / kPi, 10.0, 170.0) * kPi / 180.0;
+    g.camera.horizontal_fov =
+        c.number("horizontal_fov_deg", g.camera.horizontal_fov * 180.0 / kPi, 10.0, 170.0) * kPi / 180.0;
     g.camera.mount_height = c.number("mount_height", g.camera.mount_height, 0.05, 5.0);
     g.camera.near_clip = c.number("near_clip", g.camera.near_clip, 1e-3, 1.0);
     g.camera.far_clip = c.number("far_clip", g.camera.far_clip, 1.0, 1000.0);

@@ -121,7 +121,8 @@ std::vector<Box> wallBoxes(double half_extent, double height) {
   constexpr double kThickness = 0.2;
   const double h = half_extent, t = kThickness, span = 2.0 * (half_extent + kThickness);
   return {Box::make({h + 0.5 * t, 0.0}, {t, span}, height, 0.0), Box::make({-h - 0.5 * t, 0.0}, {t, span}, height, 0.0),
-          Box::make({0.0, h + 0.5 * t}, {span, t}, height, 0.0), Box::make({0.0, -h - 0.5 * t}, {span, t}, height, 0.0)};
+          Box::make({0.0, h + 0.5 * t}, {span, t}, height, 0.0),
+          Box::make({0.0, -h - 0.5 * t}, {span, t}, height, 0.0)};
 }
 
 }  // namespace hideseek_game

@@ -174,7 +174,8 @@ visualization_msgs::MarkerArray toMarkers(const Arena& arena, const std::string&
   out.markers.push_back(clear);
   int id = 0;
   for (const Box& b : layout.obstacles) {
-    out.markers.push_back(boxMarker(b, id++, b.wall ? "wall_cuts" : "obstacles", b.wall ? colors.wall : colors.obstacle));
+    out.markers.push_back(
+        boxMarker(b, id++, b.wall ? "wall_cuts" : "obstacles", b.wall ? colors.wall : colors.obstacle));
   }
   id = 0;
   for (const Box& b : wallBoxes(layout.half_extent, layout.wall_height)) {
@@ -183,8 +184,10 @@ visualization_msgs::MarkerArray toMarkers(const Arena& arena, const std::string&
   const GameOptions& g = arena.options();
   out.markers.push_back(agentMarker(arena.hider(), g, "hider", colors.hider));
   out.markers.push_back(agentMarker(arena.seeker(), g, "seeker", colors.seeker));
-  out.markers.push_back(coneMarker(arena.hider(), g.camera, arena.layout(), "hider_view", arena.labels().hider_sees_seeker));
-  out.markers.push_back(coneMarker(arena.seeker(), g.camera, arena.layout(), "seeker_view", arena.labels().seeker_sees_hider));
+  out.markers.push_back(
+      coneMarker(arena.hider(), g.camera, arena.layout(), "hider_view", arena.labels().hider_sees_seeker));
+  out.markers.push_back(
+      coneMarker(arena.seeker(), g.camera, arena.layout(), "seeker_view", arena.labels().seeker_sees_hider));
   for (auto& m : out.markers) {
     m.header.frame_id = frame_id;
     m.header.stamp = stamp;
@@ -229,8 +232,7 @@ void finishStepBatch(const std::vector<ArenaStep>& results, const std::vector<Ac
 }
 
 hideseek_msgs::ObservationBatch toObservationBatch(const World& world, const std::vector<uint8_t>& images,
-                                                   const std::vector<float>& rewards,
-                                                   const std::vector<uint8_t>& done,
+                                                   const std::vector<float>& rewards, const std::vector<uint8_t>& done,
                                                    const std::vector<uint8_t>& outcome) {
   hideseek_msgs::ObservationBatch obs;
   const int n = world.numArenas();

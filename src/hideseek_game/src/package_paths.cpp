@@ -26,9 +26,9 @@ std::string packageExecutable(const std::string& package, const std::string& nam
     const std::filesystem::path candidate = std::filesystem::path(prefix) / "lib" / package / name;
     if (std::filesystem::is_regular_file(candidate)) return candidate.string();
   }
-  throw std::runtime_error("cannot find " + name + " of the ROS package '" + package +
-                           "' in lib/" + package + "/ of any prefix on CMAKE_PREFIX_PATH ('" +
-                           (prefixes ? prefixes : "") + "'): source the setup.bash that holds it");
+  throw std::runtime_error("cannot find " + name + " of the ROS package '" + package + "' in lib/" + package +
+                           "/ of any prefix on CMAKE_PREFIX_PATH ('" + (prefixes ? prefixes : "") +
+                           "'): source the setup.bash that holds it");
 }
 
 std::string configDirectory() { return packageDirectory("hideseek_game") + "/config"; }

@@ -39,7 +39,8 @@ int readInt(const ros::NodeHandle& nh, const std::string& name, int fallback, in
   int value = fallback;
   if (nh.hasParam(name) && !nh.getParam(name, value)) throw bad(nh, name, "must be an integer");
   if (value < min || value > max) {
-    throw bad(nh, name, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + std::to_string(value));
+    throw bad(nh, name,
+              "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + std::to_string(value));
   }
   return value;
 }
@@ -48,7 +49,8 @@ double readDouble(const ros::NodeHandle& nh, const std::string& name, double fal
   double value = fallback;
   if (nh.hasParam(name) && !nh.getParam(name, value)) throw bad(nh, name, "must be a number");
   if (!(value >= min && value <= max)) {
-    throw bad(nh, name, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + std::to_string(value));
+    throw bad(nh, name,
+              "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + std::to_string(value));
   }
   return value;
 }

@@ -1,14 +1,14 @@
 #include "hideseek_game/renderer.h"
 
 #define GL_GLEXT_PROTOTYPES
-#include <GL/osmesa.h>
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <GL/osmesa.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <algorithm>
 #include <cstdlib>
 #include <map>
 #include <stdexcept>
@@ -173,7 +173,7 @@ struct Renderer::Impl {
   size_t buffer_capacity = 0;  // vertices; the buffer only grows, so frames reuse its memory
   Eigen::Matrix4f projection;
   std::map<int, std::vector<Quad>> scenes;
-  std::vector<Quad> cylinder;  // around the origin, front (+x) stripe on the first quad
+  std::vector<Quad> cylinder;        // around the origin, front (+x) stripe on the first quad
   std::vector<Quad> plain_cylinder;  // the same without the stripe, for agents with a front colour
   std::vector<bool> front_segment;   // which of its quads face within kFrontHalfAngle of +x
   std::vector<FrameVertex> frame;
@@ -192,8 +192,17 @@ Renderer::Renderer(const RendererOptions& options) : options_(options), impl_(st
   r.framebuffer.assign(static_cast<size_t>(r.fb_width) * r.fb_height * 4, 0);
   // llvmpipe reads its thread count when the first context is made; an explicit environment wins.
   setenv("LP_NUM_THREADS", std::to_string(options.render_threads).c_str(), 0);
-  const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
-                            OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0};
+  const int attributes[] = {OSMESA_FORMAT,
+                            OSMESA_RGBA,
+                            OSMESA_DEPTH_BITS,
+                            24,
+                            OSMESA_STENCIL_BITS,
+                            0,
+                            OSMESA_ACCUM_BITS,
+                            0,
+                            OSMESA_PROFILE,
+                            OSMESA_COMPAT_PROFILE,
+                            0};
   r.context = OSMesaCreateContextAttribs(attributes, nullptr);
   if (!r.context) throw std::runtime_error("renderer: OSMesa could not create a context");
   if (!OSMesaMakeCurrent(r.context, r.framebuffer.data(), GL_UNSIGNED_BYTE, r.fb_width, r.fb_height)) {
@@ -228,7 +237,8 @@ Renderer::Renderer(const RendererOptions& options) : options_(options), impl_(st
     const Eigen::Vector3f p0(radius * std::cos(a0), radius * std::sin(a0), 0.f);
     const Eigen::Vector3f p1(radius * std::cos(a1), radius * std::sin(a1), 0.f);
     const Eigen::Vector3f up(0.f, 0.f, height);
-    r.cylinder.push_back(makeQuad({p0, p1, p1 + up, p0 + up}, i == 0 ? Rgb{0.45f, 0.45f, 0.45f} : Rgb{1.f, 1.f, 1.f}, false));
+    r.cylinder.push_back(
+        makeQuad({p0, p1, p1 + up, p0 + up}, i == 0 ? Rgb{0.45f, 0.45f, 0.45f} : Rgb{1.f, 1.f, 1.f}, false));
     r.plain_cylinder.push_back(makeQuad({p0, p1, p1 + up, p0 + up}, Rgb{1.f, 1.f, 1.f}, false));
     // Segment i faces 30 i degrees; the front colour covers the five facing within 60 degrees.
     const int facing = i <= kSegments / 2 ? i : kSegments - i;
@@ -248,7 +258,9 @@ void Renderer::setScene(int scene, const Layout& layout) {
   // One floor quad: llvmpipe's cost grows with triangles, and fog already tells distance.
   quads.push_back({{Eigen::Vector3f(-e, -e, 0.f), Eigen::Vector3f(e, -e, 0.f), Eigen::Vector3f(e, e, 0.f),
                     Eigen::Vector3f(-e, e, 0.f)},
-                   colors.floor, Eigen::Vector3f::UnitZ(), false});
+                   colors.floor,
+                   Eigen::Vector3f::UnitZ(),
+                   false});
   // Inner faces of the walls.
   const std::array<Eigen::Vector2f, 4> inner = {Eigen::Vector2f(e, e), Eigen::Vector2f(-e, e), Eigen::Vector2f(-e, -e),
                                                 Eigen::Vector2f(e, -e)};
@@ -281,7 +293,8 @@ void Renderer::setScene(int scene, const Layout& layout) {
       if (std::abs(p.x()) > e || std::abs(p.y()) > e) {
         const auto clipped = clipToArena(q.corners, e);
         if (clipped.size() < 3) {
-          q.corners = {Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero()};
+          q.corners = {Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero(),
+                       Eigen::Vector3f::Zero()};
         } else if (clipped.size() <= 4) {
           for (size_t i = 0; i < 4; ++i) q.corners[i] = clipped[std::min(i, clipped.size() - 1)];
         } else {
@@ -312,7 +325,8 @@ void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, ui
   for (size_t k = 0; k < views.size(); ++k) {
     const ViewRequest& view = views[k];
     const auto scene = r.scenes.find(view.scene);
-    if (scene == r.scenes.end()) throw std::invalid_argument("renderer: scene " + std::to_string(view.scene) + " not set");
+    if (scene == r.scenes.end())
+      throw std::invalid_argument("renderer: scene " + std::to_string(view.scene) + " not set");
     const AgentState& v = view.viewer;
     const Eigen::Vector3f eye(v.position.x, v.position.y, options_.camera.mount_height);
     const Eigen::Matrix4f vp = r.projection * viewMatrix(v, options_.camera.mount_height);
@@ -333,8 +347,9 @@ void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, ui
       const Eigen::Vector3f normal(cos_yaw * q.normal.x() - sin_yaw * q.normal.y(),
                                    sin_yaw * q.normal.x() + cos_yaw * q.normal.y(), q.normal.z());
       if (normal.dot(eye - corners[0]) <= 0.f) return;
-      Eigen::Vector3f color = segmentation ? (is_agent ? Eigen::Vector3f(1.f, 1.f, 1.f) : Eigen::Vector3f::Zero())
-                                           : Eigen::Vector3f(q.color.r * tint.r, q.color.g * tint.g, q.color.b * tint.b);
+      Eigen::Vector3f color = segmentation
+                                  ? (is_agent ? Eigen::Vector3f(1.f, 1.f, 1.f) : Eigen::Vector3f::Zero())
+                                  : Eigen::Vector3f(q.color.r * tint.r, q.color.g * tint.g, q.color.b * tint.b);
       r.poly.clear();
       bool all_inside = true;
       for (const Eigen::Vector3f& c : corners) {
@@ -347,8 +362,8 @@ void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, ui
       for (size_t i = 1; i + 1 < r.poly.size(); ++i) {
         for (size_t j : {size_t{0}, i, i + 1}) {
           const ClipVertex& cv = r.poly[j];
-          r.frame.push_back({sx * cv.p.x() + ox * cv.p.w(), sy * cv.p.y() + oy * cv.p.w(), cv.p.z(), cv.p.w(),
-                             cv.c.x(), cv.c.y(), cv.c.z()});
+          r.frame.push_back({sx * cv.p.x() + ox * cv.p.w(), sy * cv.p.y() + oy * cv.p.w(), cv.p.z(), cv.p.w(), cv.c.x(),
+                             cv.c.y(), cv.c.z()});
         }
       }
     };
@@ -379,7 +394,8 @@ void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, ui
   }
   glBufferSubData(GL_ARRAY_BUFFER, 0, r.frame.size() * sizeof(FrameVertex), r.frame.data());
   glVertexAttribPointer(r.a_position, 4, GL_FLOAT, GL_FALSE, sizeof(FrameVertex), reinterpret_cast<void*>(0));
-  glVertexAttribPointer(r.a_color, 3, GL_FLOAT, GL_FALSE, sizeof(FrameVertex), reinterpret_cast<void*>(4 * sizeof(float)));
+  glVertexAttribPointer(r.a_color, 3, GL_FLOAT, GL_FALSE, sizeof(FrameVertex),
+                        reinterpret_cast<void*>(4 * sizeof(float)));
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(r.frame.size()));
   glFinish();
 

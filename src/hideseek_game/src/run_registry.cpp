@@ -1,11 +1,13 @@
 #include "hideseek_game/run_registry.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <tuple>
 
 #include "hideseek_game/config_error.h"
+#include "hideseek_game/game_options.h"
 #include "hideseek_game/yaml_fields.h"
 
 namespace hideseek_game {
@@ -15,6 +17,23 @@ namespace {
 constexpr long long kMaxSteps = 1000000000000LL;
 
 }  // namespace
+
+std::vector<std::string> variantNames(const std::string& variants_dir) {
+  std::vector<std::string> names;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(variants_dir, error)) {
+    if (entry.path().extension() != ".yaml") continue;
+    const std::string file = entry.path().string(), stem = entry.path().stem().string();
+    const YAML::Node root = loadYamlFile(file);
+    const std::string named = root.IsMap() && root["variant"] ? root["variant"].as<std::string>() : "";
+    if (named != stem)
+      throw ConfigError(file, "variant", "is '" + named + "'; it must be the file's name, '" + stem + "'");
+    names.push_back(stem);
+  }
+  if (error) throw ConfigError(variants_dir, "(folder)", "cannot be read: " + error.message());
+  std::sort(names.begin(), names.end());
+  return names;
+}
 
 std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
   const YAML::Node root = loadYamlFile(registry_file);
@@ -33,7 +52,7 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
     if (r.network.empty()) throw ConfigError(registry_file, f.field("network"), "is required (ff, gru)");
     r.game = f.text("game", "", {});
     if (r.game.empty()) throw ConfigError(registry_file, f.field("game"), "is required (v2, v1)");
-    r.training_seed = f.integer("training_seed", 0, 0, 1 << 30);
+    r.training_seed = f.integer("training_seed", 0, 0, kMaxSeed);
     r.steps = static_cast<long long>(f.number("steps", 0, 0, static_cast<double>(kMaxSteps)));
     const std::string weights = f.text("weights", "", {});
     // Recorded for people and the scripts; read here so that a typo in a key is still refused.
@@ -42,7 +61,8 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
     }
     f.rejectUnknown();
     if (!weights.empty()) {
-      r.weights = weights.front() == '/' ? weights : (std::filesystem::path(registry_file).parent_path() / weights).string();
+      r.weights =
+          weights.front() == '/' ? weights : (std::filesystem::path(registry_file).parent_path() / weights).string();
       if (!std::ifstream(r.weights).good()) {
         throw ConfigError(registry_file, f.field("weights"), "names " + r.weights + ", which cannot be read");
       }
@@ -59,8 +79,8 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
   return runs;
 }
 
-std::string shippedPolicyFile(const std::string& registry_file, const std::string& variant,
-                              const std::string& network, const std::string& game) {
+std::string shippedPolicyFile(const std::string& registry_file, const std::string& variant, const std::string& network,
+                              const std::string& game) {
   for (const RunEntry& r : loadRunRegistry(registry_file)) {
     if (r.variant == variant && r.network == network && r.game == game && !r.weights.empty()) return r.weights;
   }

@@ -88,8 +88,8 @@ bool obstacleInView(const AgentState& viewer, const Layout& layout, const GameOp
     if (box.wall) continue;
     const double hx = 0.5 * box.size.x, hy = 0.5 * box.size.y;
     const double c = box.cos_yaw, s = box.sin_yaw;
-    const std::array<Vec2, 8> local = {Vec2{hx, hy}, Vec2{-hx, hy}, Vec2{-hx, -hy}, Vec2{hx, -hy},
-                                       Vec2{hx, 0.0}, Vec2{-hx, 0.0}, Vec2{0.0, hy}, Vec2{0.0, -hy}};
+    const std::array<Vec2, 8> local = {Vec2{hx, hy},  Vec2{-hx, hy},  Vec2{-hx, -hy}, Vec2{hx, -hy},
+                                       Vec2{hx, 0.0}, Vec2{-hx, 0.0}, Vec2{0.0, hy},  Vec2{0.0, -hy}};
     for (size_t i = 0; i < local.size(); ++i) {
       const Vec2 w{box.center.x + c * local[i].x - s * local[i].y, box.center.y + s * local[i].x + c * local[i].y};
       const std::array<double, 3> heights = {0.0, std::min(box.height, frustum.eye.z), box.height};

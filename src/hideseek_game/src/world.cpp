@@ -4,8 +4,8 @@
 
 namespace hideseek_game {
 
-World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int num_arenas, uint32_t seed,
-             bool render, int render_threads)
+World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int num_arenas, uint32_t seed, bool render,
+             int render_threads)
     : options_(options),
       episodes_(num_arenas, 0),
       next_seeds_(num_arenas),
@@ -72,16 +72,14 @@ ArenaStep World::conclude(int i, const StepResult& result) {
   ArenaStep out;
   out.result = result;
   if (result.done()) {
-    out.finished = EpisodeSummary{episodes_[i], a.seed(),        a.stepCount(), a.episodeReturn(),
+    out.finished = EpisodeSummary{episodes_[i],   a.seed(),  a.stepCount(), a.episodeReturn(),
                                   result.outcome, a.hider(), a.seeker(),    a.labels()};
     resetArena(i, std::nullopt);
   }
   return out;
 }
 
-size_t World::imageBytes() const {
-  return static_cast<size_t>(options_.camera.width) * options_.camera.height * 3;
-}
+size_t World::imageBytes() const { return static_cast<size_t>(options_.camera.width) * options_.camera.height * 3; }
 
 void World::syncScenes() {
   for (int i = 0; i < numArenas(); ++i) {

@@ -6,6 +6,10 @@
 
 namespace hideseek_game {
 
+namespace {
+constexpr int kMaxDecisions = 1 << 30;  // ~max_decisions: far beyond any rollout
+}  // namespace
+
 VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
   return loadVariantConfig(requireString(nh, "game_config"), requireString(nh, "variant_config"));
 }
@@ -17,7 +21,7 @@ WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& nh) {
   o.mode = readChoice(nh, "mode", "realtime", {"realtime", "lockstep"}) == "lockstep" ? ClockMode::kLockstep
                                                                                       : ClockMode::kRealtime;
   o.num_arenas = readInt(nh, "num_arenas", 1, 1, kMaxArenas);
-  o.seed = static_cast<uint32_t>(readInt(nh, "seed", 0, 0, 1 << 30));
+  o.seed = static_cast<uint32_t>(readInt(nh, "seed", 0, 0, kMaxSeed));
   o.frame_id = readString(nh, "frame_id", "map");
   if (o.frame_id.empty()) throw std::runtime_error("parameter " + nh.resolveName("frame_id") + " must not be empty");
   o.tf_prefix = readString(nh, "tf_prefix", "");
@@ -31,7 +35,7 @@ WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& nh) {
   o.episode_listeners = readInt(nh, "episode_listeners", 0, 0, 64);
   o.step_listeners = readInt(nh, "step_listeners", 0, 0, 64);
   o.step_image_every = readInt(nh, "step_image_every", 10, 0, 1000000);
-  o.max_decisions = readInt(nh, "max_decisions", 0, 0, 1 << 30);
+  o.max_decisions = readInt(nh, "max_decisions", 0, 0, kMaxDecisions);
   return o;
 }
 

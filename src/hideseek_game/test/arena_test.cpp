@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 #include <optional>
+#include <random>
 #include <set>
 
 #include "hideseek_game/world.h"

@@ -1,13 +1,15 @@
-#include <gtest/gtest.h>
-
 #include <dirent.h>
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <fstream>
 #include <functional>
 
 #include "hideseek_game/config_error.h"
 #include "hideseek_game/game_options.h"
 #include "hideseek_game/map.h"
+#include "hideseek_game/run_registry.h"
 #include "test_util.h"
 
 namespace hideseek_game {
@@ -46,8 +48,14 @@ std::string errorOf(const std::function<void()>& f) {
 }  // namespace
 
 TEST(ShippedConfig, EveryVariantAndMapLoads) {
+  // Every variant of the paper has its file (more may be added), named by its `variant` field.
+  const std::vector<std::string> names = variantNames(test::configPath("variants"));
+  for (const auto& kv : YAML::LoadFile(test::configPath("paper_reference.yaml"))["variants"]) {
+    const std::string paper_variant = kv.first.as<std::string>();
+    EXPECT_NE(std::find(names.begin(), names.end(), paper_variant), names.end()) << paper_variant;
+  }
   const auto variants = filesIn(test::configPath("variants"), ".yaml");
-  EXPECT_EQ(variants.size(), 7u);
+  EXPECT_EQ(variants.size(), names.size());
   for (const std::string& f : variants) {
     SCOPED_TRACE(f);
     const VariantConfig v = loadVariantConfig(test::configPath("game.yaml"), f);
@@ -85,9 +93,11 @@ TEST(BadConfig, ErrorsNameTheFileAndTheField) {
   const std::string range = writeTemp("range.yaml", "variant: x\nmap: deterministic.yaml\nhider: {speed: -1}\n");
   const std::string e = errorOf([&] { loadVariantConfig(game, range); });
   EXPECT_NE(e.find("range.yaml: field 'hider.speed': must be in [0, 20], got -1"), std::string::npos) << e;
-  const std::string map = writeTemp("badmap.yaml", "name: m\nobstacles:\n  - {center: [0, 0], size: [1]}\nwaypoints: [[1, 1]]\n");
+  const std::string map =
+      writeTemp("badmap.yaml", "name: m\nobstacles:\n  - {center: [0, 0], size: [1]}\nwaypoints: [[1, 1]]\n");
   EXPECT_NE(errorOf([&] { loadMapFile(map); }).find("badmap.yaml: field 'obstacles[0].size'"), std::string::npos);
-  const std::string inside = writeTemp("inside.yaml", "name: m\nobstacles:\n  - {center: [0, 0], size: [2, 2]}\nwaypoints: [[0.5, 0]]\n");
+  const std::string inside =
+      writeTemp("inside.yaml", "name: m\nobstacles:\n  - {center: [0, 0], size: [2, 2]}\nwaypoints: [[0.5, 0]]\n");
   EXPECT_NE(errorOf([&] { loadMapFile(inside); }).find("'waypoints[0]': lies inside an obstacle"), std::string::npos);
   EXPECT_NE(errorOf([&] { loadMapFile("/nonexistent/map.yaml"); }).find("/nonexistent/map.yaml"), std::string::npos);
   const std::string syntax = writeTemp("syntax.yaml", "name: [unclosed\n");

@@ -18,7 +18,7 @@ TEST(DecisionScheduler, LockstepDecidesOnceBothAgentsAnsweredEveryArenaForItsSte
   const DecisionActions d = s.takeDecision();
   EXPECT_EQ(d.hider[0], Action::kForward);
   EXPECT_EQ(d.seeker[0], Action::kTurnLeft);
-  EXPECT_FALSE(s.complete());  // the next step needs new answers
+  EXPECT_FALSE(s.complete());   // the next step needs new answers
   EXPECT_FALSE(s.executing());  // lockstep steps at once
 }
 

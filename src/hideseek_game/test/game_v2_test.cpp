@@ -44,7 +44,8 @@ TEST(GameV2, ADecisionPeriodThatDoesNotDivideTheActionRepeatIsRefused) {
   const std::string dir = ::testing::TempDir();
   {
     std::ofstream f(dir + "/game_bad.yaml");
-    f << "extends: " << configPath("game.yaml") << "\nmaps_dir: " << configPath("maps") << "\nseeker:\n  decision_frames: 4\n";
+    f << "extends: " << configPath("game.yaml") << "\nmaps_dir: " << configPath("maps")
+      << "\nseeker:\n  decision_frames: 4\n";
   }
   try {
     loadVariantConfig(dir + "/game_bad.yaml", configPath("variants/basic.yaml"));
@@ -110,7 +111,8 @@ TEST(GameV2, TheWorldNodesFrameExchangeEqualsInProcessPlay) {
     std::vector<Action> seeker(kArenas);
     while (!got) {
       if (node.seekerDecisionDue()) {
-        for (int i = 0; i < kArenas; ++i) seeker[i] = probeSeeker(seekerPerception(node.arena(i)), node.seekerDecisionId(i));
+        for (int i = 0; i < kArenas; ++i)
+          seeker[i] = probeSeeker(seekerPerception(node.arena(i)), node.seekerDecisionId(i));
       }
       got = node.advanceFrame(hider, seeker);
     }
@@ -145,7 +147,8 @@ TEST(GameV2, BoxesMarkedAsWallsBlockButAreNotObstaclesInView) {
   EXPECT_TRUE(obstacleInView(viewer, arena.layout(), v.game));
   // And the corner wall stops an agent like any obstacle.
   AgentState walker{{5.0, 2.0}, 0.25 * kPi, 0.0};
-  for (int f = 0; f < 200; ++f) advanceAgent(walker, Action::kForward, v.game.hider, v.game.physics_dt, arena.layout(), v.game.agent_radius);
+  for (int f = 0; f < 200; ++f)
+    advanceAgent(walker, Action::kForward, v.game.hider, v.game.physics_dt, arena.layout(), v.game.agent_radius);
   EXPECT_LT(walker.position.x + walker.position.y, 14.0 - 4.0 * std::sqrt(2.0) - 0.4 * std::sqrt(2.0) + 1e-6);
 }
 

@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "hideseek_game/geometry.h"
+
+#include <gtest/gtest.h>
 
 namespace hideseek_game {
 

@@ -4,7 +4,6 @@
 #include "hideseek_game/package_paths.h"
 
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <cstdlib>
@@ -31,7 +30,10 @@ class PackageExecutable : public ::testing::Test {
     ::setenv("CMAKE_PREFIX_PATH", ((root_ / "first").string() + "::" + (root_ / "second").string()).c_str(), 1);
   }
   void TearDown() override {
-    if (had_) ::setenv("CMAKE_PREFIX_PATH", saved_.c_str(), 1); else ::unsetenv("CMAKE_PREFIX_PATH");
+    if (had_)
+      ::setenv("CMAKE_PREFIX_PATH", saved_.c_str(), 1);
+    else
+      ::unsetenv("CMAKE_PREFIX_PATH");
     fs::remove_all(root_);
   }
   fs::path put(const std::string& prefix, const std::string& package, const std::string& name) {

@@ -1,15 +1,18 @@
 // The run registry (policies/policies.yaml) as the nodes read it: the shipped policy of a variant,
 // network and game, and registries that must be refused with the run and field named.
+#include "hideseek_game/run_registry.h"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "hideseek_game/config_error.h"
 #include "hideseek_game/game_options.h"
-#include "hideseek_game/run_registry.h"
 
 namespace hideseek_game {
 namespace {
@@ -65,8 +68,8 @@ TEST_F(RunRegistryTest, NoPolicyIsShippedForAnotherVariantNetworkOrGame) {
 
 TEST_F(RunRegistryTest, TwoShippedRunsOfOneVariantAreRefusedNamingBoth) {
   std::ofstream(dir_ / "other.pt") << "weights";
-  const std::string error = errorOf(std::string(kTwoRuns) +
-                                    "basic_seed2: {variant: basic, network: ff, game: v2, weights: other.pt}\n");
+  const std::string error =
+      errorOf(std::string(kTwoRuns) + "basic_seed2: {variant: basic, network: ff, game: v2, weights: other.pt}\n");
   EXPECT_NE(error.find("basic_seed2.weights"), std::string::npos) << error;
   EXPECT_NE(error.find("run basic_seed1 already ships"), std::string::npos) << error;
 }
@@ -85,6 +88,59 @@ TEST_F(RunRegistryTest, MissingWeightsUnknownFieldsAndMissingFieldsAreRefused) {
 TEST_F(RunRegistryTest, TheShippedRegistryIsReadable) {
   // The committed registry: every run well formed, every shipped file present.
   EXPECT_NO_THROW(loadRunRegistry(std::string(HIDESEEK_POLICY_DIR) + "/policies.yaml"));
+}
+
+// What scripts/hideseek_registry.py prints for `command` (one name per line), run on /usr/bin/python3.
+std::vector<std::string> pythonRegistry(const std::string& args) {
+  const std::string command = "/usr/bin/python3 " HIDESEEK_REGISTRY_SCRIPT " " + args + " 2>&1";
+  std::vector<std::string> lines;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return {"popen failed: " + command};
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, pipe)) {
+    std::string line(buf);
+    if (!line.empty() && line.back() == '\n') line.pop_back();
+    if (!line.empty()) lines.push_back(line);
+  }
+  const int status = pclose(pipe);
+  if (status != 0) lines.push_back("exit status " + std::to_string(status));
+  return lines;
+}
+
+// The C++ readers and the Python module (CMake, the scripts, the report) see the same variants
+// and the same runs: in the tree, and in a tree where one was added.
+TEST_F(RunRegistryTest, TheCppAndPythonReadersAgree) {
+  const std::string config = HIDESEEK_CONFIG_DIR, registry = std::string(HIDESEEK_POLICY_DIR) + "/policies.yaml";
+  EXPECT_EQ(variantNames(config + "/variants"), pythonRegistry("--variants-dir " + config + "/variants variants"));
+  std::vector<std::string> runs;
+  for (const RunEntry& r : loadRunRegistry(registry)) runs.push_back(r.name);
+  EXPECT_EQ(runs, pythonRegistry("--registry " + registry + " runs"));
+  EXPECT_FALSE(runs.empty());
+
+  std::filesystem::create_directories(dir_ / "variants");
+  for (const auto& name : variantNames(config + "/variants")) {
+    std::filesystem::copy_file(config + "/variants/" + name + ".yaml", dir_ / "variants" / (name + ".yaml"));
+  }
+  std::ofstream(dir_ / "variants" / "tinyarena.yaml") << "variant: tinyarena\nmap: deterministic.yaml\n";
+  const std::vector<std::string> added = variantNames((dir_ / "variants").string());
+  EXPECT_NE(std::find(added.begin(), added.end(), "tinyarena"), added.end());
+  EXPECT_EQ(added, pythonRegistry("--variants-dir " + (dir_ / "variants").string() + " variants"));
+}
+
+TEST_F(RunRegistryTest, AVariantFileNamedOtherwiseThanItsVariantIsRefusedByBothReaders) {
+  std::filesystem::create_directories(dir_ / "variants");
+  std::ofstream(dir_ / "variants" / "fast.yaml") << "variant: faster\nmap: deterministic.yaml\n";
+  try {
+    variantNames((dir_ / "variants").string());
+    FAIL() << "fast.yaml naming variant faster was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("it must be the file's name, 'fast'"), std::string::npos) << e.what();
+  }
+  const std::vector<std::string> python =
+      pythonRegistry("--variants-dir " + (dir_ / "variants").string() + " variants");
+  ASSERT_FALSE(python.empty());
+  EXPECT_NE(python.back().find("exit status"), std::string::npos);
+  EXPECT_NE(python.front().find("it must be the file's name, 'fast'"), std::string::npos) << python.front();
 }
 
 TEST(GameName, GameFilesNameTheirGame) {

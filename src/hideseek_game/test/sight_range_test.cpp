@@ -23,7 +23,7 @@ TEST(SightRange, StopsAtTheWalls) {
 
 TEST(SightRange, StopsAtTheFirstObstacleUnlessItLooksOverIt) {
   Layout l = emptyArena();
-  l.obstacles.push_back(Box::make({3.0, 0.0}, {2.0, 2.0}, 1.5, 0.0));   // faces at x = 2 and 4
+  l.obstacles.push_back(Box::make({3.0, 0.0}, {2.0, 2.0}, 1.5, 0.0));  // faces at x = 2 and 4
   l.obstacles.push_back(Box::make({5.5, 0.0}, {1.0, 1.0}, 1.5, 0.0));
   EXPECT_NEAR(sightRange({0, 0}, 0.0, 1.0, l, 50.0), 2.0, 1e-9);
   EXPECT_NEAR(sightRange({0, 0}, M_PI / 2, 1.0, l, 50.0), 7.0, 1e-9);  // beside it

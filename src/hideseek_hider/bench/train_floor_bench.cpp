@@ -46,7 +46,6 @@ int main(int argc, char** argv) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("# precision: %s\n", choice.reason.c_str());
   std::printf("%s_%s_samples_per_s %.0f\n", network == hideseek_hider::NetworkKind::kGru ? "train_gru" : "train_floor",
-              hideseek_hider::precisionName(choice.precision),
-              (trainer.samplesSeen() - before) / seconds);
+              hideseek_hider::precisionName(choice.precision), (trainer.samplesSeen() - before) / seconds);
   return 0;
 }

@@ -26,7 +26,8 @@ EvaluationSummary EpisodeTally::summary() const {
 std::string episodesCsv(const std::map<uint32_t, EpisodeRecord>& records) {
   std::string out = "seed,living_steps,outcome\n";
   for (const auto& [seed, r] : records) {
-    out += std::to_string(seed) + ',' + std::to_string(r.living_steps) + ',' + (r.survived ? "survived" : "captured") + '\n';
+    out += std::to_string(seed) + ',' + std::to_string(r.living_steps) + ',' + (r.survived ? "survived" : "captured") +
+           '\n';
   }
   return out;
 }

@@ -61,9 +61,9 @@ HiderNetImpl::HiderNetImpl(int image_height, int image_width, NetworkKind networ
 }
 
 torch::Tensor HiderNetImpl::encode(const torch::Tensor& images) {
-  TORCH_CHECK(images.dim() == 4 && images.size(1) == image_height_ && images.size(2) == image_width_ &&
-                  images.size(3) == 3,
-              "hider network expects [B, ", image_height_, ", ", image_width_, ", 3] images, got ", images.sizes());
+  TORCH_CHECK(
+      images.dim() == 4 && images.size(1) == image_height_ && images.size(2) == image_width_ && images.size(3) == 3,
+      "hider network expects [B, ", image_height_, ", ", image_width_, ", 3] images, got ", images.sizes());
   const AutocastScope autocast(precision_, conv1_->weight.device());
   torch::Tensor x = images.permute({0, 3, 1, 2}).to(torch::kFloat32).div(255.0);
   x = leaky(conv1_->forward(x));
@@ -98,8 +98,8 @@ HiderOutput HiderNetImpl::forwardSequence(const torch::Tensor& images, const tor
                                           const torch::Tensor& starts, torch::Tensor* hidden_out) {
   TORCH_CHECK(images.dim() == 5, "forwardSequence expects [T, B, H, W, 3] images, got ", images.sizes());
   const int64_t steps = images.size(0), batch = images.size(1);
-  TORCH_CHECK(starts.dim() == 2 && starts.size(0) == steps && starts.size(1) == batch, "starts must be [", steps,
-              ", ", batch, "], got ", starts.sizes());
+  TORCH_CHECK(starts.dim() == 2 && starts.size(0) == steps && starts.size(1) == batch, "starts must be [", steps, ", ",
+              batch, "], got ", starts.sizes());
   HiderOutput out;
   const torch::Tensor features = encode(images.flatten(0, 1)).to(torch::kFloat32);
   out.features = features.view({steps, batch, kFeatures});
@@ -180,8 +180,8 @@ torch::serialize::InputArchive openArchive(const std::string& path) {
   try {
     archive.load_from(path);
   } catch (const c10::Error& e) {
-    throw std::runtime_error("checkpoint " + path + " cannot be read (missing, truncated or not a checkpoint): " +
-                             e.what_without_backtrace());
+    throw std::runtime_error("checkpoint " + path +
+                             " cannot be read (missing, truncated or not a checkpoint): " + e.what_without_backtrace());
   }
   return archive;
 }
@@ -225,15 +225,16 @@ HiderNet loadCheckpoint(const std::string& path, int expected_height, int expect
   auto archive = openArchive(path);
   const CheckpointInfo info = infoOf(archive, path);
   if (info.architecture != kArchitecture && info.architecture != kArchitectureGru) {
-    throw std::runtime_error("checkpoint " + path + " holds architecture '" + info.architecture + "', this build runs '" +
-                             kArchitecture + "' (network ff) or '" + kArchitectureGru + "' (network gru)");
+    throw std::runtime_error("checkpoint " + path + " holds architecture '" + info.architecture +
+                             "', this build runs '" + kArchitecture + "' (network ff) or '" + kArchitectureGru +
+                             "' (network gru)");
   }
   if (expected_network && *expected_network != info.network) {
     throw std::runtime_error("checkpoint " + path + " holds a " +
                              (info.network == NetworkKind::kGru ? "recurrent (GRU)" : "feed-forward") +
                              " hider (network " + networkName(info.network) + "), but network " +
-                             networkName(*expected_network) + " was asked: set network:=" +
-                             networkName(info.network) + " or use a " + networkName(*expected_network) + " checkpoint");
+                             networkName(*expected_network) + " was asked: set network:=" + networkName(info.network) +
+                             " or use a " + networkName(*expected_network) + " checkpoint");
   }
   if (info.image_height != expected_height || info.image_width != expected_width) {
     throw std::runtime_error("checkpoint " + path + " was trained on " + std::to_string(info.image_height) + "x" +

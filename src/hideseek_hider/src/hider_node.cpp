@@ -41,11 +41,12 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   if (o.policy == hideseek_game::kShippedPolicy && mode == "policy") {
     const std::string registry = hideseek_game::requireString(pnh, "policy_registry", "the run registry file");
     o.policy = hideseek_game::shippedPolicyFile(registry, o.variant.name, network == "gru" ? "gru" : "ff",
-                                                 o.variant.game.name);
+                                                o.variant.game.name);
     if (o.policy.empty()) {
-      ROS_WARN("hider: no policy is shipped for variant '%s' on game %s (%s); playing the uniformly random hider. "
-               "policy:=FILE plays a checkpoint; scripts/train_variant.sh trains one.",
-               o.variant.name.c_str(), o.variant.game.name.c_str(), registry.c_str());
+      ROS_WARN(
+          "hider: no policy is shipped for variant '%s' on game %s (%s); playing the uniformly random hider. "
+          "policy:=FILE plays a checkpoint; scripts/train_variant.sh trains one.",
+          o.variant.name.c_str(), o.variant.game.name.c_str(), registry.c_str());
       o.policy = "random";
       mode = "random";
     }
@@ -72,7 +73,7 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   t.checkpoint_interval_s = hideseek_game::readDouble(pnh, "checkpoint_interval", 300.0, 1e-3, 1e6);
   o.ppo = loadPpoOptions(hideseek_game::requireString(pnh, "ppo_config", "a file path, in train mode"));
   o.num_arenas = hideseek_game::readInt(pnh, "num_arenas", 16, 1, 64);
-  o.seed = hideseek_game::readInt(pnh, "seed", 0, 0, 1 << 30);
+  o.seed = hideseek_game::readInt(pnh, "seed", 0, 0, hideseek_game::kMaxSeed);
   return o;
 }
 
@@ -107,7 +108,8 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
     try {
       policy->setMemoryless(o.memoryless);
     } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true for " + o.policy + ": " + e.what());
+      throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true for " + o.policy + ": " +
+                                  e.what());
     }
     policy_ = std::move(policy);
     ROS_INFO("hider: policy %s (variant '%s', network %s, %ld training steps) on %s in %s%s", o.policy.c_str(),
@@ -135,9 +137,11 @@ void HiderNode::startTraining(const HiderNodeOptions& options) {
   ROS_INFO("hider: training %s PPO, network %s, on %s in %s", o.variant.c_str(), networkName(o.network),
            options.device.str().c_str(), precision.reason.c_str());
   if (training_->totalSteps() != o.total_steps) {
-    ROS_INFO("hider: %ld steps asked, training %ld: whole rollouts of %d arenas x %d steps, so that every sample "
-             "collected is trained on", static_cast<long>(o.total_steps), static_cast<long>(training_->totalSteps()),
-             options.num_arenas, options.ppo.rollout_steps);
+    ROS_INFO(
+        "hider: %ld steps asked, training %ld: whole rollouts of %d arenas x %d steps, so that every sample "
+        "collected is trained on",
+        static_cast<long>(o.total_steps), static_cast<long>(training_->totalSteps()), options.num_arenas,
+        options.ppo.rollout_steps);
   }
   ROS_INFO("hider: %s at step %ld of %ld, into %s", training_->resumed() ? "resumed" : "started",
            static_cast<long>(training_->steps()), static_cast<long>(training_->totalSteps()), o.output_dir.c_str());
@@ -151,10 +155,10 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
   const size_t n = msg->num_arenas;
   const size_t bytes = static_cast<size_t>(image_height_) * image_width_ * 3;
   if (msg->height != static_cast<uint32_t>(image_height_) || msg->width != static_cast<uint32_t>(image_width_) ||
-      msg->images.size() != n * bytes || msg->step.size() != n || msg->seed.size() != n ||
-      msg->rewards.size() != n || msg->done.size() != n) {
+      msg->images.size() != n * bytes || msg->step.size() != n || msg->seed.size() != n || msg->rewards.size() != n ||
+      msg->done.size() != n) {
     ++malformed_;
-    static hideseek_game::WallThrottle throttle(2.0);
+    hideseek_game::WallThrottle& throttle = malformed_throttle_;
     if (throttle.ready()) {
       ROS_WARN(
           "hider: ignored an observation batch that does not hold %zu %dx%d images with step ids (%lu so far; %lu more "

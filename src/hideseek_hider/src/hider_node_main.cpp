@@ -9,7 +9,8 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "hider");
   // The hider trains or infers batches of images: reuse freed memory instead of faulting it in
   // again every update (hideseek_hider/heap.h).
-  if (!hideseek_hider::keepFreedMemoryInHeap()) ROS_WARN("hider: the allocator refused its settings; training may be slower");
+  if (!hideseek_hider::keepFreedMemoryInHeap())
+    ROS_WARN("hider: the allocator refused its settings; training may be slower");
   // The node handles outlive the try block: an error thrown while the node starts is logged
   // while roscpp still runs, so roslaunch shows it instead of only "process has died".
   ros::NodeHandle nh, pnh("~");

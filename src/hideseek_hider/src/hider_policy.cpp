@@ -32,7 +32,8 @@ std::optional<hideseek_seeker::EvaderKind> scriptedPolicy(const std::string& pol
 ScriptedHiderPolicy::ScriptedHiderPolicy(hideseek_seeker::EvaderKind kind, const hideseek_game::VariantConfig& variant)
     : kind_(kind),
       variant_(variant),
-      layout_source_(variant.game, std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(variant.map_file))) {}
+      layout_source_(variant.game,
+                     std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(variant.map_file))) {}
 
 std::vector<uint8_t> ScriptedHiderPolicy::act(const std::vector<ArenaObservation>& batch) {
   if (evaders_.size() != batch.size()) {

@@ -4,35 +4,39 @@
 // usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]
 //   memoryless (GRU policies only, an ablation): every step starts from the zero state, so the
 //   trained GRU acts on the current image alone.
-//   POLICY: a checkpoint, "random", or scripted/EVADER (backpedal, flee, hide, lap). Columns: seed,step,hider_x,hider_y,hider_yaw,seeker_x,
-//   seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome (outcome on the last step of an
-//   episode: captured or survived; empty before). Beside it, OUTPUT_layouts.yaml (OUTPUT's name
+//   POLICY: a checkpoint, "random", or scripted/EVADER (backpedal, flee, hide, lap). Columns:
+//   seed,step,hider_x,hider_y,hider_yaw,seeker_x, seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome (outcome on
+//   the last step of an episode: captured or survived; empty before). Beside it, OUTPUT_layouts.yaml (OUTPUT's name
 //   without .csv) holds each episode's obstacles and arena size, which differ per episode on
 //   stochastic maps; plot_trajectories.py draws them.
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <fstream>
-#include <stdexcept>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "hideseek_game/game_loop.h"
+#include "hideseek_game/package_paths.h"
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_seeker/scripted_game.h"
-#include "hideseek_game/package_paths.h"
-#include "hideseek_game/world.h"
 
 int main(int argc, char** argv) {
   if (argc < 6 || argc > 8) {
-    std::fprintf(stderr,
-                 "usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]\n");
+    std::fprintf(
+        stderr,
+        "usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]\n");
     return 2;
   }
   const std::string mode = argc > 6 ? argv[6] : "greedy", memory = argc > 7 ? argv[7] : "memory";
   if ((mode != "greedy" && mode != "sampled") || (memory != "memory" && memory != "memoryless")) {
-    std::fprintf(stderr, "play_episodes: the 6th argument is greedy or sampled (got %s), the 7th memory or memoryless (got %s)\n",
-                 mode.c_str(), memory.c_str());
+    std::fprintf(
+        stderr,
+        "play_episodes: the 6th argument is greedy or sampled (got %s), the 7th memory or memoryless (got %s)\n",
+        mode.c_str(), memory.c_str());
     return 2;
   }
   const std::string variant_name = argv[1], policy_path = argv[2];
@@ -48,18 +52,23 @@ int main(int argc, char** argv) {
     const auto variant = hw::loadVariantConfig(config + "/game.yaml", config + "/variants/" + variant_name + ".yaml");
     const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(variant.map_file));
     const int n = static_cast<int>(count);
-    hw::World world(variant.game, map, n, static_cast<uint32_t>(first_seed), true, 2);
+    hw::GameLoopOptions loop_options;
+    loop_options.num_arenas = n;
+    loop_options.seed = static_cast<uint32_t>(first_seed);
+    hw::GameLoop game(variant.game, map, loop_options);
+    const hw::World& world = game.world();
     std::unique_ptr<hideseek_hider::HiderPolicy> hider;
     if (policy_path == "random") {
-      if (memory == "memoryless") throw std::runtime_error("memoryless applies to a GRU policy, not to the random hider");
+      if (memory == "memoryless")
+        throw std::runtime_error("memoryless applies to a GRU policy, not to the random hider");
       hider = std::make_unique<hideseek_hider::RandomHiderPolicy>();
     } else if (const auto evader = hideseek_hider::scriptedPolicy(policy_path)) {
       if (memory == "memoryless") throw std::runtime_error("memoryless applies to a GRU policy, not to " + policy_path);
       hider = std::make_unique<hideseek_hider::ScriptedHiderPolicy>(*evader, variant);
     } else {
       const int h = variant.game.camera.height, w = variant.game.camera.width;
-      auto policy = std::make_unique<hideseek_hider::NetworkHiderPolicy>(hideseek_hider::loadCheckpoint(policy_path, h, w),
-                                                                         torch::kCPU, greedy);
+      auto policy = std::make_unique<hideseek_hider::NetworkHiderPolicy>(
+          hideseek_hider::loadCheckpoint(policy_path, h, w), torch::kCPU, greedy);
       policy->setMemoryless(memory == "memoryless");
       hider = std::move(policy);
     }
@@ -85,42 +94,52 @@ int main(int argc, char** argv) {
       if (l.obstacles.empty()) layouts << " []";
       layouts << "\n";
       for (const auto& b : l.obstacles) {
-        layouts << "      - {center: [" << b.center.x << ", " << b.center.y << "], size: [" << b.size.x << ", " << b.size.y
-                << "], yaw: " << b.yaw << "}\n";
+        layouts << "      - {center: [" << b.center.x << ", " << b.center.y << "], size: [" << b.size.x << ", "
+                << b.size.y << "], yaw: " << b.yaw << "}\n";
       }
     }
     layouts.close();
     out << "seed,step,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome\n";
-    std::vector<uint8_t> images(world.imageBytes() * n);
+    // Every arena plays on after its first episode (the arenas stay in phase, as in the graph);
+    // only the first episode of each is written.
     std::vector<bool> playing(n, true);
+    const hw::ArenaSeekerDecide decide = [&](int i, const hw::SeekerPerception& p) { return seekers[i].act(p); };
     for (int left = n; left > 0;) {
-      world.renderHiderViews(images.data());
       std::vector<hideseek_hider::ArenaObservation> batch(n);
+      std::vector<hw::AgentState> hiders(n), seeker_states(n);
+      std::vector<hw::Labels> labels(n);
+      std::vector<uint32_t> seeds(n);
+      std::vector<int> steps(n);
       for (int i = 0; i < n; ++i) {
         const hw::Arena& a = world.arena(i);
-        batch[i] = {images.data() + i * world.imageBytes(), a.seed(), static_cast<uint32_t>(a.stepCount()), a.hider(),
-                    a.seeker()};
+        batch[i] = {game.hiderImages().data() + i * world.imageBytes(), a.seed(), static_cast<uint32_t>(a.stepCount()),
+                    a.hider(), a.seeker()};
+        hiders[i] = a.hider();
+        seeker_states[i] = a.seeker();
+        labels[i] = a.labels();
+        seeds[i] = a.seed();
+        steps[i] = a.stepCount();
       }
       const std::vector<uint8_t> actions = hider->act(batch);
+      std::vector<hw::Action> hider_actions(n);
+      for (int i = 0; i < n; ++i) hider_actions[i] = static_cast<hw::Action>(actions[i]);
+      const hw::Decision d = game.step(hider_actions, decide);
       for (int i = 0; i < n; ++i) {
+        const std::optional<hw::EpisodeSummary>& finished = d.steps[i].finished;
+        if (finished) seekers[i].reset(world.arena(i).layout(), world.arena(i).seed());
         if (!playing[i]) continue;
-        const hw::Arena& a = world.arena(i);
-        const hw::AgentState hs = a.hider(), ss = a.seeker();
-        const hw::Labels l = a.labels();
-        const uint32_t seed = a.seed();
-        const int step = a.stepCount();
-        const hw::ArenaStep r = world.stepArena(i, static_cast<hw::Action>(actions[i]),
-                                                [&](const hw::SeekerPerception& p) { return seekers[i].act(p); });
-        out << seed << ',' << step << ',' << hs.position.x << ',' << hs.position.y << ',' << hs.yaw << ','
+        const hw::AgentState &hs = hiders[i], &ss = seeker_states[i];
+        const hw::Labels& l = labels[i];
+        out << seeds[i] << ',' << steps[i] << ',' << hs.position.x << ',' << hs.position.y << ',' << hs.yaw << ','
             << ss.position.x << ',' << ss.position.y << ',' << ss.yaw << ',' << l.hider_sees_seeker << ','
             << l.seeker_sees_hider << ',' << l.obstacle_in_view << ',' << hw::distance(hs.position, ss.position) << ','
             << static_cast<int>(actions[i]) << ',';
-        if (r.finished) {
-          out << (r.finished->outcome == hw::Outcome::kSurvived ? "survived" : "captured");
+        if (finished) {
+          const char* outcome = finished->outcome == hw::Outcome::kSurvived ? "survived" : "captured";
+          out << outcome;
           playing[i] = false;
           --left;
-          std::printf("seed %u: %s after %d steps\n", seed,
-                      r.finished->outcome == hw::Outcome::kSurvived ? "survived" : "captured", r.finished->steps);
+          std::printf("seed %u: %s after %d steps\n", seeds[i], outcome, finished->steps);
         }
         out << '\n';
       }

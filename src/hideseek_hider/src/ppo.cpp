@@ -81,7 +81,8 @@ PpoTrainer::PpoTrainer(HiderNet net, const PpoOptions& options, int num_arenas, 
     }
     const int64_t sequences = t / options.sequence_length * n;
     if (sequences % options.minibatches != 0) {
-      throw std::invalid_argument("PPO: the " + std::to_string(sequences) + " sequences of a rollout (arenas x "
+      throw std::invalid_argument("PPO: the " + std::to_string(sequences) +
+                                  " sequences of a rollout (arenas x "
                                   "rollout_steps / sequence_length) must divide into minibatches (" +
                                   std::to_string(options.minibatches) + ")");
     }
@@ -187,9 +188,10 @@ void average(UpdateStats& stats, int count, double learning_rate) {
 
 // One minibatch's PPO step on samples flattened to [M]: the logits and values the network gives
 // for them now, and what the rollout stored.
-void PpoTrainer::optimiseMinibatch(const torch::Tensor& logits, const torch::Tensor& values, const torch::Tensor& actions,
-                                   const torch::Tensor& old_lp, const torch::Tensor& old_v, torch::Tensor adv,
-                                   const torch::Tensor& target, UpdateStats& stats) {
+void PpoTrainer::optimiseMinibatch(const torch::Tensor& logits, const torch::Tensor& values,
+                                   const torch::Tensor& actions, const torch::Tensor& old_lp,
+                                   const torch::Tensor& old_v, torch::Tensor adv, const torch::Tensor& target,
+                                   UpdateStats& stats) {
   const torch::Tensor log_probs_all = torch::log_softmax(logits, 1);
   const torch::Tensor new_log_prob = log_probs_all.gather(1, actions.unsqueeze(1)).squeeze(1);
   const torch::Tensor entropy = -(log_probs_all.exp() * log_probs_all).sum(1).mean();
@@ -236,8 +238,8 @@ UpdateStats PpoTrainer::updateRecurrent(const Gae& gae, double learning_rate) {
     for (int64_t start = 0; start < sequences; start += per_minibatch) {
       const torch::Tensor idx = order.slice(0, start, start + per_minibatch);
       auto pick = [&](const torch::Tensor& x) { return x.index_select(1, idx).flatten(0, 1); };
-      const HiderOutput out = net_->forwardSequence(obs.index_select(1, idx), h0.index_select(0, idx),
-                                                    starts.index_select(1, idx));
+      const HiderOutput out =
+          net_->forwardSequence(obs.index_select(1, idx), h0.index_select(0, idx), starts.index_select(1, idx));
       optimiseMinibatch(out.logits.flatten(0, 1), out.value.flatten(0, 1), pick(actions), pick(old_log_probs),
                         pick(old_values), pick(advantages), pick(returns), stats);
       ++count;
@@ -266,8 +268,8 @@ UpdateStats PpoTrainer::updateFeedForward(const Gae& gae, double learning_rate) 
       const torch::Tensor idx = order.slice(0, start, start + minibatch);
       const HiderOutput out = net_->forward(obs.index_select(0, idx));
       optimiseMinibatch(out.logits, out.value, actions.index_select(0, idx), old_log_probs.index_select(0, idx),
-                        old_values.index_select(0, idx), advantages.index_select(0, idx),
-                        returns.index_select(0, idx), stats);
+                        old_values.index_select(0, idx), advantages.index_select(0, idx), returns.index_select(0, idx),
+                        stats);
       ++count;
     }
   }

@@ -40,8 +40,8 @@ CpuBf16Support detectCpuBf16() {
     __asm__("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
     xcr0 = (static_cast<unsigned long long>(hi) << 32) | lo;
   }
-  const bool avx512_state = (xcr0 & 0xe6) == 0xe6;       // SSE, AVX, opmask, ZMM state
-  const bool amx_state = (xcr0 & 0x60000) == 0x60000;    // XTILECFG, XTILEDATA
+  const bool avx512_state = (xcr0 & 0xe6) == 0xe6;     // SSE, AVX, opmask, ZMM state
+  const bool amx_state = (xcr0 & 0x60000) == 0x60000;  // XTILECFG, XTILEDATA
   s.avx512_bf16 = s.avx512_bf16 && avx512_state;
   s.amx_bf16 = s.amx_bf16 && amx_state;
 #endif
@@ -56,13 +56,15 @@ PrecisionChoice choosePrecision(PrecisionRequest request, torch::Device device, 
       return {Precision::kFp32, "fp32 as asked"};
     case PrecisionRequest::kBf16:
       if (device.is_cuda() || cpu.native()) return {Precision::kBf16, "bf16 as asked"};
-      return {Precision::kBf16, "bf16 as asked, although this CPU has no native bf16 (emulated: expect it slower than fp32)"};
+      return {Precision::kBf16,
+              "bf16 as asked, although this CPU has no native bf16 (emulated: expect it slower than fp32)"};
     case PrecisionRequest::kAuto:
       break;
   }
   if (device.is_cuda()) return {Precision::kFp32, "auto: fp32 on CUDA (bf16 is chosen automatically on CPU only)"};
   if (cpu.native()) return {Precision::kBf16, "auto: bf16, this CPU executes it natively (" + native + ")"};
-  return {Precision::kFp32, "auto: fp32, this CPU has neither AVX512_BF16 nor AMX-BF16 (bf16 would be emulated and slower)"};
+  return {Precision::kFp32,
+          "auto: fp32, this CPU has neither AVX512_BF16 nor AMX-BF16 (bf16 would be emulated and slower)"};
 }
 
 AutocastScope::AutocastScope(Precision precision, torch::Device device) {

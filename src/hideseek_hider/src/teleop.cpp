@@ -9,22 +9,39 @@ constexpr uint8_t kStay = 0, kForward = 1, kBackward = 2, kTurnLeft = 3, kTurnRi
 
 std::optional<uint8_t> letterAction(char c) {
   switch (c) {
-    case 'w': case 'W': return kForward;
-    case 's': case 'S': return kBackward;
-    case 'a': case 'A': return kTurnLeft;
-    case 'd': case 'D': return kTurnRight;
-    case ' ': case 'x': case 'X': return kStay;
-    default: return std::nullopt;
+    case 'w':
+    case 'W':
+      return kForward;
+    case 's':
+    case 'S':
+      return kBackward;
+    case 'a':
+    case 'A':
+      return kTurnLeft;
+    case 'd':
+    case 'D':
+      return kTurnRight;
+    case ' ':
+    case 'x':
+    case 'X':
+      return kStay;
+    default:
+      return std::nullopt;
   }
 }
 
 std::optional<uint8_t> arrowAction(char c) {
   switch (c) {
-    case 'A': return kForward;
-    case 'B': return kBackward;
-    case 'D': return kTurnLeft;
-    case 'C': return kTurnRight;
-    default: return std::nullopt;
+    case 'A':
+      return kForward;
+    case 'B':
+      return kBackward;
+    case 'D':
+      return kTurnLeft;
+    case 'C':
+      return kTurnRight;
+    default:
+      return std::nullopt;
   }
 }
 

@@ -13,9 +13,9 @@
 #include <exception>
 #include <string>
 
-#include "hideseek_hider/teleop.h"
 #include "hideseek_game/params.h"
 #include "hideseek_game/topic_names.h"
+#include "hideseek_hider/teleop.h"
 
 namespace {
 
@@ -60,23 +60,37 @@ class Terminal {
 
 double wallNow() { return ros::WallTime::now().toSec(); }
 
+// The node's private parameters.
+struct TeleopNodeOptions {
+  double key_timeout = 0.7;  // s a held key keeps acting after its last repeat
+};
+
+// Throws naming the parameter at fault.
+TeleopNodeOptions loadTeleopNodeOptions(const ros::NodeHandle& pnh) {
+  TeleopNodeOptions o;
+  o.key_timeout = hideseek_game::readDouble(pnh, "key_timeout", 0.7, 0.0, 60.0);
+  return o;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "teleop");
   ros::NodeHandle nh, pnh("~");
-  double key_timeout = 0.0;
+  TeleopNodeOptions options;
   try {
-    key_timeout = hideseek_game::readDouble(pnh, "key_timeout", 0.7, 0.0, 60.0);
+    options = loadTeleopNodeOptions(pnh);
   } catch (const std::exception& e) {
     ROS_FATAL("teleop: %s", e.what());
     return 1;
   }
+  const double key_timeout = options.key_timeout;
   ROS_INFO("teleop: you play the hider of arena 0 (key_timeout %.2f s)", key_timeout);
   Terminal terminal;  // clears the screen: the game's picture replaces the log from here on
   if (!terminal.ok()) {
-    ROS_FATAL("teleop: no terminal to read keys from. Run it in one: rosrun hideseek_hider teleop_node "
-              "(play.launch opens an xterm for it when a display is available)");
+    ROS_FATAL(
+        "teleop: no terminal to read keys from. Run it in one: rosrun hideseek_hider teleop_node "
+        "(play.launch opens an xterm for it when a display is available)");
     return 1;
   }
   hideseek_hider::TeleopKeys keys;

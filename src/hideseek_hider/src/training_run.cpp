@@ -52,7 +52,8 @@ std::string formatDuration(double seconds) {
     std::snprintf(text, sizeof(text), "%ld min %02ld s", static_cast<long>(total / 60), static_cast<long>(total % 60));
   } else {
     const int64_t minutes = (total + 30) / 60;
-    std::snprintf(text, sizeof(text), "%ld h %02ld min", static_cast<long>(minutes / 60), static_cast<long>(minutes % 60));
+    std::snprintf(text, sizeof(text), "%ld h %02ld min", static_cast<long>(minutes / 60),
+                  static_cast<long>(minutes % 60));
   }
   return text;
 }
@@ -148,7 +149,8 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
       }
     }
     const torch::Tensor r = torch::tensor(rewards);
-    const torch::Tensor d = torch::from_blob(const_cast<uint8_t*>(dones.data()), {n}, torch::kUInt8).to(torch::kFloat32);
+    const torch::Tensor d =
+        torch::from_blob(const_cast<uint8_t*>(dones.data()), {n}, torch::kUInt8).to(torch::kFloat32);
     if (trainer_.record(r, d)) {
       UpdateReport rep;
       rep.ppo = trainer_.update(obs);
@@ -164,10 +166,10 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
         rep.mean_length += static_cast<double>(length) / recent_.size();
         rep.mean_return += ret / recent_.size();
       }
-      log_ << rep.update << ',' << rep.steps << ',' << rep.wall_s << ',' << rep.steps_per_s << ',' << rep.episodes << ','
-           << rep.mean_length << ',' << rep.mean_return << ',' << rep.ppo.policy_loss << ',' << rep.ppo.value_loss << ','
-           << rep.ppo.entropy << ',' << rep.ppo.approx_kl << ',' << rep.ppo.clip_fraction << ','
-           << rep.ppo.learning_rate << '\n';
+      log_ << rep.update << ',' << rep.steps << ',' << rep.wall_s << ',' << rep.steps_per_s << ',' << rep.episodes
+           << ',' << rep.mean_length << ',' << rep.mean_return << ',' << rep.ppo.policy_loss << ','
+           << rep.ppo.value_loss << ',' << rep.ppo.entropy << ',' << rep.ppo.approx_kl << ',' << rep.ppo.clip_fraction
+           << ',' << rep.ppo.learning_rate << '\n';
       log_.flush();
       *report = rep;
       // The final checkpoint is the node's to write once finished().

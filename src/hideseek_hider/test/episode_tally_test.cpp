@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "hideseek_hider/episode_tally.h"
+
+#include <gtest/gtest.h>
 
 namespace hideseek_hider {
 

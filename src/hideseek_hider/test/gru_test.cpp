@@ -137,9 +137,11 @@ TEST(GruCheckpoint, SaysWhichNetworkItHoldsAndTheOtherIsRefused) {
   EXPECT_EQ(readCheckpointInfo(gru_path).network, NetworkKind::kGru);
   EXPECT_EQ(readCheckpointInfo(ff_path).network, NetworkKind::kFeedForward);
   // Asked for the other kind: refused, naming the file, both kinds and the fix.
-  const std::string into_ff = errorOf([&] { loadCheckpoint(gru_path, kSize, kSize, nullptr, NetworkKind::kFeedForward); });
+  const std::string into_ff =
+      errorOf([&] { loadCheckpoint(gru_path, kSize, kSize, nullptr, NetworkKind::kFeedForward); });
   EXPECT_NE(into_ff.find(gru_path), std::string::npos) << into_ff;
-  EXPECT_NE(into_ff.find("recurrent (GRU) hider (network gru), but network ff was asked"), std::string::npos) << into_ff;
+  EXPECT_NE(into_ff.find("recurrent (GRU) hider (network gru), but network ff was asked"), std::string::npos)
+      << into_ff;
   EXPECT_NE(into_ff.find("network:=gru"), std::string::npos) << into_ff;
   const std::string into_gru = errorOf([&] { loadCheckpoint(ff_path, kSize, kSize, nullptr, NetworkKind::kGru); });
   EXPECT_NE(into_gru.find("feed-forward hider (network ff), but network gru was asked"), std::string::npos) << into_gru;
@@ -192,11 +194,13 @@ TEST(RecurrentPpo, TrainerStartsAFreshStateAfterAnEpisodeEnds) {
   HiderNet& net = trainer.net();
   const torch::NoGradGuard no_grad;
   // Arena 0: b is the first step of a new episode, from a zero state.
-  const torch::Tensor fresh = net->forwardSequence(b.slice(0, 0, 1).unsqueeze(0), net->initialHidden(1), torch::zeros({1, 1})).memory[0];
+  const torch::Tensor fresh =
+      net->forwardSequence(b.slice(0, 0, 1).unsqueeze(0), net->initialHidden(1), torch::zeros({1, 1})).memory[0];
   expectClose(trainer.hidden().slice(0, 0, 1), fresh, "arena 0 after its episode ended");
   // Arena 1: a then b in one episode.
-  const torch::Tensor carried =
-      net->forwardSequence(torch::stack({a.slice(0, 1, 2), b.slice(0, 1, 2)}), net->initialHidden(1), torch::zeros({2, 1})).memory[1];
+  const torch::Tensor carried = net->forwardSequence(torch::stack({a.slice(0, 1, 2), b.slice(0, 1, 2)}),
+                                                     net->initialHidden(1), torch::zeros({2, 1}))
+                                    .memory[1];
   expectClose(trainer.hidden().slice(0, 1, 2), carried, "arena 1 within its episode");
 }
 
@@ -205,7 +209,8 @@ TEST(GruPolicy, StateStartsAfreshAtStepZeroAndAtANewSeed) {
   HiderNet net(kSize, kSize, NetworkKind::kGru);
   NetworkHiderPolicy policy(net, torch::kCPU, true);
   const torch::Tensor img = randomImages({1}).contiguous();
-  const torch::Tensor fresh = net->forwardSequence(img.unsqueeze(0), net->initialHidden(1), torch::zeros({1, 1})).memory[0];
+  const torch::Tensor fresh =
+      net->forwardSequence(img.unsqueeze(0), net->initialHidden(1), torch::zeros({1, 1})).memory[0];
   auto act = [&](uint32_t seed, uint32_t step) { policy.act({{img.data_ptr<uint8_t>(), seed, step}}); };
   act(5, 0);
   expectClose(policy.hidden(), fresh, "first step");
@@ -224,7 +229,8 @@ TEST(GruPolicy, MemorylessStartsEveryStepFromTheZeroState) {
   NetworkHiderPolicy with_memory(net, torch::kCPU, true), memoryless(net, torch::kCPU, true);
   memoryless.setMemoryless(true);
   const torch::Tensor a = randomImages({1}).contiguous(), b = randomImages({1}).contiguous();
-  const torch::Tensor fresh_b = net->forwardSequence(b.unsqueeze(0), net->initialHidden(1), torch::zeros({1, 1})).memory[0];
+  const torch::Tensor fresh_b =
+      net->forwardSequence(b.unsqueeze(0), net->initialHidden(1), torch::zeros({1, 1})).memory[0];
   for (NetworkHiderPolicy* p : {&with_memory, &memoryless}) {
     p->act({{a.data_ptr<uint8_t>(), 3, 0}});
     p->act({{b.data_ptr<uint8_t>(), 3, 1}});  // the same episode, a step later
@@ -240,13 +246,15 @@ TEST(RecurrentPpo, SequencesMustDivideTheRolloutAndTheMinibatches) {
   PpoOptions o;
   o.rollout_steps = 8;
   o.sequence_length = 3;
-  EXPECT_NE(errorOf([&] { PpoTrainer(HiderNet(kSize, kSize, NetworkKind::kGru), o, 2, torch::kCPU); })
-                .find("sequence_length (3) must divide rollout_steps (8)"),
+  EXPECT_NE(errorOf([&] {
+              PpoTrainer(HiderNet(kSize, kSize, NetworkKind::kGru), o, 2, torch::kCPU);
+            }).find("sequence_length (3) must divide rollout_steps (8)"),
             std::string::npos);
   o.sequence_length = 8;
   o.minibatches = 4;  // 2 arenas x 1 sequence each cannot make 4 minibatches of whole sequences
-  EXPECT_NE(errorOf([&] { PpoTrainer(HiderNet(kSize, kSize, NetworkKind::kGru), o, 2, torch::kCPU); })
-                .find("must divide into minibatches"),
+  EXPECT_NE(errorOf([&] {
+              PpoTrainer(HiderNet(kSize, kSize, NetworkKind::kGru), o, 2, torch::kCPU);
+            }).find("must divide into minibatches"),
             std::string::npos);
 }
 

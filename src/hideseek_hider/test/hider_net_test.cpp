@@ -1,10 +1,11 @@
+#include "hideseek_hider/hider_net.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <fstream>
 #include <functional>
 
-#include "hideseek_hider/hider_net.h"
 #include "hideseek_hider/hider_policy.h"
 
 namespace hideseek_hider {
@@ -85,7 +86,8 @@ TEST(Checkpoint, OtherArchitectureIsRefused) {
   CheckpointInfo info = infoFor(84, 84);
   info.architecture = "something else";
   saveCheckpoint(path, net, info);
-  EXPECT_NE(errorOf([&] { loadCheckpoint(path, 84, 84); }).find("holds architecture 'something else'"), std::string::npos);
+  EXPECT_NE(errorOf([&] { loadCheckpoint(path, 84, 84); }).find("holds architecture 'something else'"),
+            std::string::npos);
 }
 
 TEST(Checkpoint, TruncatedFileIsRefused) {

@@ -5,9 +5,9 @@
 #include <memory>
 #include <vector>
 
-#include "hideseek_hider/hider_net.h"
 #include "hideseek_game/hash_uniform.h"
 #include "hideseek_game/world.h"
+#include "hideseek_hider/hider_net.h"
 
 namespace hideseek_hider {
 

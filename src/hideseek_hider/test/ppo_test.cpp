@@ -1,9 +1,10 @@
+#include "hideseek_hider/ppo.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
 
-#include "hideseek_hider/ppo.h"
 #include "hideseek_game/config_error.h"
 
 namespace hideseek_hider {
@@ -29,8 +30,9 @@ TEST(ClippedPolicyLoss, MatchesHandComputedValues) {
   const torch::Tensor new_lp = torch::full({2}, std::log(1.5f));
   EXPECT_NEAR(clippedPolicyLoss(new_lp, old_lp, torch::tensor({1.0f, -1.0f}), 0.2).item<float>(), 0.15f, 1e-6);
   // Ratio 0.5: A = +1 gives -min(0.5, 0.8) = -0.5.
-  EXPECT_NEAR(clippedPolicyLoss(torch::full({1}, std::log(0.5f)), torch::zeros({1}), torch::ones({1}), 0.2).item<float>(),
-              -0.5f, 1e-6);
+  EXPECT_NEAR(
+      clippedPolicyLoss(torch::full({1}, std::log(0.5f)), torch::zeros({1}), torch::ones({1}), 0.2).item<float>(),
+      -0.5f, 1e-6);
 }
 
 TEST(PpoOptions, ShippedConfigLoadsAndTyposAreRejected) {

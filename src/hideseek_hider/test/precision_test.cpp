@@ -1,9 +1,9 @@
-#include <gtest/gtest.h>
+#include "hideseek_hider/precision.h"
 
 #include <ATen/autocast_mode.h>
+#include <gtest/gtest.h>
 
 #include "hideseek_hider/hider_net.h"
-#include "hideseek_hider/precision.h"
 
 namespace hideseek_hider {
 

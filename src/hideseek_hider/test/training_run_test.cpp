@@ -1,11 +1,11 @@
+#include "hideseek_hider/training_run.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include "hideseek_hider/training_run.h"
 
 namespace hideseek_hider {
 

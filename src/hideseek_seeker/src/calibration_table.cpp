@@ -2,7 +2,8 @@
 // (the files of config/variants/), over seeds 0..99 by default, beside the paper's random-hider
 // living steps (config/paper_reference.yaml).
 // Usage: calibration_table [--config DIR] [--game FILE] [--csv FILE] [--episodes N] [--first-seed S]
-//                          [--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE] [VARIANT...]
+//                          [--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE]
+//                          [VARIANT...]
 // --lap-radius: the ring the lap evader aims for (m from the centre; default 5.5, game v2's outer ring).
 // --game: the game file (default DIR/game.yaml; DIR/game_v1.yaml is the first game).
 // --episodes-csv writes one variant's episodes of one evader (seed,living_steps,outcome) as
@@ -20,9 +21,10 @@
 #include <string>
 #include <vector>
 
-#include "hideseek_seeker/scripted_game.h"
 #include "hideseek_game/config_error.h"
 #include "hideseek_game/package_paths.h"
+#include "hideseek_game/run_registry.h"
+#include "hideseek_seeker/scripted_game.h"
 
 namespace {
 
@@ -33,16 +35,6 @@ int usage(const std::string& why) {
             << "\nusage: calibration_table [--config DIR] [--game FILE] [--csv FILE] [--episodes N] [--first-seed S] "
                "[--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE] [VARIANT...]\n";
   return 2;
-}
-
-// The variants are the files of DIR/variants, in name order.
-std::vector<std::string> discoverVariants(const std::string& config_dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(config_dir + "/variants")) {
-    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
 }
 
 }  // namespace
@@ -99,7 +91,7 @@ int main(int argc, char** argv) {
     }
   }
   if (game_file.empty()) game_file = config_dir + "/game.yaml";
-  if (variants.empty()) variants = discoverVariants(config_dir);
+  if (variants.empty()) variants = hideseek_game::variantNames(config_dir + "/variants");
   if (!episodes_csv_path.empty() && (variants.size() != 1 || evaders.size() != 1)) {
     return usage("--episodes-csv needs exactly one variant and one evader");
   }
@@ -114,20 +106,23 @@ int main(int argc, char** argv) {
     }
     std::printf("Scripted hiders, seeds %ld..%ld, at most the variant's max steps (game: %s)\n\n", first_seed,
                 first_seed + episodes - 1, std::filesystem::path(game_file).filename().c_str());
-    std::printf("| variant | evader | avg living steps | paper (random) | here / paper | success | median living steps | "
-                "seeker sees hider at step 0 |\n");
+    std::printf(
+        "| variant | evader | avg living steps | paper (random) | here / paper | success | median living steps | "
+        "seeker sees hider at step 0 |\n");
     std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
     for (const auto& name : variants) {
       const auto v = hideseek_game::loadVariantConfig(game_file, config_dir + "/variants/" + name + ".yaml");
       const auto map = std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(v.map_file));
       const double reference = paper[name] ? paper[name]["living_random"].as<double>() : NAN;
       for (const hs::EvaderKind evader : evaders) {
-        const auto played = hs::playScriptedHider(v, map, evader, static_cast<uint32_t>(first_seed), episodes, {}, evader_options);
+        const auto played =
+            hs::playScriptedHider(v, map, evader, static_cast<uint32_t>(first_seed), episodes, {}, evader_options);
         const auto s = hs::summarize(played);
         if (!episodes_csv_path.empty()) {
           std::ofstream rows(episodes_csv_path);
           rows << "seed,living_steps,outcome\n";
-          for (const auto& e : played) rows << e.seed << ',' << e.living_steps << ',' << (e.survived ? "survived" : "captured") << '\n';
+          for (const auto& e : played)
+            rows << e.seed << ',' << e.living_steps << ',' << (e.survived ? "survived" : "captured") << '\n';
           if (!rows) return usage("cannot write " + episodes_csv_path);
         }
         const bool random = evader == hs::EvaderKind::kRandom;

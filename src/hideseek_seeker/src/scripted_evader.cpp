@@ -19,7 +19,7 @@ namespace {
 constexpr float kUnreachable = std::numeric_limits<float>::infinity();
 constexpr double kOutOfViewPenalty = 100.0;  // m: backpedal never trades the seeker's view for distance
 constexpr double kInViewMargin = 10.0 * hideseek_game::kPi / 180.0;  // keep the seeker this far inside the image
-constexpr double kArrived = 0.3;             // m: a path point or hiding spot counts as reached
+constexpr double kArrived = 0.3;                                     // m: a path point or hiding spot counts as reached
 constexpr Action kLookahead[] = {Action::kBackward, Action::kStay, Action::kTurnLeft, Action::kTurnRight,
                                  Action::kForward};
 
@@ -80,7 +80,8 @@ float ScriptedEvader::fieldAt(const std::vector<float>& field, Vec2 p) const {
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
       const hideseek_game::GridCell n{c.x + dx, c.y + dy};
-      if (grid.isFree(n)) best = std::min(best, field[grid.index(n)] + static_cast<float>(distance(p, grid.centerOf(n))));
+      if (grid.isFree(n))
+        best = std::min(best, field[grid.index(n)] + static_cast<float>(distance(p, grid.centerOf(n))));
     }
   }
   return best;
@@ -104,8 +105,7 @@ Action ScriptedEvader::act(const EvaderObservation& o) {
     return static_cast<Action>(hideseek_game::hashAction(o.seed, o.step, hideseek_game::kSaltRandomHider));
   }
   // What the seeker knows of the hider, read off the true state as the seeker would perceive it.
-  if ((o.step == 0 && game_.seeker_knows_spawn) ||
-      hideseek_game::agentSeesAgent(o.seeker, o.hider, layout_, game_)) {
+  if ((o.step == 0 && game_.seeker_knows_spawn) || hideseek_game::agentSeesAgent(o.seeker, o.hider, layout_, game_)) {
     last_seen_ = o.hider.position;
   }
   switch (kind_) {
@@ -196,9 +196,8 @@ Action ScriptedEvader::hide(const EvaderObservation& o) {
   for (size_t i = 0; i < from_hider_.size(); ++i) {
     if (safe_at(from_hider_[i], from_seeker_[i])) candidates.push_back(static_cast<int>(i));
   }
-  std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
-    return from_hider_[a] != from_hider_[b] ? from_hider_[a] < from_hider_[b] : a < b;
-  });
+  std::sort(candidates.begin(), candidates.end(),
+            [&](int a, int b) { return from_hider_[a] != from_hider_[b] ? from_hider_[a] < from_hider_[b] : a < b; });
   // The safest spot within hide_search_radius that the seeker cannot see from where it is, nor
   // from where it will search; failing that, the nearest spot it cannot see from where it is.
   int best = -1;
@@ -252,10 +251,10 @@ Action ScriptedEvader::lap(const EvaderObservation& o) {
   const float here = fieldAt(from_seeker_, o.hider.position);
   // The sense that leads away from the seeker; turn round when the seeker is ahead.
   if (lap_sign_ == 0) {
-    lap_sign_ = fieldAt(from_seeker_, lapTarget(o.hider.position, +1)) >=
-                        fieldAt(from_seeker_, lapTarget(o.hider.position, -1))
-                    ? +1
-                    : -1;
+    lap_sign_ =
+        fieldAt(from_seeker_, lapTarget(o.hider.position, +1)) >= fieldAt(from_seeker_, lapTarget(o.hider.position, -1))
+            ? +1
+            : -1;
   } else if (fieldAt(from_seeker_, lapTarget(o.hider.position, lap_sign_)) < here) {
     lap_sign_ = -lap_sign_;
   }

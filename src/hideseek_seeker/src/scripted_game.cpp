@@ -1,8 +1,10 @@
 #include "hideseek_seeker/scripted_game.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "hideseek_game/arena.h"
+#include "hideseek_game/game_loop.h"
 
 namespace hideseek_seeker {
 
@@ -22,15 +24,21 @@ std::vector<ScriptedEpisode> playScriptedHider(const hideseek_game::VariantConfi
                                                std::shared_ptr<const hideseek_game::MapSpec> map, EvaderKind evader,
                                                uint32_t first_seed, int episodes, const ScriptedStepObserver& observe,
                                                const EvaderOptions& evader_options) {
-  Arena arena(variant.game, map);
+  // One arena, unrendered (a scripted hider needs no image), playing seeds first_seed, first_seed + 1, ...
+  hideseek_game::GameLoopOptions loop_options;
+  loop_options.seed = first_seed;
+  loop_options.render = false;
+  hideseek_game::GameLoop game(variant.game, std::move(map), loop_options);
+  const Arena& arena = game.world().arena(0);
   SeekerPolicy seeker(seekerOptionsFor(variant));
   ScriptedEvader hider(evader, variant.game, evader_options);
-  const hideseek_game::SeekerDecide decide = [&](const hideseek_game::SeekerPerception& p) { return seeker.act(p); };
+  const hideseek_game::ArenaSeekerDecide decide = [&](int, const hideseek_game::SeekerPerception& p) {
+    return seeker.act(p);
+  };
   std::vector<ScriptedEpisode> out;
   for (int e = 0; e < episodes; ++e) {
     ScriptedEpisode episode;
-    episode.seed = first_seed + static_cast<uint32_t>(e);
-    arena.reset(episode.seed);
+    episode.seed = arena.seed();
     seeker.reset(arena.layout(), episode.seed);
     hider.reset(arena.layout());
     episode.seen_at_start = arena.labels().seeker_sees_hider;
@@ -39,11 +47,12 @@ std::vector<ScriptedEpisode> playScriptedHider(const hideseek_game::VariantConfi
     for (;;) {
       const auto step = static_cast<uint32_t>(arena.stepCount());
       const Action hider_action = hider.act({arena.hider(), arena.seeker(), episode.seed, step});
-      if (observe) observe({episode.seed, static_cast<int>(step), arena.hider(), arena.seeker(), arena.labels(), hider_action});
-      const hideseek_game::StepResult r = hideseek_game::playDecisionStep(arena, hider_action, decide);
-      if (r.done()) {
-        episode.living_steps = arena.stepCount();
-        episode.survived = r.outcome == hideseek_game::Outcome::kSurvived;
+      if (observe)
+        observe({episode.seed, static_cast<int>(step), arena.hider(), arena.seeker(), arena.labels(), hider_action});
+      const hideseek_game::Decision d = game.step({hider_action}, decide);
+      if (const auto& finished = d.steps[0].finished) {
+        episode.living_steps = finished->steps;
+        episode.survived = finished->outcome == hideseek_game::Outcome::kSurvived;
         break;
       }
     }

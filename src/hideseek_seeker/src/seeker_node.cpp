@@ -4,11 +4,11 @@
 
 #include <stdexcept>
 
-#include "hideseek_seeker/scripted_game.h"
 #include "hideseek_game/params.h"
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/wall_throttle.h"
 #include "hideseek_game/world_node_options.h"
+#include "hideseek_seeker/scripted_game.h"
 
 namespace hideseek_seeker {
 
@@ -46,7 +46,7 @@ void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::Con
   if (msg->pose.size() != n || msg->sees_hider.size() != n || msg->hider_position.size() != n ||
       msg->step.size() != n || msg->episode.size() != n || msg->seed.size() != n || msg->maps.size() != n) {
     ++malformed_;
-    static hideseek_game::WallThrottle throttle(2.0);
+    hideseek_game::WallThrottle& throttle = malformed_throttle_;
     if (throttle.ready()) {
       ROS_WARN(
           "seeker: ignored an observation batch whose arrays do not all hold %zu arenas (%lu so far; %lu more like it "

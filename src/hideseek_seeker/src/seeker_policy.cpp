@@ -98,7 +98,8 @@ Action SeekerPolicy::decide(const SeekerPerception& p) {
       }
       setGoal(p.pose, waypoints_[next_waypoint_]);
     } else {
-      if (mode_ != SeekerMode::kWander || !goal_ || distance(here, *goal_) <= options_.goal_tolerance || path_.empty()) {
+      if (mode_ != SeekerMode::kWander || !goal_ || distance(here, *goal_) <= options_.goal_tolerance ||
+          path_.empty()) {
         goal_.reset();
         setGoal(p.pose, planner_->randomReachablePoint(here, rng_));
       }

@@ -11,8 +11,8 @@
 #include <set>
 #include <string>
 
-#include "hideseek_seeker/scripted_game.h"
 #include "hideseek_game/arena.h"
+#include "hideseek_seeker/scripted_game.h"
 
 namespace hideseek_seeker {
 namespace {
@@ -88,7 +88,8 @@ TEST(Calibration, HidingPays) {
   const ScriptedSummary hide = summarize(play("basic", EvaderKind::kHide));
   const ScriptedSummary backpedal = summarize(play("basic", EvaderKind::kBackpedal));
   EXPECT_GT(hide.avg_living_steps, backpedal.avg_living_steps)
-      << describe("basic", EvaderKind::kHide, hide) << " against " << describe("basic", EvaderKind::kBackpedal, backpedal);
+      << describe("basic", EvaderKind::kHide, hide) << " against "
+      << describe("basic", EvaderKind::kBackpedal, backpedal);
   const ScriptedSummary slow_hide = summarize(play("slowerhider", EvaderKind::kHide));
   const ScriptedSummary slow_flee = summarize(play("slowerhider", EvaderKind::kFlee));
   EXPECT_GT(slow_hide.avg_living_steps, slow_flee.avg_living_steps)
@@ -167,10 +168,12 @@ TEST(Calibration, SeekerCatchesAHiderThatStaysPutOnceItHasSeenIt) {
       int first_seen = -1;
       hideseek_game::StepResult r;
       do {
-        if (first_seen < 0 && arena.stepCount() >= static_cast<int>(seed % 60) && arena.labels().seeker_sees_hider) first_seen = arena.stepCount();
+        if (first_seen < 0 && arena.stepCount() >= static_cast<int>(seed % 60) && arena.labels().seeker_sees_hider)
+          first_seen = arena.stepCount();
         const int run = static_cast<int>(seed % 60);
-        const auto hider_action = arena.stepCount() < run                 ? hideseek_game::Action::kForward
-                                 : arena.stepCount() % 2 ? hideseek_game::Action::kBackward : hideseek_game::Action::kForward;
+        const auto hider_action = arena.stepCount() < run ? hideseek_game::Action::kForward
+                                  : arena.stepCount() % 2 ? hideseek_game::Action::kBackward
+                                                          : hideseek_game::Action::kForward;
         r = hideseek_game::playDecisionStep(arena, hider_action, decide);
       } while (!r.done());
       if (first_seen < 0) continue;

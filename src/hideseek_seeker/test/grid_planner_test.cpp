@@ -1,8 +1,9 @@
+#include "hideseek_seeker/grid_planner.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "hideseek_seeker/grid_planner.h"
 #include "hideseek_game/map.h"
 
 namespace hideseek_seeker {

@@ -1,12 +1,13 @@
+#include "hideseek_seeker/seeker_policy.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 #include <set>
 
-#include "hideseek_seeker/seeker_node.h"
-#include "hideseek_seeker/seeker_policy.h"
 #include "hideseek_game/arena.h"
 #include "hideseek_game/visibility.h"
+#include "hideseek_seeker/seeker_node.h"
 
 namespace hideseek_seeker {
 
@@ -116,7 +117,8 @@ TEST(SeekerPolicy, StochasticSeekerWandersToVariedPointsAndChasesOnSight) {
   for (int step = 0; step < 1500; ++step) {
     advance(s, seeker.act({s, std::nullopt}), layout);
     EXPECT_EQ(seeker.mode(), SeekerMode::kWander);
-    if (seeker.goal()) goals.insert({static_cast<int>(std::floor(seeker.goal()->x)), static_cast<int>(std::floor(seeker.goal()->y))});
+    if (seeker.goal())
+      goals.insert({static_cast<int>(std::floor(seeker.goal()->x)), static_cast<int>(std::floor(seeker.goal()->y))});
   }
   EXPECT_GE(goals.size(), 5u) << "goals should spread over the map";
   seeker.act({s, Vec2{s.position.x + 2.0, s.position.y}});

@@ -19,7 +19,8 @@ hideseek_msgs::ActionBatch answer(const Batch& obs, uint32_t salt) {
   hideseek_msgs::ActionBatch out;
   out.header.stamp = obs.header.stamp;
   out.step = obs.step;
-  for (uint32_t i = 0; i < obs.num_arenas; ++i) out.actions.push_back(hideseek_game::hashAction(obs.seed[i], obs.step[i], salt));
+  for (uint32_t i = 0; i < obs.num_arenas; ++i)
+    out.actions.push_back(hideseek_game::hashAction(obs.seed[i], obs.step[i], salt));
   return out;
 }
 
@@ -41,7 +42,8 @@ int main(int argc, char** argv) {
     pub = nh.advertise<hideseek_msgs::ActionBatch>(hideseek_game::kHiderActionsTopic, 2);
     sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
         hideseek_game::kHiderObservationsTopic, 2,
-        [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) { pub.publish(answer(*m, 0x51)); }, ros::VoidConstPtr(), hints);
+        [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) { pub.publish(answer(*m, 0x51)); }, ros::VoidConstPtr(),
+        hints);
   } else {
     pub = nh.advertise<hideseek_msgs::ActionBatch>(hideseek_game::kSeekerActionsTopic, 2);
     sub = nh.subscribe<hideseek_msgs::SeekerObservationBatch>(

@@ -1,7 +1,5 @@
 #include "hideseek_world/world_node.h"
 
-#include <cstdio>
-
 #include <hideseek_msgs/GameState.h>
 #include <hideseek_msgs/ObservationBatch.h>
 #include <hideseek_msgs/SeekerObservationBatch.h>
@@ -10,6 +8,8 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/image_encodings.h>
 #include <visualization_msgs/MarkerArray.h>
+
+#include <cstdio>
 
 #include "hideseek_game/msg_conversion.h"
 #include "hideseek_game/topic_names.h"
@@ -21,10 +21,21 @@ using namespace hideseek_game;  // NOLINT(google-build-using-namespace): the nod
 
 namespace {
 
-constexpr double kMapResolution = 0.05;         // m per cell of the published OccupancyGrid
-constexpr double kOwnerTimeout = 2.0;           // s a silent publisher keeps its topic
-constexpr double kSimTimeOrigin = 1.0;          // s; sim time 0 means "no time" to tf and rosbag
-constexpr double kWarnPeriod = 2.0;             // s between repeated warnings of one kind
+hideseek_game::GameLoopOptions gameLoopOptions(const WorldNodeOptions& o) {
+  hideseek_game::GameLoopOptions g;
+  g.mode = o.mode;
+  g.num_arenas = o.num_arenas;
+  g.seed = o.seed;
+  g.render = true;
+  g.render_threads = o.render_threads;
+  g.stale_action_timeout = o.stale_action_timeout;
+  g.resend_period = o.resend_period;
+  return g;
+}
+
+constexpr double kMapResolution = 0.05;  // m per cell of the published OccupancyGrid
+constexpr double kOwnerTimeout = 2.0;    // s a silent publisher keeps its topic
+constexpr double kSimTimeOrigin = 1.0;   // s; sim time 0 means "no time" to tf and rosbag
 
 const char* outcomeName(Outcome o) {
   switch (o) {
@@ -37,8 +48,8 @@ const char* outcomeName(Outcome o) {
   }
 }
 
-geometry_msgs::TransformStamped fixedTransform(const std::string& parent, const std::string& child, double z,
-                                               double qx, double qy, double qz, double qw) {
+geometry_msgs::TransformStamped fixedTransform(const std::string& parent, const std::string& child, double z, double qx,
+                                               double qy, double qz, double qw) {
   geometry_msgs::TransformStamped t;
   t.header.frame_id = parent;
   t.child_frame_id = child;
@@ -56,18 +67,10 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh),
       image_transport_(nh),
       options_(loadWorldNodeOptions(private_nh)),
-      scheduler_(options_.mode, options_.num_arenas, options_.stale_action_timeout, options_.resend_period) {
+      game_(options_.variant.game, std::make_shared<const MapSpec>(options_.map), gameLoopOptions(options_)) {
   const GameOptions& game = options_.variant.game;
   const int n = options_.num_arenas;
-  world_ = std::make_unique<World>(game, std::make_shared<const MapSpec>(options_.map), n, options_.seed, true,
-                                   options_.render_threads);
-  images_.resize(world_->imageBytes() * n);
-  seeker_image_.resize(world_->imageBytes());
-  rewards_.assign(n, 0.f);
-  done_.assign(n, 0);
-  outcome_.assign(n, 0);
-  last_hider_actions_.assign(n, Action::kStay);
-  last_seeker_actions_.assign(n, Action::kStay);
+  seeker_image_.resize(game_.world().imageBytes());
   hider_.name = "hider";
   hider_.player = Player::kHider;
   seeker_.name = "seeker";
@@ -116,37 +119,32 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   for (auto& t : fixed) t.header.stamp = simNow();
   static_tf_.sendTransform(fixed);
 
-  world_->renderHiderViews(images_.data());
   startEpisodeVisuals();
   if (lockstep) {
     watchdog_timer_ = nh_.createWallTimer(ros::WallDuration(0.05), &WorldNode::onWatchdog, this);
   } else {
-    step_hider_.assign(n, Action::kStay);
-    step_first_seeker_.assign(n, Action::kStay);
-    seeker_now_.assign(n, Action::kStay);
     tick_timer_ = nh_.createWallTimer(ros::WallDuration(game.physics_dt), &WorldNode::onRealtimeTick, this);
     publishObservations();
     publishArenaZero(true);
   }
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(1.0), &WorldNode::publishDiagnostics, this);
-  ROS_INFO("world: variant '%s', map '%s', %d arena(s), %s mode, seed %u, images %dx%d",
-           options_.variant.name.c_str(), options_.map.name.c_str(), n, lockstep ? "lockstep" : "realtime",
-           options_.seed, game.camera.width, game.camera.height);
+  ROS_INFO("world: variant '%s', map '%s', %d arena(s), %s mode, seed %u, images %dx%d", options_.variant.name.c_str(),
+           options_.map.name.c_str(), n, lockstep ? "lockstep" : "realtime", options_.seed, game.camera.width,
+           game.camera.height);
 }
 
 bool WorldNode::reachedMaxDecisions() const {
-  return options_.max_decisions > 0 && world_steps_ >= static_cast<uint64_t>(options_.max_decisions);
+  return options_.max_decisions > 0 && game_.decisions() >= static_cast<uint64_t>(options_.max_decisions);
 }
 
-ros::Time WorldNode::simNow() const {
+ros::Time WorldNode::simTime(uint64_t decisions) const {
   if (options_.mode == ClockMode::kRealtime) return ros::Time::now();
-  return ros::Time(kSimTimeOrigin + static_cast<double>(world_steps_) * options_.variant.game.stepDuration());
+  return ros::Time(kSimTimeOrigin + static_cast<double>(decisions) * options_.variant.game.stepDuration());
 }
 
 bool WorldNode::acceptPublisher(const std::string& caller, AgentChannel& channel) {
   const ros::WallTime now = ros::WallTime::now();
-  if (channel.owner.empty() || channel.owner == caller ||
-      (now - channel.owner_last_seen).toSec() > kOwnerTimeout) {
+  if (channel.owner.empty() || channel.owner == caller || (now - channel.owner_last_seen).toSec() > kOwnerTimeout) {
     if (channel.owner != caller) {
       if (!channel.owner.empty()) ROS_INFO("world: %s actions now come from %s", channel.name.c_str(), caller.c_str());
       channel.owner = caller;
@@ -161,7 +159,7 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
   const std::string caller = event.getPublisherName();
   if (!acceptPublisher(caller, channel)) {
     ++rejected_.second_publisher;
-    static WallThrottle throttle(kWarnPeriod);
+    WallThrottle& throttle = throttles_.second_publisher;
     if (throttle.ready()) {
       ROS_WARN("world: rejected %s actions from %s: %s already publishes them (%lu more like it since the last)",
                channel.name.c_str(), caller.c_str(), channel.owner.c_str(),
@@ -173,7 +171,7 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
   const size_t n = static_cast<size_t>(options_.num_arenas);
   if (msg.actions.size() != n || msg.step.size() != n) {
     ++rejected_.wrong_arena_count;
-    static WallThrottle throttle(kWarnPeriod);
+    WallThrottle& throttle = throttles_.wrong_arena_count;
     if (throttle.ready()) {
       ROS_WARN(
           "world: rejected %s action batch: %zu actions and %zu step ids for %zu arenas (%lu more like it since the "
@@ -184,20 +182,15 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
     return;
   }
   const bool lockstep = options_.mode == ClockMode::kLockstep;
-  // The hider answers a step's first frame; inside the step only the seeker decides.
-  constexpr uint32_t kNoStep = UINT32_MAX;
-  const bool hider = channel.player == Player::kHider;
   for (size_t i = 0; i < n; ++i) {
     const int arena = static_cast<int>(i);
-    const uint32_t current = !hider                        ? world_->seekerDecisionId(arena)
-                             : world_->frameInStep() == 0 ? static_cast<uint32_t>(world_->arena(arena).stepCount())
-                                                          : kNoStep;
-    switch (scheduler_.offer(channel.player, static_cast<int>(i), msg.actions[i], msg.step[i], current)) {
+    const uint32_t current = game_.expectedStepId(channel.player, arena);
+    switch (game_.offer(channel.player, arena, msg.actions[i], msg.step[i])) {
       case Verdict::kAccepted:
         break;
       case Verdict::kInvalidAction: {
         ++rejected_.invalid_action;
-        static WallThrottle throttle(kWarnPeriod);
+        WallThrottle& throttle = throttles_.invalid_action;
         if (throttle.ready()) {
           ROS_WARN("world: rejected %s action %u for arena %zu: actions are 0..%d (%lu more like it since the last)",
                    channel.name.c_str(), msg.actions[i], i, kNumActions - 1,
@@ -207,7 +200,7 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
       }
       case Verdict::kLate: {
         ++rejected_.late;
-        static WallThrottle throttle(kWarnPeriod);
+        WallThrottle& throttle = throttles_.late;
         if (throttle.ready()) {
           ROS_WARN(
               "world: rejected %s action for arena %zu: step %u had started without it "
@@ -218,7 +211,7 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
       }
       case Verdict::kWrongStep: {
         ++rejected_.wrong_step;
-        static WallThrottle throttle(kWarnPeriod);
+        WallThrottle& throttle = throttles_.wrong_step;
         if (throttle.ready()) {
           ROS_WARN(
               "world: rejected %s action for arena %zu: step id %u, current step is %u (%lu more like it since the "
@@ -238,32 +231,17 @@ void WorldNode::tryAdvanceLockstep() {
     ROS_INFO_ONCE("world: max_decisions (%ld) reached; the world no longer advances", options_.max_decisions);
     return;
   }
-  std::vector<Action> seeker;
-  if (world_->frameInStep() == 0) {
-    if (!scheduler_.complete()) return;
-    beginStepRecord();
-    const DecisionActions d = scheduler_.takeDecision();
-    step_hider_ = d.hider;
-    step_first_seeker_ = d.seeker;
-    seeker = d.seeker;
-  } else {
-    if (!scheduler_.completeFor(Player::kSeeker)) return;
-    seeker = scheduler_.takeSeekerDecision();
-  }
-  seeker_now_ = seeker;
+  if (!game_.decisionReady()) return;
+  if (game_.atStepStart()) beginStepRecord();
+  game_.takeDecision();
   // Play frames up to the seeker's next decision, or to the end of the step.
-  for (;;) {
-    if (const auto results = world_->advanceFrame(step_hider_, seeker_now_)) {
-      concludeDecision(*results, step_hider_, step_first_seeker_);
-      publishObservations();
-      publishArenaZero(false);
-      return;
-    }
-    if (world_->seekerDecisionDue()) {
-      publishSeekerObservations();
-      return;
-    }
+  if (const std::optional<Decision> decision = game_.playToNextDecision()) {
+    publishDecision(*decision);
+    publishObservations();
+    publishArenaZero(false);
+    return;
   }
+  publishSeekerObservations();
 }
 
 void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
@@ -281,67 +259,48 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
     publishObservations();  // the batch sent at start-up went out before anyone listened
     return;
   }
-  if (world_->frameInStep() == 0) {
+  if (game_.decisionDue()) {
     // A decision step starts once both agents answered its observation, so each decision drives
     // its own step. A slow agent slows the game (diagnostics show the real-time factor) rather
     // than changing it; an agent silent for stale_action_timeout, or absent, stands still for
-    // the step, like turtlesim's stale commands.
-    const bool connected = hider_sub_.getNumPublishers() > 0 && seeker_sub_.getNumPublishers() > 0;
-    const RealtimeStart start = scheduler_.realtimeStart(ros::WallTime::now().toSec(), connected);
+    // the step, like turtlesim's stale commands. The seeker's later decisions inside the step
+    // follow the same rules.
+    const bool hider_connected = hider_sub_.getNumPublishers() > 0;
+    const bool seeker_connected = seeker_sub_.getNumPublishers() > 0;
+    const RealtimeStart start = game_.realtimeStart(ros::WallTime::now().toSec(), hider_connected, seeker_connected);
     if (start == RealtimeStart::kWait) {
       publishAgentTransforms(ros::Time::now());
       return;
     }
+    const bool connected = seeker_connected && (hider_connected || !game_.atStepStart());
     if (start == RealtimeStart::kStale && connected) warnStale();
     // The step record's state half is taken before the frames change it.
-    beginStepRecord();
-    const DecisionActions d = scheduler_.takeDecision();
-    step_hider_ = d.hider;
-    step_first_seeker_ = d.seeker;
-    seeker_now_ = d.seeker;
-  } else if (world_->seekerDecisionDue()) {
-    // The seeker's later decisions inside the step, under the same rules.
-    const bool connected = seeker_sub_.getNumPublishers() > 0;
-    const RealtimeStart start = scheduler_.realtimeSeekerStart(ros::WallTime::now().toSec(), connected);
-    if (start == RealtimeStart::kWait) {
-      publishAgentTransforms(ros::Time::now());
-      return;
-    }
-    if (start == RealtimeStart::kStale && connected) warnStale();
-    seeker_now_ = scheduler_.takeSeekerDecision();
+    if (game_.atStepStart()) beginStepRecord();
+    game_.takeDecision();
   }
   // One physics frame per tick. An arena whose step ended early (capture) waits for the others,
   // so every arena's decisions stay on the same 0.12 s clock.
-  if (const auto results = world_->advanceFrame(step_hider_, seeker_now_)) {
-    concludeDecision(*results, step_hider_, step_first_seeker_);
-    scheduler_.finishDecision();
+  if (const std::optional<Decision> decision = game_.playFrame()) {
+    publishDecision(*decision);
     publishObservations();
     publishArenaZero(true);
     return;
   }
-  if (world_->seekerDecisionDue()) publishSeekerObservations();
+  if (game_.decisionDue()) publishSeekerObservations();
   publishAgentTransforms(ros::Time::now());
 }
 
 void WorldNode::warnStale() {
   ++stale_decisions_;
-  if (stale_throttle_.ready()) {
+  WallThrottle& throttle = throttles_.stale;
+  if (throttle.ready()) {
     ROS_WARN(
         "world: no action for step %d (frame %d) within %.2f s (hider %s, seeker %s): the silent "
         "agent stands still this decision (%lu more like it since the last)",
-        world_->arena(0).stepCount(), world_->frameInStep(), options_.stale_action_timeout,
-        scheduler_.answered(Player::kHider, 0) ? "answered" : "silent",
-        scheduler_.answered(Player::kSeeker, 0) ? "answered" : "silent",
-        static_cast<unsigned long>(stale_throttle_.suppressed()));
+        game_.world().arena(0).stepCount(), game_.world().frameInStep(), options_.stale_action_timeout,
+        game_.answered(Player::kHider, 0) ? "answered" : "silent",
+        game_.answered(Player::kSeeker, 0) ? "answered" : "silent", static_cast<unsigned long>(throttle.suppressed()));
   }
-}
-
-void WorldNode::finishDecisionInProgress() {
-  std::optional<std::vector<ArenaStep>> results;
-  while (!(results = world_->advanceFrame(step_hider_, seeker_now_))) {
-  }
-  concludeDecision(*results, step_hider_, step_first_seeker_);
-  scheduler_.finishDecision();
 }
 
 void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
@@ -361,37 +320,34 @@ void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
     publishArenaZero(true);
     return;
   }
-  if (!reachedMaxDecisions() && scheduler_.resendDue(now.toSec())) {
-    if (world_->frameInStep() != 0) {
+  if (!reachedMaxDecisions() && game_.resendDue(now.toSec())) {
+    if (!game_.atStepStart()) {
       // Inside a step only the seeker has an unanswered observation.
       publishSeekerObservations();
       return;
     }
-    static WallThrottle throttle(10.0);
+    WallThrottle& throttle = throttles_.resend;
     if (throttle.ready()) {
       ROS_WARN(
           "world: no complete action batches for %.1f s (hider %s, seeker %s); re-sending step (%lu more like it since "
           "the last)",
-          scheduler_.sinceSent(now.toSec()), hider_.owner.empty() ? "silent" : hider_.owner.c_str(),
+          game_.sinceSent(now.toSec()), hider_.owner.empty() ? "silent" : hider_.owner.c_str(),
           seeker_.owner.empty() ? "silent" : seeker_.owner.c_str(), static_cast<unsigned long>(throttle.suppressed()));
     }
     publishObservations();
   }
 }
 
-void WorldNode::concludeDecision(const std::vector<ArenaStep>& results, const std::vector<Action>& hider,
-                                 const std::vector<Action>& seeker) {
+void WorldNode::publishDecision(const Decision& decision) {
   last_finished_.reset();
+  // Stamped with the time the step started, like its step record.
+  const ros::Time stamp = simTime(decision.index);
   for (int i = 0; i < options_.num_arenas; ++i) {
-    const ArenaStep& s = results[i];
-    rewards_[i] = static_cast<float>(s.result.reward);
-    done_[i] = s.result.done();
-    outcome_[i] = static_cast<uint8_t>(s.result.outcome);
-    if (s.finished) {
-      const EpisodeSummary& e = *s.finished;
+    if (const auto& finished = decision.steps[i].finished) {
+      const EpisodeSummary& e = *finished;
       if (i == 0) last_finished_ = e;
       hideseek_msgs::EpisodeResult result;
-      result.header.stamp = simNow();
+      result.header.stamp = stamp;
       result.header.frame_id = options_.frame_id;
       result.arena = static_cast<uint32_t>(i);
       result.episode = e.episode;
@@ -406,25 +362,22 @@ void WorldNode::concludeDecision(const std::vector<ArenaStep>& results, const st
     }
   }
   if (step_record_) {
-    finishStepBatch(results, hider, seeker, *step_record_);
+    finishStepBatch(decision.steps, decision.hider, decision.seeker, *step_record_);
     steps_pub_.publish(*step_record_);
     step_record_.reset();
   }
-  last_hider_actions_ = hider;
-  last_seeker_actions_ = seeker;
-  ++world_steps_;
-  world_->renderHiderViews(images_.data());
 }
 
 void WorldNode::beginStepRecord() {
   if (steps_pub_.getNumSubscribers() == 0) return;
-  step_record_ = beginStepBatch(*world_, world_steps_, images_.data(), options_.step_image_every);
+  step_record_ =
+      beginStepBatch(game_.world(), game_.decisions(), game_.hiderImages().data(), options_.step_image_every);
   step_record_->header.stamp = simNow();
   step_record_->header.frame_id = options_.frame_id;
 }
 
 void WorldNode::publishAgentTransforms(const ros::Time& stamp) {
-  const Arena& a = world_->arena(0);
+  const Arena& a = game_.world().arena(0);
   tf_.sendTransform({agentTransform(a.hider(), options_.frame_id, options_.frame("hider/base_link"), stamp),
                      agentTransform(a.seeker(), options_.frame_id, options_.frame("seeker/base_link"), stamp)});
 }
@@ -436,11 +389,12 @@ void WorldNode::publishObservations() {
     clock.clock = stamp;
     clock_pub_.publish(clock);
   }
-  hideseek_msgs::ObservationBatch obs = toObservationBatch(*world_, images_, rewards_, done_, outcome_);
+  hideseek_msgs::ObservationBatch obs =
+      toObservationBatch(game_.world(), game_.hiderImages(), game_.rewards(), game_.done(), game_.outcomes());
   obs.header.stamp = stamp;
   obs.header.frame_id = options_.frame_id;
   hider_obs_pub_.publish(obs);
-  publishSeekerObservations(obs.header, done_);
+  publishSeekerObservations(obs.header, game_.done());
 }
 
 void WorldNode::publishSeekerObservations() {
@@ -451,16 +405,17 @@ void WorldNode::publishSeekerObservations() {
 }
 
 void WorldNode::publishSeekerObservations(const std_msgs::Header& header, const std::vector<uint8_t>& done) {
-  hideseek_msgs::SeekerObservationBatch seen = toSeekerObservationBatch(*world_, done, arena_maps_.update(*world_));
+  hideseek_msgs::SeekerObservationBatch seen =
+      toSeekerObservationBatch(game_.world(), done, arena_maps_.update(game_.world()));
   seen.header = header;
   seeker_obs_pub_.publish(seen);
-  scheduler_.observationSent(ros::WallTime::now().toSec());
+  game_.observationSent(ros::WallTime::now().toSec());
   ++batches_published_;
 }
 
 void WorldNode::startEpisodeVisuals() {
   const ros::Time stamp = simNow();
-  nav_msgs::OccupancyGrid grid = toOccupancyGrid(world_->arena(0).layout(), kMapResolution, options_.frame_id);
+  nav_msgs::OccupancyGrid grid = toOccupancyGrid(game_.world().arena(0).layout(), kMapResolution, options_.frame_id);
   grid.header.stamp = stamp;
   grid.info.map_load_time = stamp;
   map_pub_.publish(grid);
@@ -470,12 +425,12 @@ void WorldNode::startEpisodeVisuals() {
 }
 
 void WorldNode::publishArenaZero(bool force_visuals) {
-  const Arena& a = world_->arena(0);
+  const Arena& a = game_.world().arena(0);
   const ros::Time stamp = simNow();
   const GameOptions& game = options_.variant.game;
 
-  hideseek_msgs::GameState state =
-      toGameState(*world_, last_finished_, last_hider_actions_[0], last_seeker_actions_[0], rewards_[0], outcome_[0]);
+  hideseek_msgs::GameState state = toGameState(game_.world(), last_finished_, game_.lastHiderActions()[0],
+                                               game_.lastSeekerActions()[0], game_.rewards()[0], game_.outcomes()[0]);
   state.header.stamp = stamp;
   state.header.frame_id = options_.frame_id;
   state_pub_.publish(state);
@@ -511,16 +466,16 @@ void WorldNode::publishArenaZero(bool force_visuals) {
     img.width = game.camera.width;
     img.encoding = sensor_msgs::image_encodings::RGB8;
     img.step = img.width * 3;
-    img.data.assign(data, data + world_->imageBytes());
+    img.data.assign(data, data + game_.world().imageBytes());
     return img;
   };
   if (hider_camera_pub_.getNumSubscribers() > 0) {
     sensor_msgs::CameraInfo info = camera_info_;
     info.header.stamp = stamp;
-    hider_camera_pub_.publish(image(images_.data(), info.header.frame_id), info);
+    hider_camera_pub_.publish(image(game_.hiderImages().data(), info.header.frame_id), info);
   }
   if (seeker_camera_pub_.getNumSubscribers() > 0) {
-    world_->renderSeekerView(0, seeker_image_.data());
+    game_.world().renderSeekerView(0, seeker_image_.data());
     sensor_msgs::CameraInfo info = camera_info_;
     info.header.stamp = stamp;
     info.header.frame_id = options_.frame("seeker/camera_optical_frame");
@@ -529,32 +484,16 @@ void WorldNode::publishArenaZero(bool force_visuals) {
 }
 
 bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset::Response& res) {
-  const int n = options_.num_arenas;
-  if (req.arena < -1 || req.arena >= n) {
-    res.success = false;
-    res.message = "arena " + std::to_string(req.arena) + " does not exist (0.." + std::to_string(n - 1) + ", or -1 for all)";
-    return true;
-  }
-  if (req.seed < -1 || req.seed > static_cast<int64_t>(UINT32_MAX)) {
-    res.success = false;
-    res.message = "seed must be -1 or in [0, 2^32)";
-    return true;
-  }
   // A decision step in progress is played to its end first, with the hider's action and the
   // seeker's latest: every arena's step stays whole, and an episode it ends is reported like any
   // other.
-  if (world_->frameInStep() != 0) finishDecisionInProgress();
-  scheduler_.reset(req.arena);
-  for (int i = 0; i < n; ++i) {
-    if (req.arena != -1 && req.arena != i) continue;
-    std::optional<uint32_t> seed;
-    if (req.seed >= 0) seed = static_cast<uint32_t>(req.seed + (req.arena == -1 ? i : 0));
-    world_->resetArena(i, seed);
-    rewards_[i] = 0.f;
-    done_[i] = 0;
-    outcome_[i] = 0;
+  try {
+    if (const std::optional<Decision> decision = game_.reset(req.arena, req.seed)) publishDecision(*decision);
+  } catch (const std::invalid_argument& e) {
+    res.success = false;
+    res.message = e.what();
+    return true;
   }
-  world_->renderHiderViews(images_.data());
   last_finished_.reset();
   if (req.arena <= 0) startEpisodeVisuals();
   res.success = true;
@@ -571,7 +510,8 @@ void WorldNode::publishDiagnostics(const ros::WallTimerEvent&) {
   const double period = reported_at_.isZero() ? 0.0 : (now - reported_at_).toSec();
   const uint64_t rejections = rejected_.wrong_arena_count + rejected_.invalid_action + rejected_.wrong_step +
                               rejected_.second_publisher + rejected_.late;
-  const double steps_per_s = period > 0.0 ? static_cast<double>(world_steps_ - reported_steps_) / period : 0.0;
+  const uint64_t decisions = game_.decisions();
+  const double steps_per_s = period > 0.0 ? static_cast<double>(decisions - reported_steps_) / period : 0.0;
   diagnostic_msgs::DiagnosticArray array;
   array.header.stamp = ros::Time::now();
   diagnostic_msgs::DiagnosticStatus status;
@@ -606,13 +546,13 @@ void WorldNode::publishDiagnostics(const ros::WallTimerEvent&) {
   add("rejected_second_publisher", std::to_string(rejected_.second_publisher));
   add("rejected_late", std::to_string(rejected_.late));
   add("stale_decisions", std::to_string(stale_decisions_));
-  add("decision_steps", std::to_string(world_steps_));
+  add("decision_steps", std::to_string(decisions));
   add("observation_batches", std::to_string(batches_published_));
   array.status.push_back(status);
   diagnostics_pub_.publish(array);
   reported_rejections_ = rejections;
   reported_stale_ = stale_decisions_;
-  reported_steps_ = world_steps_;
+  reported_steps_ = decisions;
   reported_at_ = now;
 }
 

@@ -27,27 +27,27 @@ def undocumented_arguments(path):
             if a.get("value") is None and a.get("doc") is None]
 
 
-def policy_default_problems(path):
-    """A variant launch file's `policy` defaults to `shipped`: the policy the run registry ships
-    for the variant, or the random hider (with a warning) where none is shipped."""
-    if not path.endswith(".launch"):
-        return []
+def variant_problems(path, config):
+    """A variant's launch file (named for a config/variants file) plays that variant, and its hider
+    plays the policy the run registry ships for it (`shipped`: else the random hider) by default."""
     package = rospkg.RosPack().get_path("hideseek_game")
     variant = os.path.basename(path)[:-len(".launch")]
     if not os.path.isfile(os.path.join(package, "config", "variants", variant + ".yaml")):
         return []
-    defaults = [a.get("default") for a in ET.parse(path).getroot().findall("arg") if a.get("name") == "policy"]
-    if not defaults or defaults[0] is None:
-        return ["a variant launch file without a 'policy' argument with a default"]
-    if defaults[0] != "shipped":
-        return ["argument 'policy' defaults to %s, not 'shipped' (the registry's shipped policy, else the random "
-                "hider)" % defaults[0]]
-    return []
+    problems = []
+    played = {k: v.value for k, v in config.params.items() if k.endswith("/variant_config")}
+    if not played or any(os.path.basename(v) != variant + ".yaml" for v in played.values()):
+        problems.append("plays %s, not config/variants/%s.yaml" % (sorted(set(played.values())) or "no variant",
+                                                                   variant))
+    policy = [v.value for k, v in config.params.items() if k.endswith("/hider/policy")]
+    if policy != ["shipped"]:
+        problems.append("the hider's policy defaults to %s, not 'shipped' (the registry's shipped policy, else "
+                        "the random hider)" % policy)
+    return problems
 
 
 def check(path):
     problems = ["argument '%s' has no doc=" % name for name in undocumented_arguments(path)]
-    problems += policy_default_problems(path)
     if path.endswith(".launch.xml"):
         return problems  # an include: its required arguments come from the files that load it
     config = roslaunch.config.ROSLaunchConfig()
@@ -56,6 +56,7 @@ def check(path):
         loader.load(path, config, verbose=False)
     except Exception as e:  # roslaunch raises several unrelated exception types
         return ["does not load: %s" % e]
+    problems += variant_problems(path, config)
     for node in config.nodes + config.tests:
         try:
             if not find_node(node.package, node.type):

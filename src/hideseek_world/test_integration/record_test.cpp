@@ -50,9 +50,10 @@ TEST(Record, BagClosesCleanlyAndHoldsEveryListedTopic) {
   std::vector<std::string> topics;
   ASSERT_TRUE(pnh.getParam("topics", topics));
   int finished = 0;
-  auto sub = nh.subscribe<hideseek_msgs::GameState>("game_state", 100, [&](const hideseek_msgs::GameState::ConstPtr& m) {
-    finished += m->outcome != hideseek_msgs::GameState::OUTCOME_RUNNING;
-  });
+  auto sub =
+      nh.subscribe<hideseek_msgs::GameState>("game_state", 100, [&](const hideseek_msgs::GameState::ConstPtr& m) {
+        finished += m->outcome != hideseek_msgs::GameState::OUTCOME_RUNNING;
+      });
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(120.0);
   while (ros::ok() && (finished < 3 || findBag(dir, false).empty()) && ros::WallTime::now() < end) {
     ros::spinOnce();

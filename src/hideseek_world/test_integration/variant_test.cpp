@@ -1,6 +1,7 @@
 // Runs against a variant launch file with the random hider (see variant_*.test, realtime.test):
 // the three agents are separate processes, episodes end by capture or by the step limit, every
-// decision applies the action chosen for its own step, and a reset does not stall the game.
+// decision applies the action chosen for its own step, a reset does not stall the game, and the
+// frames carry the game's prefix. Every check runs on every launch: none is skipped.
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <hideseek_msgs/GameState.h>
@@ -25,7 +26,8 @@ using hideseek_test::nodeUri;
 TEST(Variant, WorldSeekerAndHiderAreSeparateProcesses) {
   std::set<std::string> uris;
   // Relative names: the test runs in the game's namespace (two_games.test runs two).
-  for (const std::string node : {ros::names::resolve("world"), ros::names::resolve("seeker"), ros::names::resolve("hider")}) {
+  for (const std::string node :
+       {ros::names::resolve("world"), ros::names::resolve("seeker"), ros::names::resolve("hider")}) {
     std::string uri;
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(30.0);
     while ((uri = nodeUri(node)).empty() && ros::WallTime::now() < end) ros::WallDuration(0.1).sleep();
@@ -43,22 +45,23 @@ TEST(Variant, EpisodesEndByCaptureOrStepLimit) {
   int captured = 0, survived = 0;
   std::vector<uint32_t> last_step;
   std::set<uint32_t> seeds;
-  auto sub = nh.subscribe<hideseek_msgs::ObservationBatch>("hider/observations", 10, [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) {
-    if (last_step.size() != m->num_arenas) last_step.assign(m->num_arenas, 0);
-    for (size_t i = 0; i < m->num_arenas; ++i) {
-      if (m->done[i]) {
-        if (m->outcome[i] == hideseek_msgs::GameState::OUTCOME_CAPTURED) {
-          ++captured;
-        } else {
-          EXPECT_EQ(m->outcome[i], hideseek_msgs::GameState::OUTCOME_SURVIVED);
-          EXPECT_EQ(last_step[i] + 1, static_cast<uint32_t>(max_steps)) << "survival only at the step limit";
-          ++survived;
+  auto sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
+      "hider/observations", 10, [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) {
+        if (last_step.size() != m->num_arenas) last_step.assign(m->num_arenas, 0);
+        for (size_t i = 0; i < m->num_arenas; ++i) {
+          if (m->done[i]) {
+            if (m->outcome[i] == hideseek_msgs::GameState::OUTCOME_CAPTURED) {
+              ++captured;
+            } else {
+              EXPECT_EQ(m->outcome[i], hideseek_msgs::GameState::OUTCOME_SURVIVED);
+              EXPECT_EQ(last_step[i] + 1, static_cast<uint32_t>(max_steps)) << "survival only at the step limit";
+              ++survived;
+            }
+            seeds.insert(m->seed[i]);
+          }
+          last_step[i] = m->step[i];
         }
-        seeds.insert(m->seed[i]);
-      }
-      last_step[i] = m->step[i];
-    }
-  });
+      });
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(240.0);
   while (ros::ok() && captured + survived < wanted && ros::WallTime::now() < end) {
     ros::spinOnce();
@@ -76,9 +79,10 @@ TEST(Variant, EveryDecisionAppliesTheActionChosenForItsOwnStep) {
   ros::NodeHandle nh, pnh("~");
   const int wanted = pnh.param("own_step_decisions", 40);
   std::vector<hideseek_msgs::StepBatch> got;
-  auto sub = nh.subscribe<hideseek_msgs::StepBatch>("world/steps", 1000, [&](const hideseek_msgs::StepBatch::ConstPtr& m) {
-    if (static_cast<int>(got.size()) < wanted) got.push_back(*m);
-  });
+  auto sub =
+      nh.subscribe<hideseek_msgs::StepBatch>("world/steps", 1000, [&](const hideseek_msgs::StepBatch::ConstPtr& m) {
+        if (static_cast<int>(got.size()) < wanted) got.push_back(*m);
+      });
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(120.0);
   while (ros::ok() && static_cast<int>(got.size()) < wanted && ros::WallTime::now() < end) {
     ros::spinOnce();
@@ -103,11 +107,12 @@ TEST(Variant, EveryDecisionAppliesTheActionChosenForItsOwnStep) {
 TEST(Variant, DiagnosticsReportRateAndNoRejectedActions) {
   ros::NodeHandle nh;
   std::vector<diagnostic_msgs::DiagnosticStatus> reports;
-  auto sub = nh.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
-    for (const auto& st : m->status) {
-      if (st.name == hideseek_game::worldDiagnosticName(ros::this_node::getNamespace())) reports.push_back(st);
-    }
-  });
+  auto sub = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& st : m->status) {
+          if (st.name == hideseek_game::worldDiagnosticName(ros::this_node::getNamespace())) reports.push_back(st);
+        }
+      });
   // The first report after subscribing may cover less than a second: take the third.
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(30.0);
   while (ros::ok() && reports.size() < 3 && ros::WallTime::now() < end) {
@@ -129,21 +134,22 @@ TEST(Variant, DiagnosticsReportRateAndNoRejectedActions) {
 // A reset re-sends the observation at the same sim time with new step ids; the agents must answer
 // it afresh (a cached answer carried the old step ids and lockstep waited for ever).
 TEST(Variant, ResetDoesNotStallTheGame) {
-  ros::NodeHandle nh, pnh("~");
-  if (!pnh.param("test_reset", false)) GTEST_SKIP() << "test_reset is false for this launch";
+  ros::NodeHandle nh;
   uint32_t max_step = 0;
   std::set<uint32_t> seeds;
   bool restarted = false;  // arena 0 showed step 0 of the reset's seed
   // Lockstep runs fast: a deep queue keeps the batches after the reset.
-  auto sub = nh.subscribe<hideseek_msgs::ObservationBatch>("hider/observations", 2000, [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) {
-    if (m->num_arenas == 0) return;
-    if (!restarted) restarted = m->seed[0] == 700 && m->step[0] == 0;
-    if (!restarted) return;
-    for (size_t i = 0; i < m->num_arenas; ++i) {
-      seeds.insert(m->seed[i]);
-      max_step = std::max(max_step, m->step[i]);
-    }
-  });
+  auto sub = nh.subscribe<hideseek_msgs::ObservationBatch>("hider/observations", 2000,
+                                                           [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) {
+                                                             if (m->num_arenas == 0) return;
+                                                             if (!restarted)
+                                                               restarted = m->seed[0] == 700 && m->step[0] == 0;
+                                                             if (!restarted) return;
+                                                             for (size_t i = 0; i < m->num_arenas; ++i) {
+                                                               seeds.insert(m->seed[i]);
+                                                               max_step = std::max(max_step, m->step[i]);
+                                                             }
+                                                           });
   ASSERT_TRUE(ros::service::waitForService("world/reset", 30000));
   // Connected before the reset, so that its first batch is not missed.
   const ros::WallTime connect_end = ros::WallTime::now() + ros::WallDuration(10.0);
@@ -164,21 +170,23 @@ TEST(Variant, ResetDoesNotStallTheGame) {
   EXPECT_GE(*seeds.begin(), 700u) << "an episode of before the reset went on";
 }
 
-// A game in a namespace (two_games.test) names its frames with its own prefix: its latched map
-// and the TF chain from its map to its hider's camera.
+// A game names its frames with its prefix (two_games.test: game1/map, ...), or none at the root
+// (map, hider/base_link, ...): its latched map and the TF chain from its map to its hider's camera.
 TEST(Variant, FramesCarryTheGamesTfPrefix) {
   ros::NodeHandle nh, pnh("~");
   const std::string prefix = pnh.param<std::string>("expect_tf_prefix", "");
-  if (prefix.empty()) GTEST_SKIP() << "expect_tf_prefix is not set for this launch";
+  const auto frame = [&](const std::string& name) { return prefix.empty() ? name : prefix + "/" + name; };
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);
   nav_msgs::OccupancyGrid::ConstPtr map;
-  auto sub = nh.subscribe<nav_msgs::OccupancyGrid>("map", 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& m) { map = m; });
-  ASSERT_TRUE(hideseek_test::waitFor([&] { return map != nullptr; }, 20.0)) << "no latched map in " << nh.getNamespace();
-  EXPECT_EQ(map->header.frame_id, prefix + "/map");
-  EXPECT_TRUE(hideseek_test::waitFor([&] {
-    return buffer.canTransform(prefix + "/map", prefix + "/hider/camera_optical_frame", ros::Time(0));
-  }, 10.0)) << prefix << "/map to " << prefix << "/hider/camera_optical_frame";
+  auto sub =
+      nh.subscribe<nav_msgs::OccupancyGrid>("map", 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& m) { map = m; });
+  ASSERT_TRUE(hideseek_test::waitFor([&] { return map != nullptr; }, 20.0))
+      << "no latched map in " << nh.getNamespace();
+  EXPECT_EQ(map->header.frame_id, frame("map"));
+  EXPECT_TRUE(hideseek_test::waitFor(
+      [&] { return buffer.canTransform(frame("map"), frame("hider/camera_optical_frame"), ros::Time(0)); }, 10.0))
+      << frame("map") << " to " << frame("hider/camera_optical_frame");
 }
 
 }  // namespace

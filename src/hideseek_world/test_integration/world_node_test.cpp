@@ -30,11 +30,13 @@ class WorldNodeTest : public testing::Test {
     hider_obs_sub_ = nh_.subscribe<hideseek_msgs::ObservationBatch>(
         "hider/observations", 10, [this](const hideseek_msgs::ObservationBatch::ConstPtr& m) { hider_obs_ = m; });
     seeker_obs_sub_ = nh_.subscribe<hideseek_msgs::SeekerObservationBatch>(
-        "seeker/observations", 10, [this](const hideseek_msgs::SeekerObservationBatch::ConstPtr& m) { seeker_obs_ = m; });
+        "seeker/observations", 10,
+        [this](const hideseek_msgs::SeekerObservationBatch::ConstPtr& m) { seeker_obs_ = m; });
     hider_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>("hider/actions", 10);
     seeker_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>("seeker/actions", 10);
     ASSERT_TRUE(waitFor([&] { return hider_obs_ && seeker_obs_; }, 30.0)) << "no observations from the world";
-    ASSERT_TRUE(waitFor([&] { return hider_pub_.getNumSubscribers() > 0 && seeker_pub_.getNumSubscribers() > 0; }, 10.0));
+    ASSERT_TRUE(
+        waitFor([&] { return hider_pub_.getNumSubscribers() > 0 && seeker_pub_.getNumSubscribers() > 0; }, 10.0));
   }
 
   hideseek_msgs::ActionBatch batch(uint8_t action, const std::vector<uint32_t>& steps) {
@@ -88,7 +90,8 @@ TEST_F(WorldNodeTest, ObservationBatchesCarryEveryArena) {
 TEST_F(WorldNodeTest, CameraImageHasSizeEncodingAndOpticalFrame) {
   sensor_msgs::Image::ConstPtr image;
   sensor_msgs::CameraInfo::ConstPtr info;
-  auto s1 = nh_.subscribe<sensor_msgs::Image>("hider/camera/image_raw", 1, [&](const sensor_msgs::Image::ConstPtr& m) { image = m; });
+  auto s1 = nh_.subscribe<sensor_msgs::Image>("hider/camera/image_raw", 1,
+                                              [&](const sensor_msgs::Image::ConstPtr& m) { image = m; });
   auto s2 = nh_.subscribe<sensor_msgs::CameraInfo>("hider/camera/camera_info", 1,
                                                    [&](const sensor_msgs::CameraInfo::ConstPtr& m) { info = m; });
   ASSERT_TRUE(waitFor([&] { return s1.getNumPublishers() > 0 && s2.getNumPublishers() > 0; }, 5.0));
@@ -136,15 +139,21 @@ TEST(Params, CheckTypeAndRangeAndNameTheParameter) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(message([&] { hideseek_game::readInt(pnh, "count", 1, 6, 10); }).find("params_test/count must be in [6, 10], got 5"),
+  EXPECT_NE(message([&] {
+              hideseek_game::readInt(pnh, "count", 1, 6, 10);
+            }).find("params_test/count must be in [6, 10], got 5"),
             std::string::npos);
   EXPECT_NE(message([&] { hideseek_game::readInt(pnh, "word", 1, 0, 10); }).find("params_test/word must be an integer"),
             std::string::npos);
   EXPECT_NE(message([&] { hideseek_game::readBool(pnh, "count", false); }).find("must be true or false"),
             std::string::npos);
-  EXPECT_NE(message([&] { hideseek_game::readChoice(pnh, "word", "a", {"a", "b"}); }).find("must be one of 'a', 'b', got 'lockstep'"),
+  EXPECT_NE(message([&] {
+              hideseek_game::readChoice(pnh, "word", "a", {"a", "b"});
+            }).find("must be one of 'a', 'b', got 'lockstep'"),
             std::string::npos);
-  EXPECT_NE(message([&] { hideseek_game::requireString(pnh, "nothing", "a file path"); }).find("params_test/nothing is required (a file path)"),
+  EXPECT_NE(message([&] {
+              hideseek_game::requireString(pnh, "nothing", "a file path");
+            }).find("params_test/nothing is required (a file path)"),
             std::string::npos);
 }
 
@@ -152,13 +161,18 @@ TEST_F(WorldNodeTest, TfPrefixPutsASecondGamesFramesApart) {
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);
   nav_msgs::OccupancyGrid::ConstPtr map;
-  auto sub = nh_.subscribe<nav_msgs::OccupancyGrid>("/second/map", 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& m) { map = m; });
+  auto sub = nh_.subscribe<nav_msgs::OccupancyGrid>("/second/map", 1,
+                                                    [&](const nav_msgs::OccupancyGrid::ConstPtr& m) { map = m; });
   ASSERT_TRUE(waitFor([&] { return map != nullptr; }, 20.0)) << "no latched map from the second game";
   EXPECT_EQ(map->header.frame_id, "game2/map");
   for (const std::string agent : {"hider", "seeker"}) {
-    ASSERT_TRUE(waitFor([&] {
-      return buffer.canTransform("game2/" + agent + "/base_link", "game2/" + agent + "/camera_optical_frame", ros::Time(0));
-    }, 10.0)) << agent;
+    ASSERT_TRUE(waitFor(
+        [&] {
+          return buffer.canTransform("game2/" + agent + "/base_link", "game2/" + agent + "/camera_optical_frame",
+                                     ros::Time(0));
+        },
+        10.0))
+        << agent;
   }
 }
 
@@ -168,7 +182,9 @@ TEST_F(WorldNodeTest, TfTreeJoinsMapToBothCameraOpticalFrames) {
   for (int i = 0; i < 5; ++i) ASSERT_TRUE(playStep(3, 3));
   for (const std::string agent : {"hider", "seeker"}) {
     // The world sends tf as it steps: keep stepping until the listener has caught up.
-    ASSERT_TRUE(waitFor([&] { return playStep(3, 3) && buffer.canTransform("map", agent + "/camera_optical_frame", ros::Time(0)); }, 10.0))
+    ASSERT_TRUE(waitFor(
+        [&] { return playStep(3, 3) && buffer.canTransform("map", agent + "/camera_optical_frame", ros::Time(0)); },
+        10.0))
         << agent;
     const auto t = buffer.lookupTransform("map", agent + "/camera_optical_frame", ros::Time(0));
     EXPECT_NEAR(t.transform.translation.z, 1.0, 1e-9) << "camera at 1.0 m";
@@ -177,8 +193,10 @@ TEST_F(WorldNodeTest, TfTreeJoinsMapToBothCameraOpticalFrames) {
 
 TEST_F(WorldNodeTest, MapIsLatchedForLateSubscribers) {
   nav_msgs::OccupancyGrid::ConstPtr map;
-  auto sub = nh_.subscribe<nav_msgs::OccupancyGrid>("map", 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& m) { map = m; });
-  ASSERT_TRUE(waitFor([&] { return map != nullptr; }, 10.0)) << "a late subscriber must get the map without a new episode";
+  auto sub =
+      nh_.subscribe<nav_msgs::OccupancyGrid>("map", 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& m) { map = m; });
+  ASSERT_TRUE(waitFor([&] { return map != nullptr; }, 10.0))
+      << "a late subscriber must get the map without a new episode";
   EXPECT_EQ(map->header.frame_id, "map");
   EXPECT_NEAR(map->info.origin.position.x, -7.0, 1e-9);
   EXPECT_EQ(map->info.width * map->info.resolution, 14.0f);
@@ -238,12 +256,12 @@ TEST_F(WorldNodeTest, LockstepEpisodeRunsToCaptureOrStepLimit) {
 
 TEST_F(WorldNodeTest, MalformedInputIsRejectedCountedAndTheWorldKeepsServing) {
   diagnostic_msgs::DiagnosticArray::ConstPtr diag;
-  auto sub = nh_.subscribe<diagnostic_msgs::DiagnosticArray>(
-      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
-        for (const auto& s : m->status) {
-          if (s.name == "hideseek world: input") diag = m;
-        }
-      });
+  auto sub = nh_.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10,
+                                                             [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+                                                               for (const auto& s : m->status) {
+                                                                 if (s.name == "hideseek world: input") diag = m;
+                                                               }
+                                                             });
   const auto before = hider_obs_;
   // Wrong arena count, an out-of-range action, a stale step id.
   hider_pub_.publish(batch(1, {before->step[0]}));
@@ -274,8 +292,7 @@ TEST_F(WorldNodeTest, MalformedInputIsRejectedCountedAndTheWorldKeepsServing) {
         }
         counts = v;
         return v["rejected_wrong_arena_count"] != "0" && v["rejected_invalid_action"] != "0" &&
-               v["rejected_wrong_step"] != "0" &&
-               v["rejected_second_publisher"] != "0";
+               v["rejected_wrong_step"] != "0" && v["rejected_second_publisher"] != "0";
       },
       5.0))
       << "rejections are counted in /diagnostics: arena count " << counts["rejected_wrong_arena_count"] << ", action "

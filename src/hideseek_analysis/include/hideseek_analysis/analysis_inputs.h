@@ -4,32 +4,32 @@
 // the episodes whose trajectories the report draws.
 #pragma once
 
+#include <torch/torch.h>
+
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <torch/torch.h>
-
 #include "hideseek_analysis/step_log.h"
-#include "hideseek_hider/hider_net.h"
 #include "hideseek_game/game_options.h"
 #include "hideseek_game/map.h"
+#include "hideseek_hider/hider_net.h"
 
 namespace hideseek_analysis {
 
 struct AnalysisInputsOptions {
-  uint32_t random_init_seed = 0;         // torch seed of the randomly initialised network
-  int trajectory_episodes = 4;           // complete episodes (smallest seeds) whose layouts are written
-  int batch = 256;                       // images per forward pass
-  int pixel_tolerance = 0;               // GRU policies: see replayMemory
+  uint32_t random_init_seed = 0;  // torch seed of the randomly initialised network
+  int trajectory_episodes = 4;    // complete episodes (smallest seeds) whose layouts are written
+  int batch = 256;                // images per forward pass
+  int pixel_tolerance = 0;        // GRU policies: see replayMemory
 };
 
 struct AnalysisInputsSummary {
-  size_t steps = 0;          // arena steps of the rollout
-  size_t episodes = 0;       // episodes it touches (complete or not)
-  int64_t images = 0;        // probed images
-  size_t random_steps = 0;   // steps of the random policy
+  size_t steps = 0;         // arena steps of the rollout
+  size_t episodes = 0;      // episodes it touches (complete or not)
+  int64_t images = 0;       // probed images
+  size_t random_steps = 0;  // steps of the random policy
   size_t random_episodes = 0;
   std::vector<uint32_t> trajectory_seeds;
   // Recurrent (GRU) policies only: the recorded images compared with their re-rendering (see
@@ -56,8 +56,7 @@ struct MemoryReplay {
 // episode (the state before it is unknown); std::invalid_argument for a feed-forward network.
 MemoryReplay replayMemory(const StepLog& log, const std::vector<hideseek_hider::HiderNet*>& nets,
                           const hideseek_game::VariantConfig& variant,
-                          std::shared_ptr<const hideseek_game::MapSpec> map, int tolerance = 0,
-                          int render_threads = 2);
+                          std::shared_ptr<const hideseek_game::MapSpec> map, int tolerance = 0, int render_threads = 2);
 
 // The mid-level features of `count` RGB8 images ([count, 512], fp32, in batches, no gradients);
 // for a recurrent network, the features its GRU reads (they do not depend on its state).

@@ -7,6 +7,10 @@
 
 namespace hideseek_game {
 
+// The largest seed a parameter or file may name: seeds grow by arena and episode offsets, which
+// stay far inside uint32_t from here.
+inline constexpr int kMaxSeed = 1 << 30;
+
 enum class SpeedMode { kConstant, kAccelerate };
 
 // How an agent moves under the five actions.
@@ -68,9 +72,9 @@ struct GameOptions {
 struct VariantConfig {
   std::string name;
   std::string source;
-  std::string game_file;       // the game file the variant was read over (its `extends` chain)
-  std::string map_file;        // resolved against the game file's maps_dir
-  std::string seeker_policy;   // deterministic | stochastic
+  std::string game_file;      // the game file the variant was read over (its `extends` chain)
+  std::string map_file;       // resolved against the game file's maps_dir
+  std::string seeker_policy;  // deterministic | stochastic
   GameOptions game;
 };
 

@@ -35,8 +35,7 @@ visualization_msgs::MarkerArray toMarkers(const Arena& arena, const std::string&
 // What the hider gets after a decision: every arena's image (`images`, num_arenas x H x W x 3),
 // the step's reward, done flag and outcome, the step, episode and seed ids, and the labels.
 hideseek_msgs::ObservationBatch toObservationBatch(const World& world, const std::vector<uint8_t>& images,
-                                                   const std::vector<float>& rewards,
-                                                   const std::vector<uint8_t>& done,
+                                                   const std::vector<float>& rewards, const std::vector<uint8_t>& done,
                                                    const std::vector<uint8_t>& outcome);
 
 // Each arena's map as the seeker receives it, rebuilt only when the arena's layout changes.

@@ -13,21 +13,26 @@ namespace hideseek_game {
 inline constexpr char kShippedPolicy[] = "shipped";
 
 struct RunEntry {
-  std::string name;      // the run's key, e.g. basic_v2pilot_seed0
-  std::string variant;   // a config/variants/*.yaml name
-  std::string network;   // ff | gru
-  std::string game;      // the game it trained on (game.yaml's `game`: v2, v1)
+  std::string name;     // the run's key, e.g. basic_v2pilot_seed0
+  std::string variant;  // a config/variants/*.yaml name
+  std::string network;  // ff | gru
+  std::string game;     // the game it trained on (game.yaml's `game`: v2, v1)
   int training_seed = 0;
   long long steps = 0;
-  std::string weights;   // absolute path of the committed weights, or "" (not shipped)
+  std::string weights;  // absolute path of the committed weights, or "" (not shipped)
 };
 
 // Reads the registry; throws ConfigError naming the run and field at fault, also where two runs
 // ship weights for the same variant, network and game, or where shipped weights are missing.
 std::vector<RunEntry> loadRunRegistry(const std::string& registry_file);
 
+// The variants: the names of variants_dir's *.yaml files, sorted; each file's `variant` field must be
+// its name (throws ConfigError naming the file otherwise). scripts/hideseek_registry.py's
+// `variants` reads the same folder under the same rule.
+std::vector<std::string> variantNames(const std::string& variants_dir);
+
 // The weights shipped for variant, network and game, or "" when no run ships any.
-std::string shippedPolicyFile(const std::string& registry_file, const std::string& variant,
-                              const std::string& network, const std::string& game);
+std::string shippedPolicyFile(const std::string& registry_file, const std::string& variant, const std::string& network,
+                              const std::string& game);
 
 }  // namespace hideseek_game

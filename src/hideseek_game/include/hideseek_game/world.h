@@ -32,8 +32,8 @@ struct ArenaStep {
 // the first episodes of all arenas together cover seeds seed .. seed + k n - 1 whatever the timing.
 class World {
  public:
-  World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int num_arenas, uint32_t seed,
-        bool render, int render_threads = 2);
+  World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int num_arenas, uint32_t seed, bool render,
+        int render_threads = 2);
 
   int numArenas() const { return static_cast<int>(arenas_.size()); }
   const GameOptions& options() const { return options_; }
@@ -53,6 +53,8 @@ class World {
   // the seeker decides before every seeker_decision_frames-th of them (SeekerObservationBatch).
   int frameInStep() const { return frame_; }
   bool seekerDecisionDue() const { return frame_ % options_.seeker_decision_frames == 0; }
+  // Whether arena i's decision step in progress has ended early (a capture) and waits for the others.
+  bool stepEnded(int i) const { return results_[i].has_value(); }
   // Arena i's seeker decision about to be taken, counted from its episode's start: the step id
   // of the seeker's exchange (the hider's step id when the seeker decides once a step).
   uint32_t seekerDecisionId(int i) const;
@@ -78,8 +80,8 @@ class World {
   std::vector<uint32_t> episodes_;
   std::vector<uint32_t> next_seeds_;
   std::vector<uint64_t> uploaded_layouts_;
-  int frame_ = 0;                                    // frames played of the current step
-  std::vector<std::optional<StepResult>> results_;   // each arena's step result once it is over
+  int frame_ = 0;                                   // frames played of the current step
+  std::vector<std::optional<StepResult>> results_;  // each arena's step result once it is over
   std::unique_ptr<Renderer> renderer_;
   std::vector<ViewRequest> views_;
 };

@@ -69,7 +69,7 @@ class HiderNetImpl : public torch::nn::Module {
   int imageWidth() const { return image_width_; }
 
  private:
-  torch::Tensor encode(const torch::Tensor& images);  // [B, H, W, 3] uint8 -> [B, 512] in the precision
+  torch::Tensor encode(const torch::Tensor& images);     // [B, H, W, 3] uint8 -> [B, 512] in the precision
   void heads(const torch::Tensor& x, HiderOutput& out);  // [B, 512] -> logits, value (fp32)
 
   int image_height_;
@@ -113,7 +113,7 @@ CheckpointInfo readCheckpointInfo(const std::string& path);
 // Builds the network a checkpoint describes (feed-forward or GRU) and loads its weights. Throws
 // std::runtime_error saying what does not match (architecture, the network asked for, image size,
 // tensor shapes) or that the file is truncated or corrupt; never returns a half-loaded network.
-HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width, CheckpointInfo* info = nullptr,
-                        std::optional<NetworkKind> expected_network = std::nullopt);
+HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width,
+                        CheckpointInfo* info = nullptr, std::optional<NetworkKind> expected_network = std::nullopt);
 
 }  // namespace hideseek_hider

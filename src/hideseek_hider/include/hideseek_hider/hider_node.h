@@ -10,9 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_game/wall_throttle.h"
+#include "hideseek_game/world_node_options.h"
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_hider/training_run.h"
-#include "hideseek_game/world_node_options.h"
 
 namespace hideseek_hider {
 
@@ -23,15 +24,15 @@ enum class HiderMode { kRandom, kPolicy, kTrain };
 struct HiderNodeOptions {
   hideseek_game::VariantConfig variant;
   HiderMode mode = HiderMode::kRandom;
-  std::string policy = "random";            // checkpoint path (policy mode)
-  int threads = 2;                          // intra-op threads of the network
+  std::string policy = "random";  // checkpoint path (policy mode)
+  int threads = 2;                // intra-op threads of the network
   PrecisionRequest precision = PrecisionRequest::kAuto;
-  std::optional<NetworkKind> network;       // empty: auto (the checkpoint's; a new training run: ff)
-  torch::Device device = torch::kCPU;       // policy and train modes
-  bool greedy = true;                       // policy mode
-  bool memoryless = false;                  // policy mode, GRU only: every step from the zero state (an ablation)
+  std::optional<NetworkKind> network;  // empty: auto (the checkpoint's; a new training run: ff)
+  torch::Device device = torch::kCPU;  // policy and train modes
+  bool greedy = true;                  // policy mode
+  bool memoryless = false;             // policy mode, GRU only: every step from the zero state (an ablation)
   // Train mode only.
-  TrainingOptions training;                 // output_dir, total_steps, checkpoint_interval_s, image size, variant
+  TrainingOptions training;  // output_dir, total_steps, checkpoint_interval_s, image size, variant
   PpoOptions ppo;
   int num_arenas = 16;
   int seed = 0;
@@ -48,16 +49,17 @@ class HiderNode {
   void startTraining(const HiderNodeOptions& o);
 
   ros::NodeHandle nh_;
-  std::unique_ptr<HiderPolicy> policy_;  // random and policy modes
+  std::unique_ptr<HiderPolicy> policy_;    // random and policy modes
   std::unique_ptr<TrainingRun> training_;  // train mode
   ros::Time last_stamp_;                   // a batch the world re-sent gets the same answer again
   hideseek_msgs::ActionBatch last_answer_;
-  std::vector<uint32_t> last_seeds_;       // seeds of the batch last_answer_ answers
+  std::vector<uint32_t> last_seeds_;  // seeds of the batch last_answer_ answers
   int image_height_ = 0;
   int image_width_ = 0;
   ros::Publisher actions_pub_;
   ros::Subscriber observations_sub_;
   uint64_t malformed_ = 0;
+  hideseek_game::WallThrottle malformed_throttle_{2.0};  // warnings of malformed batches
 };
 
 }  // namespace hideseek_hider

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "hideseek_hider/hider_net.h"
-#include "hideseek_seeker/scripted_evader.h"
 #include "hideseek_game/arena.h"
 #include "hideseek_game/game_options.h"
+#include "hideseek_hider/hider_net.h"
+#include "hideseek_seeker/scripted_evader.h"
 
 namespace hideseek_hider {
 

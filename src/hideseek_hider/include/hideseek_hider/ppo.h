@@ -16,19 +16,19 @@ namespace hideseek_hider {
 // Every hyperparameter, documented in config/ppo.yaml. SPEC fixes the learning rate and a buffer
 // of about 1000 steps per update (16 arenas x 64 steps = 1024); the rest are CleanRL's Atari values.
 struct PpoOptions {
-  int rollout_steps = 64;       // decision steps per arena between updates
-  int epochs = 4;               // passes over the buffer per update
-  int minibatches = 4;          // the buffer is split into this many minibatches per pass
-  double learning_rate = 3e-4;  // Adam; the initial rate when annealed
+  int rollout_steps = 64;            // decision steps per arena between updates
+  int epochs = 4;                    // passes over the buffer per update
+  int minibatches = 4;               // the buffer is split into this many minibatches per pass
+  double learning_rate = 3e-4;       // Adam; the initial rate when annealed
   bool anneal_learning_rate = true;  // decay linearly to 0 over the run's total steps
   double adam_epsilon = 1e-5;
-  double gamma = 0.99;          // discount per decision step
+  double gamma = 0.99;  // discount per decision step
   double gae_lambda = 0.95;
   double clip = 0.1;            // policy ratio clip
   bool clip_value_loss = true;  // clip the value update to the same range
   double value_coef = 0.5;
   double entropy_coef = 0.01;
-  double max_grad_norm = 0.5;   // global gradient norm clip
+  double max_grad_norm = 0.5;        // global gradient norm clip
   bool normalize_advantages = true;  // per minibatch
   // GRU networks only: the rollout of each arena is cut into chunks of this many steps, the
   // sequences that truncated backpropagation through time runs over; minibatches hold whole
@@ -58,7 +58,7 @@ struct UpdateStats {
   double policy_loss = 0.0;
   double value_loss = 0.0;
   double entropy = 0.0;
-  double approx_kl = 0.0;     // mean of (ratio - 1) - log ratio
+  double approx_kl = 0.0;      // mean of (ratio - 1) - log ratio
   double clip_fraction = 0.0;  // share of samples whose ratio was clipped
   double learning_rate = 0.0;  // the rate this update used
 };

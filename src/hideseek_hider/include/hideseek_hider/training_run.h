@@ -15,7 +15,7 @@
 namespace hideseek_hider {
 
 struct TrainingOptions {
-  std::string output_dir;               // checkpoint.pt and training_log.csv live here
+  std::string output_dir;  // checkpoint.pt and training_log.csv live here
   // Environment steps (decisions of all arenas together), rounded up to whole rollouts so that
   // every collected sample is trained on and the checkpoint's count is what was trained.
   int64_t total_steps = 1000000;
@@ -59,8 +59,8 @@ class TrainingRun {
 
   // One batch: rewards and done flags of the previous actions, then this step's images.
   // Returns the actions, and the report when the batch completed a rollout and an update ran.
-  std::vector<uint8_t> step(const uint8_t* images, const std::vector<float>& rewards,
-                            const std::vector<uint8_t>& dones, std::optional<UpdateReport>* report);
+  std::vector<uint8_t> step(const uint8_t* images, const std::vector<float>& rewards, const std::vector<uint8_t>& dones,
+                            std::optional<UpdateReport>* report);
   bool finished() const { return trainer_.samplesSeen() >= options_.total_steps; }
   bool resumed() const { return resumed_; }
   // Log rows of updates lost with the killed process, dropped at resume.

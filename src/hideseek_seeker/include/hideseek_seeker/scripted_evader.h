@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "hideseek_seeker/grid_planner.h"
 #include "hideseek_game/agent.h"
 #include "hideseek_game/game_options.h"
+#include "hideseek_seeker/grid_planner.h"
 
 namespace hideseek_seeker {
 
@@ -25,8 +25,8 @@ enum class EvaderKind {
   kLap,        // lap the arena's centre backward, facing the seeker that follows: what the first
                // learned hiders of game v2 did
 };
-constexpr EvaderKind kAllEvaders[] = {EvaderKind::kRandom, EvaderKind::kBackpedal, EvaderKind::kFlee,
-                                      EvaderKind::kHide, EvaderKind::kLap};
+constexpr EvaderKind kAllEvaders[] = {EvaderKind::kRandom, EvaderKind::kBackpedal, EvaderKind::kFlee, EvaderKind::kHide,
+                                      EvaderKind::kLap};
 const char* evaderName(EvaderKind kind);
 // The evader called `name` (random, backpedal, flee, hide, lap), or nothing.
 std::optional<EvaderKind> evaderKind(const std::string& name);
@@ -41,17 +41,17 @@ struct EvaderObservation {
 
 // Tuning of the evaders' planning; none of it is a game rule.
 struct EvaderOptions {
-  double grid_resolution = 0.2;   // m: the distance fields and hiding spots
-  double clearance_weight = 1.0;  // backpedal: metres of distance worth one metre of clearance
-  double clearance_cap = 1.5;     // m: clearance beyond this earns nothing
-  double hide_margin = 1.0;       // m: a hiding spot must be this much nearer the hider than the seeker
-  double retarget_distance = 1.0; // m: flee replans when its goal moved this far
-  double move_on_distance = 3.0;  // m: hide leaves its spot when the seeker's way to it is this short
+  double grid_resolution = 0.2;     // m: the distance fields and hiding spots
+  double clearance_weight = 1.0;    // backpedal: metres of distance worth one metre of clearance
+  double clearance_cap = 1.5;       // m: clearance beyond this earns nothing
+  double hide_margin = 1.0;         // m: a hiding spot must be this much nearer the hider than the seeker
+  double retarget_distance = 1.0;   // m: flee replans when its goal moved this far
+  double move_on_distance = 3.0;    // m: hide leaves its spot when the seeker's way to it is this short
   double hide_search_radius = 8.0;  // m: hide takes the safest spot within this path length
-  double lap_radius = 5.5;        // m from the arena's centre: the ring lap aims for (game v2's outer ring)
-  double lap_step_deg = 40.0;     // lap aims this far ahead round the centre
-  double lap_detour = 2.0;        // lap takes a smaller radius where the way ahead is longer than this
-                                  // many times the straight line (a pocket, not the ring)
+  double lap_radius = 5.5;          // m from the arena's centre: the ring lap aims for (game v2's outer ring)
+  double lap_step_deg = 40.0;       // lap aims this far ahead round the centre
+  double lap_detour = 2.0;          // lap takes a smaller radius where the way ahead is longer than this
+                                    // many times the straight line (a pocket, not the ring)
 };
 
 class ScriptedEvader {
@@ -88,7 +88,7 @@ class ScriptedEvader {
   EvaderOptions options_;
   hideseek_game::Layout layout_;
   std::unique_ptr<GridPlanner> planner_;
-  std::vector<float> clearance_;  // m from each cell centre to the nearest obstacle or wall
+  std::vector<float> clearance_;                 // m from each cell centre to the nearest obstacle or wall
   std::vector<float> from_seeker_, from_hider_;  // path lengths from each agent, this step
   std::optional<Vec2> goal_;
   std::optional<Vec2> last_seen_;  // the hider's position when the seeker last saw it (or its spawn)

@@ -9,17 +9,17 @@
 #include <memory>
 #include <vector>
 
-#include "hideseek_seeker/scripted_evader.h"
-#include "hideseek_seeker/seeker_policy.h"
 #include "hideseek_game/arena.h"
 #include "hideseek_game/game_options.h"
 #include "hideseek_game/map.h"
+#include "hideseek_seeker/scripted_evader.h"
+#include "hideseek_seeker/seeker_policy.h"
 
 namespace hideseek_seeker {
 
 struct ScriptedEpisode {
   uint32_t seed = 0;
-  int living_steps = 0;        // decision steps until capture, or max_steps
+  int living_steps = 0;  // decision steps until capture, or max_steps
   bool survived = false;
   bool seen_at_start = false;  // the seeker saw the hider at step 0
 };

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "hideseek_game/wall_throttle.h"
 #include "hideseek_seeker/seeker_policy.h"
 
 namespace hideseek_seeker {
@@ -29,6 +30,7 @@ class SeekerNode {
   ros::Publisher actions_pub_;
   ros::Subscriber observations_sub_;
   uint64_t malformed_ = 0;
+  hideseek_game::WallThrottle malformed_throttle_{2.0};  // warnings of malformed batches
 };
 
 }  // namespace hideseek_seeker

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "hideseek_seeker/grid_planner.h"
 #include "hideseek_game/agent.h"
 #include "hideseek_game/arena.h"
+#include "hideseek_seeker/grid_planner.h"
 
 namespace hideseek_seeker {
 
@@ -23,10 +23,10 @@ using hideseek_game::SeekerPerception;
 
 struct SeekerOptions {
   SeekerPolicyType type = SeekerPolicyType::kDeterministic;
-  double radius = 0.4;               // m: the map is inflated by this for planning
-  double grid_resolution = 0.1;      // m
+  double radius = 0.4;                               // m: the map is inflated by this for planning
+  double grid_resolution = 0.1;                      // m
   double turn_per_step = 0.12 * hideseek_game::kPi;  // rad turned by one turn action
-  double goal_tolerance = 0.5;       // m: a waypoint or last known position counts as reached
+  double goal_tolerance = 0.5;                       // m: a waypoint or last known position counts as reached
 };
 
 enum class SeekerMode { kPatrol, kChase, kLastKnown, kWander };

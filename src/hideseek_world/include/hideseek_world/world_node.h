@@ -9,8 +9,8 @@
 #include <hideseek_msgs/StepBatch.h>
 #include <image_transport/image_transport.h>
 #include <nav_msgs/Path.h>
-#include <sensor_msgs/CameraInfo.h>
 #include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "hideseek_game/decision_scheduler.h"
+#include "hideseek_game/game_loop.h"
 #include "hideseek_game/msg_conversion.h"
 #include "hideseek_game/wall_throttle.h"
 #include "hideseek_game/world.h"
@@ -32,8 +33,9 @@ namespace hideseek_world {
 using hideseek_game::Action;
 using hideseek_game::ArenaMapCache;
 using hideseek_game::ArenaStep;
-using hideseek_game::DecisionScheduler;
+using hideseek_game::Decision;
 using hideseek_game::EpisodeSummary;
+using hideseek_game::GameLoop;
 using hideseek_game::Player;
 using hideseek_game::WallThrottle;
 using hideseek_game::World;
@@ -50,12 +52,21 @@ struct RejectionCounts {
 
 // One agent's side of the exchange: who may send its actions.
 struct AgentChannel {
-  std::string name;                          // "hider" or "seeker"
+  std::string name;  // "hider" or "seeker"
   Player player = Player::kHider;
-  std::string owner;                         // caller id of the accepted publisher
+  std::string owner;  // caller id of the accepted publisher
   ros::WallTime owner_last_seen;
 };
 
+// The warnings the node repeats at most once per period each, with how many it held back.
+struct WarningThrottles {
+  WallThrottle second_publisher{2.0}, wrong_arena_count{2.0}, invalid_action{2.0}, late{2.0}, wrong_step{2.0},
+      stale{2.0}, resend{10.0};
+};
+
+// The game loop (hideseek_game::GameLoop) served over ROS: the node turns action messages into
+// offers, decisions into observation batches, episode results, step records and arena 0's
+// visuals, and keeps the wall-clock side (who publishes, re-sends, realtime ticks, diagnostics).
 // All callbacks run on the one spinner thread that created the node, which also owns the
 // OSMesa context of the renderer.
 class WorldNode {
@@ -67,13 +78,10 @@ class WorldNode {
   bool acceptPublisher(const std::string& caller, AgentChannel& channel);
   void tryAdvanceLockstep();
   void onRealtimeTick(const ros::WallTimerEvent&);
-  // Plays the decision step in progress to its last frame and concludes it.
-  void finishDecisionInProgress();
   void onWatchdog(const ros::WallTimerEvent&);
   bool onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset::Response& res);
-  // Records a finished decision step of every arena and renders the new hider views.
-  void concludeDecision(const std::vector<ArenaStep>& results, const std::vector<Action>& hider,
-                        const std::vector<Action>& seeker);
+  // Publishes a finished decision step: its episode results and its step record.
+  void publishDecision(const Decision& decision);
   // The state half of world/steps' record of the decision about to be taken, when someone listens.
   void beginStepRecord();
   void publishAgentTransforms(const ros::Time& stamp);
@@ -86,32 +94,29 @@ class WorldNode {
   void publishArenaZero(bool force_visuals);
   void startEpisodeVisuals();
   void publishDiagnostics(const ros::WallTimerEvent&);
-  ros::Time simNow() const;
+  // Sim time after `decisions` decision steps (lockstep), or wall time (realtime).
+  ros::Time simTime(uint64_t decisions) const;
+  ros::Time simNow() const { return simTime(game_.decisions()); }
   bool reachedMaxDecisions() const;
 
   ros::NodeHandle nh_;
   image_transport::ImageTransport image_transport_;  // cameras go out through image_transport's plugins
   WorldNodeOptions options_;
-  DecisionScheduler scheduler_;  // when decisions happen: the lockstep and realtime rules
-  std::unique_ptr<World> world_;
-  std::vector<uint8_t> images_;
+  GameLoop game_;  // the arenas, the decision rules, what the hider observes
   std::vector<uint8_t> seeker_image_;
-  std::vector<float> rewards_;
-  std::vector<uint8_t> done_;
-  std::vector<uint8_t> outcome_;
   AgentChannel hider_;
   AgentChannel seeker_;
   RejectionCounts rejected_;
-  uint64_t world_steps_ = 0;  // decision steps of arena 0's clock, for /clock in lockstep
+  WarningThrottles throttles_;
   uint64_t batches_published_ = 0;
   ros::WallTime last_visuals_;
   bool started_ = false;
-  std::optional<EpisodeSummary> last_finished_;  // arena 0's episode that ended in the last step
+  std::optional<EpisodeSummary> last_finished_;          // arena 0's episode that ended in the last step
   std::optional<hideseek_msgs::StepBatch> step_record_;  // world/steps: the decision being taken
 
   image_transport::CameraPublisher hider_camera_pub_, seeker_camera_pub_;
-  ros::Publisher hider_obs_pub_, seeker_obs_pub_, clock_pub_, markers_pub_, map_pub_, hider_path_pub_, seeker_path_pub_, state_pub_, episodes_pub_, steps_pub_,
-      diagnostics_pub_;
+  ros::Publisher hider_obs_pub_, seeker_obs_pub_, clock_pub_, markers_pub_, map_pub_, hider_path_pub_, seeker_path_pub_,
+      state_pub_, episodes_pub_, steps_pub_, diagnostics_pub_;
   ros::Subscriber hider_sub_, seeker_sub_;
   ros::ServiceServer reset_srv_;
   ros::WallTimer tick_timer_, watchdog_timer_, diagnostics_timer_;
@@ -119,14 +124,9 @@ class WorldNode {
   tf2_ros::StaticTransformBroadcaster static_tf_;
   nav_msgs::Path hider_path_, seeker_path_;
   sensor_msgs::CameraInfo camera_info_;
-  std::vector<Action> last_hider_actions_, last_seeker_actions_;
   // Each arena's map as the seeker receives it, rebuilt only when the arena's layout changes.
   ArenaMapCache arena_maps_;
-  // The decision step being played: the hider's actions, the seeker's first decision in it (what
-  // world/steps records) and the seeker's decision the frames now play.
-  std::vector<Action> step_hider_, step_first_seeker_, seeker_now_;
-  uint64_t stale_decisions_ = 0;       // decisions an agent missed (it stood still)
-  WallThrottle stale_throttle_{2.0};
+  uint64_t stale_decisions_ = 0;  // decisions an agent missed (it stood still)
   // Diagnostics: the counts at the previous report, so that a status returns to OK once a
   // problem is over.
   uint64_t reported_rejections_ = 0, reported_stale_ = 0, reported_steps_ = 0;
