@@ -126,20 +126,26 @@ int main(int argc, char** argv) {
           if (!rows) return usage("cannot write " + episodes_csv_path);
         }
         const bool random = evader == hs::EvaderKind::kRandom;
+        // A variant the paper lacks has no reference: "-" in the table, empty in the CSV.
+        const bool has_reference = !std::isnan(reference);
         const double ratio = s.avg_living_steps / reference;
-        char versus[64] = "";
-        if (random) {
+        char versus[64] = "", paper_column[16] = "-";
+        if (has_reference) std::snprintf(paper_column, sizeof paper_column, "%.0f", reference);
+        if (random && has_reference) {
           std::snprintf(versus, sizeof versus, "%.2f (%s +-20 %%)", ratio,
                         std::abs(ratio - 1.0) <= kTolerance ? "within" : "outside");
         }
-        std::printf("| %s | %s | %.1f | %.0f | %s | %.0f %% | %.1f | %.0f %% |\n", name.c_str(), hs::evaderName(evader),
-                    s.avg_living_steps, reference, versus, 100.0 * s.success_rate, s.median_living_steps,
+        std::printf("| %s | %s | %.1f | %s | %s | %.0f %% | %.1f | %.0f %% |\n", name.c_str(), hs::evaderName(evader),
+                    s.avg_living_steps, paper_column, versus, 100.0 * s.success_rate, s.median_living_steps,
                     100.0 * s.seen_at_start_rate);
         std::fflush(stdout);
         if (csv) {
-          csv << name << ',' << hs::evaderName(evader) << ',' << s.episodes << ',' << s.avg_living_steps << ','
-              << reference << ',' << ratio << ',' << s.success_rate << ',' << s.median_living_steps << ','
-              << s.seen_at_start_rate << '\n';
+          csv << name << ',' << hs::evaderName(evader) << ',' << s.episodes << ',' << s.avg_living_steps << ',';
+          if (has_reference)
+            csv << reference << ',' << ratio;
+          else
+            csv << ',';
+          csv << ',' << s.success_rate << ',' << s.median_living_steps << ',' << s.seen_at_start_rate << '\n';
         }
       }
     }
