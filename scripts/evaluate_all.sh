@@ -15,7 +15,8 @@ cd "$(dirname "$0")/.."
 source scripts/env.sh
 port=${HIDESEEK_PORT:-11477}
 export ROS_MASTER_URI=http://localhost:$port
-mapfile -t variants < <(/usr/bin/python3 scripts/hideseek_registry.py variants --paper-order)
+registered=$(/usr/bin/python3 scripts/hideseek_registry.py variants --paper-order)  # set -e stops on a bad variant file
+mapfile -t variants <<< "$registered"
 if [ -n "${HIDESEEK_VARIANTS:-}" ]; then
   for v in $HIDESEEK_VARIANTS; do
     [[ " ${variants[*]} " == *" $v "* ]] || { echo "evaluate_all: HIDESEEK_VARIANTS names '$v', which is not one of: ${variants[*]}" >&2; exit 2; }
@@ -40,16 +41,20 @@ evaluate() {
   rm -f "$dir/launch.log"
   echo "evaluate_all: $v $label: $(tail -n 1 "$dir/evaluation.csv" | cut -d, -f4,5 | tr , ' ') ($(($(date +%s) - start)) s)"
 }
-registry() { /usr/bin/python3 scripts/hideseek_registry.py "$@"; }
+# The registry ships at most one policy per variant and network (policies/policies.yaml); read once,
+# so that set -e stops on a registry that cannot be read.
+shipped=$(/usr/bin/python3 scripts/hideseek_registry.py shipped --all)
+weights_of() { awk -v v="$1" -v n="$2" '$2 == v && $3 == n { print $4 }' <<< "$shipped"; }
 for v in "${variants[@]}"; do
   evaluate "$v" random random "$out/evaluations/${v}_random"
-  # The registry ships at most one policy per variant and network (policies/policies.yaml).
-  if ff=$(registry shipped "$v" --network ff 2>/dev/null); then
+  ff=$(weights_of "$v" ff)
+  if [ -n "$ff" ]; then
     evaluate "$v" trained "$ff" "$out/evaluations/${v}_trained"
   else
     echo "evaluate_all: $v: no shipped policy"
   fi
-  if gru=$(registry shipped "$v" --network gru 2>/dev/null); then
+  gru=$(weights_of "$v" gru)
+  if [ -n "$gru" ]; then
     evaluate "$v" gru_trained "$gru" "$out/evaluations/${v}_gru_trained"
     evaluate "$v" gru_memoryless "$gru" "$out/evaluations/${v}_gru_memoryless" memoryless:=true
   fi

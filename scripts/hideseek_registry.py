@@ -20,7 +20,7 @@ usage:
                                                       run names, one per line
   hideseek_registry.py shipped VARIANT [--network N] [--game G]
                                                       the shipped weights' path (exit 1: none)
-  hideseek_registry.py shipped --all [--game G]       LABEL VARIANT PATH of every shipped policy, in
+  hideseek_registry.py shipped --all [--game G]       LABEL VARIANT NETWORK PATH of every shipped policy, in
                                                       Table 2's order
   hideseek_registry.py record RUN key=value ...       adds or updates a run's entry
   hideseek_registry.py ship RUN WEIGHTS               copies WEIGHTS to policies/<variant>[_gru].pt
@@ -261,7 +261,7 @@ def main(argv=None):
                 for network in NETWORKS:
                     _, path = shipped(v, network, args.game, args.registry)
                     if path:
-                        print(label(v, network), v, path)
+                        print(label(v, network), v, network, path)
         elif args.command == "shipped":
             if not args.variant:
                 raise RegistryError("shipped: name a VARIANT, or --all")

@@ -23,13 +23,15 @@ mkdir -p "$report" "$work"
 echo "reproduce: [1/3] Table 2: every shipped policy and the random hider, seeds 0-99, all variants"
 HIDESEEK_PORT=$port scripts/evaluate_all.sh "$report"
 # Every shipped policy (policies/policies.yaml): its label (the report's folder), variant and weights.
+shipped=$(/usr/bin/python3 scripts/hideseek_registry.py shipped --all)  # set -e stops on an unreadable registry
 labels=() bases=() weights=()
-while read -r label base path; do
+while read -r label base _ path; do
+  [ -n "$label" ] || continue
   [ -z "${HIDESEEK_VARIANTS:-}" ] || [[ " $HIDESEEK_VARIANTS " == *" $base "* ]] || continue
   labels+=("$label")
   bases+=("$base")
   weights+=("$path")
-done < <(/usr/bin/python3 scripts/hideseek_registry.py shipped --all)
+done <<< "$shipped"
 variants=("${labels[@]}")
 i=0
 for v in "${variants[@]}"; do

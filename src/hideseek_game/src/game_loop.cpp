@@ -7,8 +7,7 @@
 namespace hideseek_game {
 
 GameLoop::GameLoop(const GameOptions& game, std::shared_ptr<const MapSpec> map, const GameLoopOptions& options)
-    : options_(options),
-      world_(game, std::move(map), options.num_arenas, options.seed, options.render, options.render_threads),
+    : world_(game, std::move(map), options.num_arenas, options.seed, options.render, options.render_threads),
       scheduler_(options.mode, options.num_arenas, options.stale_action_timeout, options.resend_period),
       render_(options.render) {
   const size_t n = static_cast<size_t>(options.num_arenas);
@@ -92,18 +91,20 @@ Decision GameLoop::step(const std::vector<Action>& hider, const ArenaSeekerDecid
                                 std::to_string(numArenas()) + " arenas");
   }
   step_hider_ = hider;
-  for (;;) {
-    if (world_.seekerDecisionDue()) {
-      // An arena whose step ended early (a capture) waits for the others and decides nothing.
-      for (int i = 0; i < numArenas(); ++i) {
-        if (!world_.stepEnded(i)) seeker_now_[i] = seeker(i, seekerPerception(world_.arena(i)));
-      }
-      if (atStepStart()) step_first_seeker_ = seeker_now_;
-    }
-    if (std::optional<std::vector<ArenaStep>> steps = world_.advanceFrame(step_hider_, seeker_now_)) {
-      return conclude(std::move(*steps));
-    }
+  // Arenas are independent: each plays its whole step alone (playDecisionStep), its seeker asked at
+  // each of its decisions while the step runs, the frames the graph asks the seeker node at.
+  std::vector<ArenaStep> steps;
+  steps.reserve(hider.size());
+  for (int i = 0; i < numArenas(); ++i) {
+    bool first = true;
+    steps.push_back(world_.stepArena(i, hider[i], [&](const SeekerPerception& p) {
+      const Action a = seeker(i, p);
+      if (first) step_first_seeker_[i] = a;
+      first = false;
+      return a;
+    }));
   }
+  return conclude(std::move(steps));
 }
 
 Decision GameLoop::conclude(std::vector<ArenaStep> steps) {

@@ -104,7 +104,6 @@ class GameLoop {
   std::optional<Decision> finishStep();
   void render();
 
-  GameLoopOptions options_;
   World world_;
   DecisionScheduler scheduler_;
   bool render_;

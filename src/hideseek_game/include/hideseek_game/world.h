@@ -53,8 +53,6 @@ class World {
   // the seeker decides before every seeker_decision_frames-th of them (SeekerObservationBatch).
   int frameInStep() const { return frame_; }
   bool seekerDecisionDue() const { return frame_ % options_.seeker_decision_frames == 0; }
-  // Whether arena i's decision step in progress has ended early (a capture) and waits for the others.
-  bool stepEnded(int i) const { return results_[i].has_value(); }
   // Arena i's seeker decision about to be taken, counted from its episode's start: the step id
   // of the seeker's exchange (the hider's step id when the seeker decides once a step).
   uint32_t seekerDecisionId(int i) const;
