@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # `make bench`: throughput figures of this machine, one `name value` line each.
-# Timing goals live here, never in tests.
+# Timing goals live here, never in tests. ROS_UPDATES (default 20) is the number of PPO updates
+# each training run through the graph is timed over, after 2 it is allowed to warm up on.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/env.sh
 ARENAS=${ARENAS:-16}
 SECONDS_PER_RUN=${SECONDS_PER_RUN:-10}
+ROS_UPDATES=${ROS_UPDATES:-20}
+FLOOR_UPDATES=${FLOOR_UPDATES:-4}
 echo "# world core: physics, labels and rendering of $ARENAS arenas at 84x84 in one process"
 devel/lib/hideseek_game/world_core_bench config/game.yaml config/variants/basic.yaml "$ARENAS" "$SECONDS_PER_RUN"
 echo "# world node in lockstep with two minimal agents as separate processes, $ARENAS arenas"
@@ -15,27 +18,56 @@ roslaunch -p 11433 hideseek_world bench_world.launch num_arenas:="$ARENAS" durat
 echo "# full game graph in lockstep: world, seeker node, random hider node, $ARENAS arenas"
 roslaunch -p 11433 hideseek_world bench_game.launch num_arenas:="$ARENAS" duration:="$SECONDS_PER_RUN" 2>/dev/null | \
   grep -E "^game_ros_steps_per_s"
-echo "# training floor: the network and PPO update in one process on synthetic data (2 intra-op threads,"
-echo "# OPENBLAS_NUM_THREADS=1 as the hider node runs), in fp32 and in the default precision (auto)"
-floor_fp32=$(OPENBLAS_NUM_THREADS=1 devel/lib/hideseek_hider/train_floor_bench config/ppo.yaml "$ARENAS" 3 2 fp32 |
-  awk '/samples_per_s/ { print $2 }')
+
+floor_bench() {  # PRECISION NETWORK: the floor's output
+  devel/lib/hideseek_hider/train_floor_bench config/ppo.yaml "$ARENAS" "$FLOOR_UPDATES" 2 "$1" "$2"
+}
+field() { awk -v k="$1" '$1 ~ k { print $2 }'; }
+echo "# training floor: the network and PPO update in one process (2 intra-op threads, as the hider"
+echo "# node trains), on observations drawn before timing; in fp32 and in the default precision (auto)"
+floor_fp32=$(floor_bench fp32 ff | field '_samples_per_s$')
 echo "train_floor_fp32_samples_per_s $floor_fp32"
-default=$(OPENBLAS_NUM_THREADS=1 devel/lib/hideseek_hider/train_floor_bench config/ppo.yaml "$ARENAS" 3 2 auto)
+default=$(floor_bench auto ff)
 echo "$default" | grep '^#'
-floor=$(echo "$default" | awk '/samples_per_s/ { print $2 }')
+floor=$(echo "$default" | field '_samples_per_s$')
 echo "train_floor_samples_per_s $floor"
 echo "train_speedup $(awk -v a="$floor" -v b="$floor_fp32" 'BEGIN { printf "%.2f", a / b }')"
+echo "# the floor's arithmetic: FLOPs per sample counted from the network's layers and PPO's passes,"
+echo "# achieved GFLOP/s, and their fraction of the CPU's peak for the precision (the '# peak' line above)"
+echo "train_flops_per_sample $(echo "$default" | field '^flops_per_sample')"
+echo "train_gflops $(echo "$default" | field '^gflops')"
+echo "train_peak_fraction $(echo "$default" | field '^peak_fraction')"
 echo "# recurrent training floor: the GRU network (network gru) and recurrent PPO over sequences, in process,"
-echo "# default precision; compare with train_floor_samples_per_s"
-gru=$(OPENBLAS_NUM_THREADS=1 devel/lib/hideseek_hider/train_floor_bench config/ppo.yaml "$ARENAS" 3 2 auto gru |
-  awk '/samples_per_s/ { print $2 }')
+echo "# default precision, and its ratio to the feed-forward floor"
+gru_out=$(floor_bench auto gru)
+gru=$(echo "$gru_out" | field '_samples_per_s$')
 echo "train_gru_samples_per_s $gru"
-echo "# training: PPO through the ROS graph (world, seeker, hider in train mode), $ARENAS arenas, 84x84, default precision"
-run=$(mktemp -d)
-roslaunch -p 11433 hideseek_world train.launch num_arenas:="$ARENAS" steps:=$((ARENAS * 64 * 7)) \
-  output_dir:="$run" checkpoint_interval:=100000 >/dev/null 2>&1
-# Steady state: from the end of the first update to the end of the last (start-up excluded).
-ros=$(awk -F, 'NR == 2 { s0 = $2; t0 = $3 } END { printf "%.0f", ($2 - s0) / ($3 - t0) }' "$run/training_log.csv")
-rm -rf "$run"
+echo "train_gru_ratio $(awk -v a="$gru" -v b="$floor" 'BEGIN { printf "%.2f", a / b }')"
+echo "train_gru_gflops $(echo "$gru_out" | field '^gflops')"
+
+# PPO through the ROS graph (world, seeker, hider in train mode), timed from the end of update 2
+# to the end of update 2 + ROS_UPDATES; prints samples/s and where the hider's time went
+# (its loop_profile.csv over the same updates).
+ros_train() {  # NETWORK: "samples_per_s update inference wait other" (shares of the loop's time)
+  local run
+  run=$(mktemp -d)
+  roslaunch -p 11433 hideseek_world train.launch num_arenas:="$ARENAS" network:="$1" \
+    steps:=$((ARENAS * 64 * (ROS_UPDATES + 2))) output_dir:="$run" checkpoint_interval:=100000 >/dev/null 2>&1
+  awk -F, 'NR == 3 { s0 = $2; t0 = $3 } END { printf "%.0f ", ($2 - s0) / ($3 - t0) }' "$run/training_log.csv"
+  awk -F, 'NR > 3 { w += $3; i += $4; u += $5; o += $6 }
+    END { t = w + i + u + o; printf "%.2f %.2f %.2f %.2f\n", u / t, i / t, w / t, o / t }' "$run/loop_profile.csv"
+  rm -rf "$run"
+}
+echo "# training through the ROS graph: world, seeker, hider in train mode, $ARENAS arenas, 84x84, default"
+echo "# precision, $ROS_UPDATES updates; the loop's time in the update, in inference, waiting for the world, other"
+read -r ros update inference wait other <<< "$(ros_train ff)"
 echo "train_ros_samples_per_s $ros"
 echo "train_efficiency $(awk -v a="$ros" -v b="$floor" 'BEGIN { printf "%.2f", a / b }')"
+echo "train_ros_update_share $update"
+echo "train_ros_inference_share $inference"
+echo "train_ros_wait_share $wait"
+echo "train_ros_other_share $other"
+read -r gru_ros update inference wait other <<< "$(ros_train gru)"
+echo "train_gru_ros_samples_per_s $gru_ros"
+echo "train_gru_efficiency $(awk -v a="$gru_ros" -v b="$gru" 'BEGIN { printf "%.2f", a / b }')"
+echo "train_gru_ros_wait_share $wait"

@@ -1,12 +1,17 @@
 // The floor of training speed: the hider network and PPO update in one process on synthetic
 // 84 x 84 observations (no ROS, no rendering).
 // Usage: train_floor_bench CONFIG ARENAS UPDATES THREADS PRECISION(auto|fp32|bf16) [NETWORK(ff|gru)]
-// Prints `# precision: <reason>` and `train_floor_<fp32|bf16>_samples_per_s N` (ff) or
-// `train_gru_<fp32|bf16>_samples_per_s N` (gru: recurrent PPO over sequences).
+// Prints `# precision: <reason>`, `# peak: <formula>`, then `train_floor_<fp32|bf16>_samples_per_s N`
+// (ff) or `train_gru_<fp32|bf16>_samples_per_s N` (gru: recurrent PPO over sequences), and
+// flops_per_sample (counted from the layers, trainingFlopsPerSample), gflops (achieved),
+// peak_gflops and peak_fraction (over the CPU's peak for the precision, detectCpuPeak).
+// The observations, rewards and done flags are drawn once, before the clock starts, and cycled:
+// drawing 16 random images per step would be timed as training, which the graph does not pay.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "hideseek_hider/heap.h"
 #include "hideseek_hider/ppo.h"
@@ -18,6 +23,10 @@ int main(int argc, char** argv) {
   const int threads = argc > 4 ? std::atoi(argv[4]) : 2;
   const std::string precision = argc > 5 ? argv[5] : "auto";
   const hideseek_hider::NetworkKind network = hideseek_hider::parseNetwork(argc > 6 ? argv[6] : "ff", "NETWORK");
+  if (arenas < 1 || updates < 1 || threads < 1) {
+    std::fprintf(stderr, "train_floor_bench: ARENAS, UPDATES and THREADS must be positive\n");
+    return 2;
+  }
   // As the hider node does (hideseek_hider/heap.h); HIDESEEK_DEFAULT_HEAP=1 measures without it.
   const char* default_heap = std::getenv("HIDESEEK_DEFAULT_HEAP");
   if (!(default_heap && std::string(default_heap) == "1")) hideseek_hider::keepFreedMemoryInHeap();
@@ -29,14 +38,24 @@ int main(int argc, char** argv) {
   hideseek_hider::HiderNet net(84, 84, network);
   net->setPrecision(choice.precision);
   hideseek_hider::PpoTrainer trainer(net, options, arenas, torch::kCPU);
+  // A pool of distinct batches, drawn before timing.
+  constexpr int kPool = 8;
+  std::vector<torch::Tensor> images, rewards, dones;
+  for (int i = 0; i < kPool; ++i) {
+    images.push_back(torch::randint(0, 256, {arenas, 84, 84, 3}, torch::kUInt8));
+    rewards.push_back(torch::rand({arenas}) * 0.002);
+    dones.push_back((torch::rand({arenas}) < 0.005).to(torch::kFloat32));
+  }
+  int next = 0;
   auto run = [&](int n) {
     for (int u = 0; u < n; ++u) {
       bool full = false;
       while (!full) {
-        trainer.act(torch::randint(0, 256, {arenas, 84, 84, 3}, torch::kUInt8));
-        full = trainer.record(torch::rand({arenas}) * 0.002, (torch::rand({arenas}) < 0.005).to(torch::kFloat32));
+        trainer.act(images[next]);
+        full = trainer.record(rewards[next], dones[next]);
+        next = (next + 1) % kPool;
       }
-      trainer.update(torch::randint(0, 256, {arenas, 84, 84, 3}, torch::kUInt8));
+      trainer.update(images[next]);
     }
   };
   run(1);  // warm-up
@@ -44,8 +63,17 @@ int main(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   run(updates);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double samples_per_s = (trainer.samplesSeen() - before) / seconds;
+  const double flops = hideseek_hider::trainingFlopsPerSample(*net, options);
+  const hideseek_hider::CpuPeak peak = hideseek_hider::detectCpuPeak(threads);
   std::printf("# precision: %s\n", choice.reason.c_str());
+  std::printf("# peak: %s\n", peak.describe(choice.precision).c_str());
+  std::printf("# blas: %s\n", hideseek_hider::blasDescription().c_str());
   std::printf("%s_%s_samples_per_s %.0f\n", network == hideseek_hider::NetworkKind::kGru ? "train_gru" : "train_floor",
-              hideseek_hider::precisionName(choice.precision), (trainer.samplesSeen() - before) / seconds);
+              hideseek_hider::precisionName(choice.precision), samples_per_s);
+  std::printf("flops_per_sample %.4g\n", flops);
+  std::printf("gflops %.1f\n", flops * samples_per_s / 1e9);
+  std::printf("peak_gflops %.1f\n", peak.gflops(choice.precision));
+  std::printf("peak_fraction %.2f\n", flops * samples_per_s / 1e9 / peak.gflops(choice.precision));
   return 0;
 }

@@ -139,6 +139,22 @@ HiderOutput HiderNetImpl::forwardSequence(const torch::Tensor& images, const tor
   return out;
 }
 
+HiderNetImpl::Flops HiderNetImpl::forwardFlops() const {
+  const int h1 = convOut(image_height_, 8, 4), w1 = convOut(image_width_, 8, 4);
+  const int h2 = convOut(h1, 4, 2), w2 = convOut(w1, 4, 2);
+  const int h3 = convOut(h2, 3, 1), w3 = convOut(w2, 3, 1);
+  // 2 x outputs x inputs per output, layer by layer.
+  auto conv = [](int h, int w, int out, int kernel, int in) { return 2.0 * h * w * out * kernel * kernel * in; };
+  auto fc = [](int in, int out) { return 2.0 * in * out; };
+  Flops f;
+  f.first_conv = conv(h1, w1, 32, 8, 3);
+  f.total = f.first_conv + conv(h2, w2, 64, 4, 32) + conv(h3, w3, 64, 3, 64) + fc(64 * h3 * w3, kFeatures);
+  if (recurrent()) f.total += fc(kFeatures, 3 * kHidden) + fc(kHidden, 3 * kHidden);
+  const int head_in = recurrent() ? kHidden : kFeatures;
+  f.total += 2 * fc(head_in, 512) + fc(512, kActions) + fc(512, 1);
+  return f;
+}
+
 torch::Tensor HiderNetImpl::initialHidden(int64_t batch) const {
   return torch::zeros({batch, kHidden}, torch::TensorOptions().device(conv1_->weight.device()).dtype(torch::kFloat32));
 }

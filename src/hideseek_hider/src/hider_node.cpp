@@ -2,6 +2,7 @@
 
 #include <hideseek_msgs/ActionBatch.h>
 
+#include <algorithm>
 #include <fstream>
 #include <stdexcept>
 
@@ -134,8 +135,8 @@ void HiderNode::startTraining(const HiderNodeOptions& options) {
   // A resumed run restores its own generator state.
   torch::manual_seed(static_cast<uint64_t>(options.seed));
   training_ = std::make_unique<TrainingRun>(o, options.ppo, options.num_arenas, options.device);
-  ROS_INFO("hider: training %s PPO, network %s, on %s in %s", o.variant.c_str(), networkName(o.network),
-           options.device.str().c_str(), precision.reason.c_str());
+  ROS_INFO("hider: training %s PPO, network %s, on %s in %s; BLAS: %s", o.variant.c_str(), networkName(o.network),
+           options.device.str().c_str(), precision.reason.c_str(), blasDescription().c_str());
   if (training_->totalSteps() != o.total_steps) {
     ROS_INFO(
         "hider: %ld steps asked, training %ld: whole rollouts of %d arenas x %d steps, so that every sample "
@@ -193,10 +194,15 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
     std::optional<UpdateReport> report;
     out.actions = training_->step(msg->images.data(), msg->rewards, msg->done, &report);
     if (report) {
-      ROS_INFO("train: %ld/%ld steps, %.0f steps/s, ETA %s, %ld episodes, length %.1f, return %.3f, entropy %.3f",
-               static_cast<long>(report->steps), static_cast<long>(training_->totalSteps()), report->steps_per_s,
-               formatDuration(report->eta_s).c_str(), static_cast<long>(report->episodes), report->mean_length,
-               report->mean_return, report->ppo.entropy);
+      const LoopTimes& loop = report->loop;
+      const double total = std::max(loop.total(), 1e-9);
+      ROS_INFO(
+          "train: %ld/%ld steps, %.0f steps/s, ETA %s, %ld episodes, length %.1f, return %.3f, entropy %.3f; "
+          "time: update %.0f %%, inference %.0f %%, waiting for the world %.0f %%, other %.0f %%",
+          static_cast<long>(report->steps), static_cast<long>(training_->totalSteps()), report->steps_per_s,
+          formatDuration(report->eta_s).c_str(), static_cast<long>(report->episodes), report->mean_length,
+          report->mean_return, report->ppo.entropy, 100 * loop.update_s / total, 100 * loop.inference_s / total,
+          100 * loop.wait_s / total, 100 * loop.other_s / total);
     }
     if (training_->finished()) {
       training_->saveCheckpoint();

@@ -53,6 +53,11 @@ torch::Tensor clippedPolicyLoss(const torch::Tensor& new_log_prob, const torch::
   return torch::max(unclipped, clipped).mean();
 }
 
+double trainingFlopsPerSample(const HiderNetImpl& net, const PpoOptions& options) {
+  const HiderNetImpl::Flops f = net.forwardFlops();
+  return f.total * (1.0 + 1.0 / options.rollout_steps) + options.epochs * (3.0 * f.total - f.first_conv);
+}
+
 namespace {
 
 // The optimiser must see the parameters where they will live.

@@ -1,14 +1,37 @@
 #include "hideseek_hider/precision.h"
 
 #include <ATen/autocast_mode.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <cpuid.h>
 #endif
 
+// OpenBLAS's own query, found at run time when OpenBLAS is loaded (weak: absent otherwise).
+extern "C" int openblas_get_parallel(void) __attribute__((weak));
+
 namespace hideseek_hider {
+
+std::string blasDescription() {
+  if (!openblas_get_parallel) return "not OpenBLAS";
+  switch (openblas_get_parallel()) {
+    case 0:
+      return "OpenBLAS, sequential";
+    case 1:
+      return "OpenBLAS with its own threads";
+    default:
+      return "OpenBLAS on OpenMP threads";
+  }
+}
 
 PrecisionRequest parsePrecision(const std::string& text, const std::string& param) {
   if (text == "auto") return PrecisionRequest::kAuto;
@@ -46,6 +69,66 @@ CpuBf16Support detectCpuBf16() {
   s.amx_bf16 = s.amx_bf16 && amx_state;
 #endif
   return s;
+}
+
+double CpuPeak::gflops(Precision precision) const {
+  const double bf16 = precision == Precision::kBf16 && avx512_bf16 ? 2.0 : 1.0;
+  return cores * ghz * (vector_bits / 32.0) * 2.0 * fma_units * bf16;
+}
+
+std::string CpuPeak::describe(Precision precision) const {
+  char text[320];
+  std::snprintf(text, sizeof(text),
+                "%d cores x %.3f GHz (%s) x %d-bit FMA (%d fp32 lanes) x 2 flops x %d FMA units%s = %.1f GFLOP/s %s",
+                cores, ghz, clock_source.c_str(), vector_bits, vector_bits / 32, fma_units,
+                precision == Precision::kBf16 && avx512_bf16 ? " x 2 (AVX512_BF16 pairs)" : "", gflops(precision),
+                precisionName(precision));
+  return text;
+}
+
+CpuPeak cpuPeakFrom(const std::string& cpuinfo, double max_khz, int threads, int online_cpus, int fma_units) {
+  CpuPeak p;
+  p.cores = std::max(1, std::min(threads, online_cpus));
+  p.fma_units = fma_units;
+  std::istringstream in(cpuinfo);
+  std::set<std::string> flags;
+  double mhz = 0.0;
+  for (std::string line; std::getline(in, line);) {
+    const size_t colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    std::string key = line.substr(0, colon);
+    key.erase(key.find_last_not_of(" \t") + 1);
+    if (key == "cpu MHz") mhz = std::max(mhz, std::atof(line.c_str() + colon + 1));
+    if (key == "flags" && flags.empty()) {
+      std::istringstream words(line.substr(colon + 1));
+      for (std::string w; words >> w;) flags.insert(w);
+    }
+  }
+  if (flags.count("avx512f")) {
+    p.vector_bits = 512;
+  } else if (flags.count("avx2") && flags.count("fma")) {
+    p.vector_bits = 256;
+  }
+  p.avx512_bf16 = flags.count("avx512_bf16") > 0;
+  if (max_khz > 0.0) {
+    p.ghz = max_khz / 1e6;
+    p.clock_source = "cpufreq cpuinfo_max_freq";
+  } else {
+    p.ghz = mhz / 1e3;
+    p.clock_source = "cpu MHz of /proc/cpuinfo";
+  }
+  return p;
+}
+
+CpuPeak detectCpuPeak(int threads) {
+  std::ifstream info("/proc/cpuinfo");
+  const std::string text((std::istreambuf_iterator<char>(info)), std::istreambuf_iterator<char>());
+  double max_khz = 0.0;
+  std::ifstream freq("/sys/devices/system/cpu/cpu0/cpufreq/cpuinfo_max_freq");
+  if (!(freq >> max_khz)) max_khz = 0.0;
+  const char* units = std::getenv("HIDESEEK_FMA_UNITS");
+  const int fma_units = units && std::atoi(units) > 0 ? std::atoi(units) : 2;
+  return cpuPeakFrom(text, max_khz, threads, static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN)), fma_units);
 }
 
 PrecisionChoice choosePrecision(PrecisionRequest request, torch::Device device, const CpuBf16Support& cpu) {

@@ -112,10 +112,12 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
     }
     while (recent_.size() > kRecentEpisodes) recent_.pop_front();
     dropped_log_rows_ = truncateLogAfter(logPath(), info.steps);
+    truncateLogAfter(loopProfilePath(), info.steps);
   } else {
     // A log without a checkpoint belongs to a run killed before its first checkpoint: none of
     // its updates survive, so neither do its rows.
     dropped_log_rows_ = truncateLogAfter(logPath(), 0);
+    truncateLogAfter(loopProfilePath(), 0);
   }
   trainer_.setTotalSamples(options_.total_steps);
   start_steps_ = trainer_.samplesSeen();
@@ -127,10 +129,19 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
     log_ << "update,steps,wall_s,steps_per_s,episodes,mean_length,mean_return,policy_loss,value_loss,entropy,"
             "approx_kl,clip_fraction,learning_rate\n";
   }
+  const bool new_loop_log = !exists(loopProfilePath());
+  loop_log_.open(loopProfilePath(), std::ios::app);
+  if (!loop_log_) throw std::runtime_error("cannot write " + loopProfilePath());
+  if (new_loop_log) loop_log_ << "update,steps,wait_s,inference_s,update_s,other_s\n";
 }
 
 std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<float>& rewards,
                                        const std::vector<uint8_t>& dones, std::optional<UpdateReport>* report) {
+  using Clock = std::chrono::steady_clock;
+  auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
+  const Clock::time_point enter = Clock::now();
+  if (last_exit_) loop_.wait_s += seconds(enter - *last_exit_);
+  Clock::time_point mark = enter;  // the step's time is accounted for up to here
   report->reset();
   const int64_t n = num_arenas_;
   const torch::Tensor obs =
@@ -153,10 +164,14 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
         torch::from_blob(const_cast<uint8_t*>(dones.data()), {n}, torch::kUInt8).to(torch::kFloat32);
     if (trainer_.record(r, d)) {
       UpdateReport rep;
+      const Clock::time_point update_start = Clock::now();
+      loop_.other_s += seconds(update_start - mark);
       rep.ppo = trainer_.update(obs);
       rep.update = ++updates_;
       rep.steps = trainer_.samplesSeen();
       const auto now = std::chrono::steady_clock::now();
+      loop_.update_s += seconds(now - update_start);
+      mark = now;
       const double process_s = std::chrono::duration<double>(now - start_).count();
       rep.wall_s = start_wall_s_ + process_s;
       rep.steps_per_s = (rep.steps - start_steps_) / std::max(process_s, 1e-9);
@@ -171,16 +186,31 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
            << rep.ppo.value_loss << ',' << rep.ppo.entropy << ',' << rep.ppo.approx_kl << ',' << rep.ppo.clip_fraction
            << ',' << rep.ppo.learning_rate << '\n';
       log_.flush();
-      *report = rep;
       // The final checkpoint is the node's to write once finished().
       if (std::chrono::duration<double>(now - last_checkpoint_).count() >= options_.checkpoint_interval_s) {
         saveCheckpoint();
       }
+      const Clock::time_point logged = Clock::now();
+      loop_.other_s += seconds(logged - mark);
+      mark = logged;
+      rep.loop = loop_;
+      loop_ = LoopTimes{};
+      loop_log_ << rep.update << ',' << rep.steps << ',' << rep.loop.wait_s << ',' << rep.loop.inference_s << ','
+                << rep.loop.update_s << ',' << rep.loop.other_s << '\n';
+      loop_log_.flush();
+      *report = rep;
     }
   }
   acted_ = true;
+  const Clock::time_point act_start = Clock::now();
+  loop_.other_s += seconds(act_start - mark);
   const torch::Tensor actions = trainer_.act(obs).to(torch::kUInt8).contiguous();
-  return std::vector<uint8_t>(actions.data_ptr<uint8_t>(), actions.data_ptr<uint8_t>() + n);
+  const Clock::time_point act_end = Clock::now();
+  loop_.inference_s += seconds(act_end - act_start);
+  std::vector<uint8_t> out(actions.data_ptr<uint8_t>(), actions.data_ptr<uint8_t>() + n);
+  last_exit_ = Clock::now();
+  loop_.other_s += seconds(*last_exit_ - act_end);
+  return out;
 }
 
 void TrainingRun::saveCheckpoint() {

@@ -48,6 +48,24 @@ TEST(HiderNet, OtherImageSizesWorkAndTinyOnesAreRefused) {
   EXPECT_THROW(net->forward(randomImages(2, 84, 84)), c10::Error);
 }
 
+TEST(HiderNet, ForwardFlopsAreCountedFromEveryLayer) {
+  // 84 x 84: conv1 20x20x32 outputs of 8x8x3, conv2 9x9x64 of 4x4x32, conv3 7x7x64 of 3x3x64,
+  // fc 3136 -> 512, the two hidden heads 512 -> 512, the outputs 512 -> 5 and 512 -> 1; 2 flops
+  // per multiply-add.
+  const double conv1 = 2.0 * 20 * 20 * 32 * 8 * 8 * 3;
+  const double ff = conv1 + 2.0 * 9 * 9 * 64 * 4 * 4 * 32 + 2.0 * 7 * 7 * 64 * 3 * 3 * 64 + 2.0 * 3136 * 512 +
+                    2 * 2.0 * 512 * 512 + 2.0 * 512 * 5 + 2.0 * 512 * 1;
+  EXPECT_DOUBLE_EQ(HiderNet(84, 84)->forwardFlops().total, ff);
+  EXPECT_DOUBLE_EQ(HiderNet(84, 84)->forwardFlops().first_conv, conv1);
+  // The GRU adds its input and recurrent products, each 512 -> 3 x 512.
+  EXPECT_DOUBLE_EQ(HiderNet(84, 84, NetworkKind::kGru)->forwardFlops().total, ff + 2 * 2.0 * 512 * 1536);
+  // Larger images cost more in the encoder only: 100 x 100 gives conv1 24x24, conv2 11x11, conv3 9x9.
+  const HiderNetImpl::Flops big = HiderNet(100, 100)->forwardFlops();
+  EXPECT_DOUBLE_EQ(big.first_conv, 2.0 * 24 * 24 * 32 * 8 * 8 * 3);
+  EXPECT_DOUBLE_EQ(big.total - big.first_conv - (2.0 * 11 * 11 * 64 * 4 * 4 * 32 + 2.0 * 9 * 9 * 64 * 3 * 3 * 64),
+                   2.0 * 64 * 9 * 9 * 512 + 2 * 2.0 * 512 * 512 + 2.0 * 512 * 6);
+}
+
 TEST(Checkpoint, RoundTripGivesIdenticalOutputs) {
   HiderNet net(84, 84);
   const std::string path = tempPath("roundtrip.pt");

@@ -35,6 +35,31 @@ TEST(Precision, AutoPicksBf16OnlyWhereTheCpuHasItNatively) {
   EXPECT_NE(forced.reason.find("emulated"), std::string::npos);
 }
 
+TEST(CpuPeak, ReadsVectorWidthClockAndCoresFromTheMachinesOwnDescription) {
+  const std::string zen3 =
+      "processor\t: 0\ncpu MHz\t\t: 2445.404\nflags\t\t: fpu sse sse2 avx fma avx2\n\n"
+      "processor\t: 1\ncpu MHz\t\t: 2445.404\nflags\t\t: fpu sse sse2 avx fma avx2\n";
+  const CpuPeak p = cpuPeakFrom(zen3, 0.0, 2, 2, 2);
+  EXPECT_EQ(p.vector_bits, 256);
+  EXPECT_EQ(p.cores, 2);
+  EXPECT_NEAR(p.ghz, 2.445404, 1e-9);
+  // 2 cores x 2.445 GHz x 8 lanes x 2 flops x 2 FMA units; bf16 is no faster without AVX512_BF16.
+  EXPECT_NEAR(p.gflops(Precision::kFp32), 2 * 2.445404 * 8 * 2 * 2, 1e-9);
+  EXPECT_DOUBLE_EQ(p.gflops(Precision::kBf16), p.gflops(Precision::kFp32));
+  EXPECT_NE(p.describe(Precision::kFp32).find("cpu MHz"), std::string::npos) << p.describe(Precision::kFp32);
+  // More threads than CPUs count the CPUs; cpufreq's maximum wins over cpu MHz.
+  const std::string zen4 = "cpu MHz : 2000.0\nflags : avx2 fma avx512f avx512_bf16\n";
+  const CpuPeak q = cpuPeakFrom(zen4, 3.7e6, 8, 4, 1);
+  EXPECT_EQ(q.vector_bits, 512);
+  EXPECT_EQ(q.cores, 4);
+  EXPECT_DOUBLE_EQ(q.ghz, 3.7);
+  EXPECT_DOUBLE_EQ(q.gflops(Precision::kFp32), 4 * 3.7 * 16 * 2 * 1);
+  EXPECT_DOUBLE_EQ(q.gflops(Precision::kBf16), 2 * q.gflops(Precision::kFp32));
+  EXPECT_NE(q.describe(Precision::kBf16).find("cpuinfo_max_freq"), std::string::npos);
+  // Without AVX2 and FMA, 128-bit vectors.
+  EXPECT_EQ(cpuPeakFrom("flags : sse sse2 avx\n", 0.0, 1, 1, 2).vector_bits, 128);
+}
+
 TEST(Precision, AutocastScopeRestoresTheThreadsStateWhenItEnds) {
   ASSERT_FALSE(at::autocast::is_cpu_enabled());
   {

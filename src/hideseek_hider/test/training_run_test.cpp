@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace hideseek_hider {
@@ -80,6 +82,44 @@ TEST(TrainingRun, StepCountIsRoundedUpToWholeRolloutsSoEverySampleIsTrained) {
   ASSERT_EQ(log.size(), 1u + 4u);
   EXPECT_EQ(column(log.back(), 1), "32");
   EXPECT_EQ(readCheckpointInfo(run.checkpointPath()).steps, 32);
+}
+
+TEST(TrainingRun, LoopProfileSaysWhereTheTimeWentUpdateByUpdate) {
+  const std::string dir = testing::TempDir() + "run_loop_profile";
+  for (const char* f : {"/checkpoint.pt", "/training_log.csv", "/loop_profile.csv"}) std::remove((dir + f).c_str());
+  torch::manual_seed(0);
+  TrainingRun run(tinyRun(dir, 16), tinyPpo(), kArenas, torch::kCPU);
+  // The world takes 20 ms per step: the profile must show it as waiting, not as the hider's work.
+  const std::vector<uint8_t> images(kArenas * kSize * kSize * 3, 128);
+  std::vector<UpdateReport> reports;
+  for (int step = 0; !run.finished(); ++step) {
+    if (step > 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::optional<UpdateReport> report;
+    run.step(images.data(), std::vector<float>(kArenas, 0.001f), std::vector<uint8_t>(kArenas, 0), &report);
+    if (report) reports.push_back(*report);
+  }
+  ASSERT_EQ(reports.size(), 2u);
+  const auto rows = lines(run.loopProfilePath());
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0], "update,steps,wait_s,inference_s,update_s,other_s");
+  // Update 2 followed 4 steps, each after a 20 ms wait; update 1 followed 4 too, the first not waited for.
+  EXPECT_GE(reports[1].loop.wait_s, 4 * 0.019);
+  EXPECT_GE(reports[0].loop.wait_s, 3 * 0.019);
+  EXPECT_LT(reports[1].loop.wait_s, 4 * 0.019 + 0.5);
+  for (size_t i = 0; i < reports.size(); ++i) {
+    const LoopTimes& t = reports[i].loop;
+    EXPECT_GT(t.inference_s, 0.0);
+    EXPECT_GT(t.update_s, 0.0);
+    EXPECT_GE(t.other_s, 0.0);
+    EXPECT_EQ(column(rows[i + 1], 0), std::to_string(i + 1));
+    EXPECT_EQ(column(rows[i + 1], 1), std::to_string(8 * (i + 1)));
+    EXPECT_NEAR(std::stod(column(rows[i + 1], 2)), t.wait_s, 1e-4);
+    EXPECT_NEAR(std::stod(column(rows[i + 1], 4)), t.update_s, 1e-4);
+  }
+  // Between the two updates' log rows the wall clock moved by what the profile accounts for.
+  const auto log = lines(run.logPath());
+  ASSERT_EQ(log.size(), 3u);
+  EXPECT_NEAR(std::stod(column(log[2], 2)) - std::stod(column(log[1], 2)), reports[1].loop.total(), 0.01);
 }
 
 TEST(TrainingRun, ResumedLogContinuesWithoutDuplicatesAndKeepsWallTimeAndEpisodes) {

@@ -68,6 +68,16 @@ class HiderNetImpl : public torch::nn::Module {
   int imageHeight() const { return image_height_; }
   int imageWidth() const { return image_width_; }
 
+  // Floating-point operations (a multiply-add counts as 2) of one forward pass over one image,
+  // counted from the layers' shapes: the three convolutions, the fully connected layers and, for
+  // the GRU, its input and recurrent products. Biases, activations, softmax and the GRU's gate
+  // arithmetic are not counted (together well under 1 % of the total).
+  struct Flops {
+    double total = 0.0;
+    double first_conv = 0.0;  // conv1 alone: its input gradient is never computed
+  };
+  Flops forwardFlops() const;
+
  private:
   torch::Tensor encode(const torch::Tensor& images);     // [B, H, W, 3] uint8 -> [B, 512] in the precision
   void heads(const torch::Tensor& x, HiderOutput& out);  // [B, 512] -> logits, value (fp32)

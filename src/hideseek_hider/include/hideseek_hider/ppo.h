@@ -53,6 +53,13 @@ Gae computeGae(const torch::Tensor& rewards, const torch::Tensor& values, const 
 torch::Tensor clippedPolicyLoss(const torch::Tensor& new_log_prob, const torch::Tensor& old_log_prob,
                                 const torch::Tensor& advantages, double clip);
 
+// Floating-point operations of training per sample collected, counted from the network's layers
+// (HiderNetImpl::forwardFlops) and the passes PPO makes: one forward pass in the rollout, a share
+// of the bootstrap value's pass (one per arena per update), and per epoch a forward and a
+// backward pass. A backward pass is counted as twice a forward one (gradients of the weights and
+// of the layers' inputs) less the first convolution's input gradient, which is never computed.
+double trainingFlopsPerSample(const HiderNetImpl& net, const PpoOptions& options);
+
 // What one update did, for logs.
 struct UpdateStats {
   double policy_loss = 0.0;

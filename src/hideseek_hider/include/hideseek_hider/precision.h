@@ -25,6 +25,36 @@ struct CpuBf16Support {
 };
 CpuBf16Support detectCpuBf16();
 
+// The CPU's peak arithmetic rate, from what the machine says of itself: the widest FMA vectors in
+// /proc/cpuinfo's flags (avx512f: 512 bits; avx2 and fma: 256; otherwise 128), the clock
+// (cpufreq's cpuinfo_max_freq where the kernel has it, else the highest "cpu MHz", which a
+// virtual machine reports as its nominal clock and a boosting host can exceed), the cores the work
+// runs on (its threads, at most the CPUs online; a virtual CPU may be a hyperthread), and FMA
+// units per core, which no flag tells: 2 (every x86 server core since Haswell and Zen 2 has two
+// FMA pipes) unless HIDESEEK_FMA_UNITS says otherwise. bf16 doubles the rate where AVX512_BF16
+// dot products exist (AMX tiles are not counted). Zen 4 executes 512-bit vectors in two 256-bit
+// halves, so there this peak is twice what the core can do.
+struct CpuPeak {
+  int cores = 1;
+  double ghz = 0.0;
+  std::string clock_source;
+  int vector_bits = 128;
+  int fma_units = 2;
+  bool avx512_bf16 = false;
+  // cores x GHz x (vector_bits / 32 lanes) x 2 (multiply and add) x fma_units [x 2 in bf16].
+  double gflops(Precision precision) const;
+  std::string describe(Precision precision) const;  // the formula with its numbers
+};
+// From /proc/cpuinfo's text, cpufreq's maximum in kHz (0: none), the work's threads and the
+// online CPUs, and the FMA units per core.
+CpuPeak cpuPeakFrom(const std::string& cpuinfo, double max_khz, int threads, int online_cpus, int fma_units);
+CpuPeak detectCpuPeak(int threads);
+
+// Which BLAS libtorch's fully connected layers run on, for logs: "OpenBLAS on OpenMP threads"
+// (the build the training programs link, see the hider's CMakeLists.txt), "OpenBLAS with its own
+// threads", "OpenBLAS, sequential", or "not OpenBLAS".
+std::string blasDescription();
+
 // The precision chosen and why, for the node's log.
 struct PrecisionChoice {
   Precision precision = Precision::kFp32;

@@ -39,7 +39,18 @@ std::string formatDuration(double seconds);
 // rewritten atomically.
 int truncateLogAfter(const std::string& path, int64_t steps);
 
-// What one PPO update reports: the console line and the CSV row come from it.
+// Where the training loop's wall time went between two updates: waiting for the next batch (the
+// world and the seeker stepping, and the messages), the network's inference, the PPO update,
+// and the rest (copying the batch, bookkeeping, the log and checkpoints).
+struct LoopTimes {
+  double wait_s = 0.0;
+  double inference_s = 0.0;
+  double update_s = 0.0;
+  double other_s = 0.0;
+  double total() const { return wait_s + inference_s + update_s + other_s; }
+};
+
+// What one PPO update reports: the console line and the CSV rows come from it.
 struct UpdateReport {
   int64_t update = 0;
   int64_t steps = 0;
@@ -50,6 +61,7 @@ struct UpdateReport {
   double mean_length = 0.0;  // over the last 100 finished episodes
   double mean_return = 0.0;
   UpdateStats ppo;
+  LoopTimes loop;  // since the previous update (the last rollout's inference and waits, this update)
 };
 
 class TrainingRun {
@@ -72,6 +84,8 @@ class TrainingRun {
   void saveCheckpoint();
   std::string checkpointPath() const { return options_.output_dir + "/checkpoint.pt"; }
   std::string logPath() const { return options_.output_dir + "/training_log.csv"; }
+  // One row per update: update,steps,wait_s,inference_s,update_s,other_s (LoopTimes).
+  std::string loopProfilePath() const { return options_.output_dir + "/loop_profile.csv"; }
 
  private:
   TrainingOptions options_;
@@ -90,6 +104,9 @@ class TrainingRun {
   std::deque<std::pair<int64_t, double>> recent_;  // (length, return) of finished episodes
   int64_t episodes_ = 0;
   std::ofstream log_;
+  std::ofstream loop_log_;
+  LoopTimes loop_;
+  std::optional<std::chrono::steady_clock::time_point> last_exit_;  // when step() last returned
 };
 
 }  // namespace hideseek_hider
