@@ -23,6 +23,7 @@ floor_bench() {  # PRECISION NETWORK: the floor's output
   devel/lib/hideseek_hider/train_floor_bench config/ppo.yaml "$ARENAS" "$FLOOR_UPDATES" 2 "$1" "$2"
 }
 field() { awk -v k="$1" '$1 ~ k { print $2 }'; }
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 echo "# training floor: the network and PPO update in one process (2 intra-op threads, as the hider"
 echo "# node trains), on observations drawn before timing; in fp32 and in the default precision (auto)"
 floor_fp32=$(floor_bench fp32 ff | field '_samples_per_s$')
@@ -31,7 +32,7 @@ default=$(floor_bench auto ff)
 echo "$default" | grep '^#'
 floor=$(echo "$default" | field '_samples_per_s$')
 echo "train_floor_samples_per_s $floor"
-echo "train_speedup $(awk -v a="$floor" -v b="$floor_fp32" 'BEGIN { printf "%.2f", a / b }')"
+echo "train_speedup $(ratio "$floor" "$floor_fp32")"
 echo "# the floor's arithmetic: FLOPs per sample counted from the network's layers and PPO's passes,"
 echo "# achieved GFLOP/s, and their fraction of the CPU's peak for the precision (the '# peak' line above)"
 echo "train_flops_per_sample $(echo "$default" | field '^flops_per_sample')"
@@ -42,7 +43,7 @@ echo "# default precision, and its ratio to the feed-forward floor"
 gru_out=$(floor_bench auto gru)
 gru=$(echo "$gru_out" | field '_samples_per_s$')
 echo "train_gru_samples_per_s $gru"
-echo "train_gru_ratio $(awk -v a="$gru" -v b="$floor" 'BEGIN { printf "%.2f", a / b }')"
+echo "train_gru_ratio $(ratio "$gru" "$floor")"
 echo "train_gru_gflops $(echo "$gru_out" | field '^gflops')"
 
 # PPO through the ROS graph (world, seeker, hider in train mode), timed from the end of update 2
@@ -62,12 +63,12 @@ echo "# training through the ROS graph: world, seeker, hider in train mode, $ARE
 echo "# precision, $ROS_UPDATES updates; the loop's time in the update, in inference, waiting for the world, other"
 read -r ros update inference wait other <<< "$(ros_train ff)"
 echo "train_ros_samples_per_s $ros"
-echo "train_efficiency $(awk -v a="$ros" -v b="$floor" 'BEGIN { printf "%.2f", a / b }')"
+echo "train_efficiency $(ratio "$ros" "$floor")"
 echo "train_ros_update_share $update"
 echo "train_ros_inference_share $inference"
 echo "train_ros_wait_share $wait"
 echo "train_ros_other_share $other"
 read -r gru_ros update inference wait other <<< "$(ros_train gru)"
 echo "train_gru_ros_samples_per_s $gru_ros"
-echo "train_gru_efficiency $(awk -v a="$gru_ros" -v b="$gru" 'BEGIN { printf "%.2f", a / b }')"
+echo "train_gru_efficiency $(ratio "$gru_ros" "$gru")"
 echo "train_gru_ros_wait_share $wait"
