@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hideseek_hider/gru_sequence.h"
+
 namespace hideseek_hider {
 
 namespace {
@@ -107,29 +109,14 @@ HiderOutput HiderNetImpl::forwardSequence(const torch::Tensor& images, const tor
   if (recurrent()) {
     TORCH_CHECK(hidden.dim() == 2 && hidden.size(0) == batch && hidden.size(1) == kHidden, "hidden must be [", batch,
                 ", ", kHidden, "], got ", hidden.sizes());
-    const torch::Tensor keep = (1.0 - starts.to(torch::kFloat32)).unsqueeze(2);  // [T, B, 1]
-    torch::Tensor h = hidden.to(torch::kFloat32);
-    // torch::nn::GRUCell's equations on its own parameters (gates r, z, n; h' = n + z (h - n)),
-    // with the input side of every step in one matrix product before the loop: only the
-    // recurrent product is sequential. Step by step, the cell would multiply [B, 512] by the
-    // input weights T times, and backpropagation would add T weight gradients of [1536, 512].
-    const std::vector<torch::Tensor> input_gates =
-        torch::nn::functional::linear(out.features, gru_->weight_ih, gru_->bias_ih).chunk(3, 2);  // 3 x [T, B, 512]
-    std::vector<torch::Tensor> states;
-    states.reserve(steps);
-    for (int64_t t = 0; t < steps; ++t) {
-      h = h * keep[t];
-      const std::vector<torch::Tensor> hidden_gates =
-          torch::nn::functional::linear(h, gru_->weight_hh, gru_->bias_hh).chunk(3, 1);
-      const torch::Tensor reset = torch::sigmoid(input_gates[0][t] + hidden_gates[0]);
-      const torch::Tensor update = torch::sigmoid(input_gates[1][t] + hidden_gates[1]);
-      const torch::Tensor candidate = torch::tanh(input_gates[2][t] + reset * hidden_gates[2]);
-      h = candidate + update * (h - candidate);
-      states.push_back(h);
-    }
-    out.memory = torch::stack(states);
+    // The input side of every step's gates in one matrix product: only the recurrent product is
+    // sequential (gruSequence).
+    const torch::Tensor input_gates =
+        torch::nn::functional::linear(out.features, gru_->weight_ih, gru_->bias_ih);  // [T, B, 1536]
+    out.memory = gruSequence(input_gates, 1.0 - starts.to(torch::kFloat32), hidden.to(torch::kFloat32), gru_->weight_hh,
+                             gru_->bias_hh);
     x = out.memory.flatten(0, 1);
-    if (hidden_out) *hidden_out = h;
+    if (hidden_out) *hidden_out = out.memory[steps - 1];
   } else if (hidden_out) {
     *hidden_out = hidden;
   }

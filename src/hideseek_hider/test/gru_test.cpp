@@ -6,6 +6,7 @@
 #include <functional>
 #include <random>
 
+#include "hideseek_hider/gru_sequence.h"
 #include "hideseek_hider/hider_net.h"
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_hider/ppo.h"
@@ -86,6 +87,79 @@ TEST(GruNet, StateIsTorchGruCellOfTheFeatures) {
     h = cell->forward(seq.features[t], h * (1.0 - starts[t]).unsqueeze(1));
     expectClose(seq.memory[t], h, "state at step " + std::to_string(t));
   }
+}
+
+namespace {
+
+// The fused GRU (forward without recording, backpropagation through time by hand) against
+// torch::nn::GRUCell under autograd: the cell's input weights are the identity, so that its input
+// side is the gates given. States and every gradient must agree, resets inside the sequence and a
+// state carried in from before it included, at a toy size and at the size the hider trains with.
+void expectFusedGruMatchesGruCell(int64_t steps, int64_t batch, int64_t hidden, uint64_t seed) {
+  torch::manual_seed(seed);
+  const torch::Tensor gates = torch::randn({steps, batch, 3 * hidden}).requires_grad_(true);
+  torch::Tensor keep = torch::ones({steps, batch});
+  keep[steps / 2][0] = 0.0;
+  keep[1][batch - 1] = 0.0;
+  const torch::Tensor h0 = torch::randn({batch, hidden}).requires_grad_(true);
+  torch::nn::GRUCell cell(torch::nn::GRUCellOptions(3 * hidden, hidden));
+  {
+    const torch::NoGradGuard no_grad;
+    cell->weight_ih.copy_(torch::eye(3 * hidden));
+    cell->bias_ih.zero_();
+  }
+  const torch::Tensor weight_hh = cell->weight_hh.detach().clone().requires_grad_(true);
+  const torch::Tensor bias_hh = cell->bias_hh.detach().clone().requires_grad_(true);
+  const torch::Tensor probe = torch::randn({steps, batch, hidden});  // a loss that weighs every state
+
+  const torch::Tensor fused = gruSequence(gates, keep, h0, weight_hh, bias_hh);
+  (fused * probe).sum().backward();
+
+  const torch::Tensor gates_ref = gates.detach().clone().requires_grad_(true);
+  const torch::Tensor h0_ref = h0.detach().clone().requires_grad_(true);
+  torch::Tensor h = h0_ref;
+  std::vector<torch::Tensor> states;
+  for (int64_t t = 0; t < steps; ++t) {
+    h = cell->forward(gates_ref[t], h * keep[t].unsqueeze(1));
+    states.push_back(h);
+  }
+  const torch::Tensor reference = torch::stack(states);
+  (reference * probe).sum().backward();
+
+  auto close = [](const torch::Tensor& a, const torch::Tensor& b, const std::string& what) {
+    ASSERT_EQ(a.sizes(), b.sizes()) << what;
+    const double scale = std::max(1.0, b.abs().max().item<double>());
+    EXPECT_LT((a - b).abs().max().item<double>() / scale, 2e-5) << what;
+  };
+  close(fused, reference, "states");
+  close(gates.grad(), gates_ref.grad(), "gradient of the gates' input side");
+  close(h0.grad(), h0_ref.grad(), "gradient of the initial state");
+  close(weight_hh.grad(), cell->weight_hh.grad(), "gradient of weight_hh");
+  close(bias_hh.grad(), cell->bias_hh.grad(), "gradient of bias_hh");
+}
+
+}  // namespace
+
+TEST(GruSequence, FusedPassAndGradientsEqualTorchGruCell) {
+  expectFusedGruMatchesGruCell(7, 5, 16, 3);
+  expectFusedGruMatchesGruCell(32, 8, kHidden, 4);  // a minibatch of recurrent PPO
+}
+
+TEST(GruSequence, ResetStopsTheGradientFromReachingEarlierSteps) {
+  torch::manual_seed(5);
+  const int64_t steps = 6, batch = 2, hidden = 8;
+  const torch::Tensor gates = torch::randn({steps, batch, 3 * hidden}).requires_grad_(true);
+  torch::Tensor keep = torch::ones({steps, batch});
+  keep[3][0] = 0.0;  // arena 0 starts an episode at step 3
+  const torch::Tensor h0 = torch::randn({batch, hidden}).requires_grad_(true);
+  const torch::Tensor w = torch::randn({3 * hidden, hidden}).requires_grad_(true);
+  const torch::Tensor b = torch::randn({3 * hidden}).requires_grad_(true);
+  gruSequence(gates, keep, h0, w, b)[steps - 1].sum().backward();
+  // Arena 0's last state depends on steps 3.. only; arena 1's on every step and on h0.
+  EXPECT_EQ(gates.grad().slice(0, 0, 3).select(1, 0).abs().sum().item<double>(), 0.0);
+  EXPECT_EQ(h0.grad()[0].abs().sum().item<double>(), 0.0);
+  EXPECT_GT(gates.grad().slice(0, 0, 3).select(1, 1).abs().sum().item<double>(), 0.0);
+  EXPECT_GT(h0.grad()[1].abs().sum().item<double>(), 0.0);
 }
 
 TEST(GruNet, StateResetsWhereAnEpisodeStartsInsideASequence) {
