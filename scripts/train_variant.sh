@@ -8,7 +8,8 @@
 # usage: scripts/train_variant.sh VARIANT [SEED=0] [STEPS=2000000] [RUNS_DIR=~/hideseek_runs] [NETWORK=ff] [NAME]
 #   NAME defaults to <variant>_seed<S> (<variant>_gru_seed<S> for the GRU).
 #   GAME (environment, default v2) is the game (train.launch's game); PRECISION (default auto) its
-#   precision; the one the hider chose is recorded.
+#   precision; the one the hider chose is recorded. ROS_PORT (default 11700 + seed, + 50 for the
+#   GRU) is the run's ROS master port: set it to train two runs of one seed at once.
 set -euo pipefail
 variant=$1
 seed=${2:-0}
@@ -27,7 +28,7 @@ esac
 /usr/bin/python3 scripts/hideseek_registry.py variants | grep -qx "$variant" \
   || { echo "train_variant: no variant '$variant' in config/variants" >&2; exit 2; }
 run="$runs/$name"
-port=$((11700 + seed + $([ "$network" = gru ] && echo 50 || echo 0)))
+port=${ROS_PORT:-$((11700 + seed + $([ "$network" = gru ] && echo 50 || echo 0)))}
 export ROS_MASTER_URI=http://localhost:$port
 mkdir -p "$run"
 # The commit the run trained with: the one it started at; a resume at another commit is noted.
