@@ -133,10 +133,10 @@ class GruSequenceFunction : public torch::autograd::Function<GruSequenceFunction
   }
 };
 
-}  // namespace
-
-torch::Tensor gruSequenceReference(const torch::Tensor& input_gates, const torch::Tensor& keep, const torch::Tensor& h0,
-                                   const torch::Tensor& weight_hh, const torch::Tensor& bias_hh) {
+// The same equations stepped by ATen operators under autograd: the path off the CPU.
+torch::Tensor gruSequenceByOperators(const torch::Tensor& input_gates, const torch::Tensor& keep,
+                                     const torch::Tensor& h0, const torch::Tensor& weight_hh,
+                                     const torch::Tensor& bias_hh) {
   const std::vector<torch::Tensor> in = input_gates.chunk(3, 2);  // 3 x [T, B, H]
   const torch::Tensor k = keep.unsqueeze(2);                      // [T, B, 1]
   torch::Tensor h = h0;
@@ -154,6 +154,8 @@ torch::Tensor gruSequenceReference(const torch::Tensor& input_gates, const torch
   return torch::stack(states);
 }
 
+}  // namespace
+
 torch::Tensor gruSequence(const torch::Tensor& input_gates, const torch::Tensor& keep, const torch::Tensor& h0,
                           const torch::Tensor& weight_hh, const torch::Tensor& bias_hh) {
   TORCH_CHECK(input_gates.dim() == 3 && input_gates.size(2) == 3 * h0.size(1), "input_gates must be [T, B, ",
@@ -164,7 +166,7 @@ torch::Tensor gruSequence(const torch::Tensor& input_gates, const torch::Tensor&
   const bool fused = input_gates.device().is_cpu() && input_gates.scalar_type() == torch::kFloat32 &&
                      keep.scalar_type() == torch::kFloat32 && h0.scalar_type() == torch::kFloat32 &&
                      weight_hh.scalar_type() == torch::kFloat32 && bias_hh.scalar_type() == torch::kFloat32;
-  if (!fused) return gruSequenceReference(input_gates, keep, h0, weight_hh, bias_hh);
+  if (!fused) return gruSequenceByOperators(input_gates, keep, h0, weight_hh, bias_hh);
   return GruSequenceFunction::apply(input_gates, keep, h0, weight_hh, bias_hh);
 }
 

@@ -91,26 +91,29 @@ TEST(GruNet, StateIsTorchGruCellOfTheFeatures) {
 
 namespace {
 
-// The fused GRU (forward without recording, backpropagation through time by hand) against
-// torch::nn::GRUCell under autograd: the cell's input weights are the identity, so that its input
+// gruSequence (fused in fp32 on the CPU, by ATen operators otherwise) against torch::nn::GRUCell
+// under autograd: the cell's input weights are the identity, so that its input
 // side is the gates given. States and every gradient must agree, resets inside the sequence and a
 // state carried in from before it included, at a toy size and at the size the hider trains with.
-void expectFusedGruMatchesGruCell(int64_t steps, int64_t batch, int64_t hidden, uint64_t seed) {
+void expectGruSequenceMatchesGruCell(int64_t steps, int64_t batch, int64_t hidden, uint64_t seed,
+                                     torch::Dtype dtype = torch::kFloat32) {
   torch::manual_seed(seed);
-  const torch::Tensor gates = torch::randn({steps, batch, 3 * hidden}).requires_grad_(true);
-  torch::Tensor keep = torch::ones({steps, batch});
+  const auto f = torch::TensorOptions().dtype(dtype);
+  const torch::Tensor gates = torch::randn({steps, batch, 3 * hidden}, f).requires_grad_(true);
+  torch::Tensor keep = torch::ones({steps, batch}, f);
   keep[steps / 2][0] = 0.0;
   keep[1][batch - 1] = 0.0;
-  const torch::Tensor h0 = torch::randn({batch, hidden}).requires_grad_(true);
+  const torch::Tensor h0 = torch::randn({batch, hidden}, f).requires_grad_(true);
   torch::nn::GRUCell cell(torch::nn::GRUCellOptions(3 * hidden, hidden));
+  cell->to(dtype);
   {
     const torch::NoGradGuard no_grad;
-    cell->weight_ih.copy_(torch::eye(3 * hidden));
+    cell->weight_ih.copy_(torch::eye(3 * hidden, f));
     cell->bias_ih.zero_();
   }
   const torch::Tensor weight_hh = cell->weight_hh.detach().clone().requires_grad_(true);
   const torch::Tensor bias_hh = cell->bias_hh.detach().clone().requires_grad_(true);
-  const torch::Tensor probe = torch::randn({steps, batch, hidden});  // a loss that weighs every state
+  const torch::Tensor probe = torch::randn({steps, batch, hidden}, f);  // a loss that weighs every state
 
   const torch::Tensor fused = gruSequence(gates, keep, h0, weight_hh, bias_hh);
   (fused * probe).sum().backward();
@@ -141,8 +144,13 @@ void expectFusedGruMatchesGruCell(int64_t steps, int64_t batch, int64_t hidden, 
 }  // namespace
 
 TEST(GruSequence, FusedPassAndGradientsEqualTorchGruCell) {
-  expectFusedGruMatchesGruCell(7, 5, 16, 3);
-  expectFusedGruMatchesGruCell(32, 8, kHidden, 4);  // a minibatch of recurrent PPO
+  expectGruSequenceMatchesGruCell(7, 5, 16, 3);
+  expectGruSequenceMatchesGruCell(32, 8, kHidden, 4);  // a minibatch of recurrent PPO
+}
+
+TEST(GruSequence, OperatorPathOffTheFusedTypeEqualsTorchGruCell) {
+  // fp64 is not the fused path's type: gruSequence steps the equations by ATen operators.
+  expectGruSequenceMatchesGruCell(7, 5, 16, 6, torch::kFloat64);
 }
 
 TEST(GruSequence, ResetStopsTheGradientFromReachingEarlierSteps) {

@@ -14,13 +14,9 @@ namespace hideseek_hider {
 // (r, z, n); keep: [T, B], 0 where step t starts an episode (the state is zeroed before it), else
 // 1; h0: [B, H], the state before step 0; weight_hh: [3H, H], bias_hh: [3H]. Returns the state
 // after every step, [T, B, H]. Differentiable in input_gates, h0, weight_hh and bias_hh. fp32 CPU
-// tensors take the fused path; anything else (another device or type) the ATen operators.
+// tensors take the fused path; anything else (another device or type) the same equations stepped
+// by ATen operators under autograd. gru_test checks both against torch::nn::GRUCell.
 torch::Tensor gruSequence(const torch::Tensor& input_gates, const torch::Tensor& keep, const torch::Tensor& h0,
                           const torch::Tensor& weight_hh, const torch::Tensor& bias_hh);
-
-// The same equations stepped by ATen operators under autograd: the fallback, and the reference
-// the fused path is tested against.
-torch::Tensor gruSequenceReference(const torch::Tensor& input_gates, const torch::Tensor& keep, const torch::Tensor& h0,
-                                   const torch::Tensor& weight_hh, const torch::Tensor& bias_hh);
 
 }  // namespace hideseek_hider
