@@ -24,6 +24,7 @@ floor_bench() {  # PRECISION NETWORK: the floor's output
 }
 field() { awk -v k="$1" '$1 ~ k { print $2 }'; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
+ratio_to_mean() { awk -v a="$1" -v b="$2" -v c="$3" 'BEGIN { printf "%.2f", 2 * a / (b + c) }'; }  # A / mean(B, C)
 echo "# training floor: the network and PPO update in one process (2 intra-op threads, as the hider"
 echo "# node trains), on observations drawn before timing; in fp32 and in the default precision (auto)"
 floor_fp32=$(floor_bench fp32 ff | field '_samples_per_s$')
@@ -67,7 +68,7 @@ echo "train_ros_samples_per_s $ros"
 # the graph, and the efficiency divides by the mean of the floors on either side of it.
 floor_after=$(floor_bench auto ff | field '_samples_per_s$')
 echo "train_floor_after_samples_per_s $floor_after"
-echo "train_efficiency $(awk -v r="$ros" -v a="$floor" -v b="$floor_after" 'BEGIN { printf "%.2f", 2 * r / (a + b) }')"
+echo "train_efficiency $(ratio_to_mean "$ros" "$floor" "$floor_after")"
 echo "train_ros_update_share $update"
 echo "train_ros_inference_share $inference"
 echo "train_ros_wait_share $wait"
@@ -75,5 +76,5 @@ echo "train_ros_other_share $other"
 read -r gru_ros update inference wait other <<< "$(ros_train gru)"
 echo "train_gru_ros_samples_per_s $gru_ros"
 gru_after=$(floor_bench auto gru | field '_samples_per_s$')
-echo "train_gru_efficiency $(awk -v r="$gru_ros" -v a="$gru" -v b="$gru_after" 'BEGIN { printf "%.2f", 2 * r / (a + b) }')"
+echo "train_gru_efficiency $(ratio_to_mean "$gru_ros" "$gru" "$gru_after")"
 echo "train_gru_ros_wait_share $wait"
