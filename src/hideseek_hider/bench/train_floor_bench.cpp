@@ -1,7 +1,8 @@
 // The floor of training speed: the hider network and PPO update in one process on synthetic
 // 84 x 84 observations (no ROS, no rendering).
 // Usage: train_floor_bench CONFIG ARENAS UPDATES THREADS PRECISION(auto|fp32|bf16) [NETWORK(ff|gru)]
-// Prints `# precision: <reason>`, `# peak: <formula>`, then `train_floor_<fp32|bf16>_samples_per_s N`
+// Prints `# precision: <reason>`, `# peak: <formula>`, `# blas: ...`, `# per update: inference, update, other`
+// (seconds per timed update, to set beside the hider's loop profile), then `train_floor_<fp32|bf16>_samples_per_s N`
 // (ff) or `train_gru_<fp32|bf16>_samples_per_s N` (gru: recurrent PPO over sequences), and
 // flops_per_sample (counted from the layers, trainingFlopsPerSample), gflops (achieved),
 // peak_gflops and peak_fraction (over the CPU's peak for the precision, detectCpuPeak).
@@ -47,18 +48,25 @@ int main(int argc, char** argv) {
     dones.push_back((torch::rand({arenas}) < 0.005).to(torch::kFloat32));
   }
   int next = 0;
+  using Clock = std::chrono::steady_clock;
+  double act_s = 0.0, update_s = 0.0;  // the timed updates' shares, as the hider's loop profile splits them
   auto run = [&](int n) {
     for (int u = 0; u < n; ++u) {
       bool full = false;
       while (!full) {
+        const Clock::time_point t0 = Clock::now();
         trainer.act(images[next]);
+        act_s += std::chrono::duration<double>(Clock::now() - t0).count();
         full = trainer.record(rewards[next], dones[next]);
         next = (next + 1) % kPool;
       }
+      const Clock::time_point t0 = Clock::now();
       trainer.update(images[next]);
+      update_s += std::chrono::duration<double>(Clock::now() - t0).count();
     }
   };
   run(1);  // warm-up
+  act_s = update_s = 0.0;
   const int64_t before = trainer.samplesSeen();
   const auto start = std::chrono::steady_clock::now();
   run(updates);
@@ -69,6 +77,8 @@ int main(int argc, char** argv) {
   std::printf("# precision: %s\n", choice.reason.c_str());
   std::printf("# peak: %s\n", peak.describe(choice.precision).c_str());
   std::printf("# blas: %s\n", hideseek_hider::blasDescription().c_str());
+  std::printf("# per update: inference %.3f s, update %.3f s, other %.3f s\n", act_s / updates, update_s / updates,
+              (seconds - act_s - update_s) / updates);
   std::printf("%s_%s_samples_per_s %.0f\n", network == hideseek_hider::NetworkKind::kGru ? "train_gru" : "train_floor",
               hideseek_hider::precisionName(choice.precision), samples_per_s);
   std::printf("flops_per_sample %.4g\n", flops);
