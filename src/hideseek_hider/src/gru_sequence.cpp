@@ -72,7 +72,7 @@ class GruSequenceFunction : public torch::autograd::Function<GruSequenceFunction
     ctx->saved_data["masked"] = masked;
     ctx->saved_data["gates"] = gates;
     ctx->saved_data["hidden_n"] = hidden_n;
-    ctx->saved_data["weight_hh"] = weight_hh;
+    ctx->save_for_backward({weight_hh});  // as a saved variable: changed in place before backward() is an error
     return states;
   }
 
@@ -81,7 +81,7 @@ class GruSequenceFunction : public torch::autograd::Function<GruSequenceFunction
     const torch::Tensor masked = ctx->saved_data["masked"].toTensor();
     const torch::Tensor gates = ctx->saved_data["gates"].toTensor();
     const torch::Tensor hidden_n = ctx->saved_data["hidden_n"].toTensor();
-    const torch::Tensor weight_hh = ctx->saved_data["weight_hh"].toTensor();
+    const torch::Tensor weight_hh = ctx->get_saved_variables()[0];
     const int64_t steps = masked.size(0), batch = masked.size(1), hidden = masked.size(2);
     const auto opts = masked.options();
     const torch::Tensor grad =

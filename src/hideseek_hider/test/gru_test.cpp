@@ -170,6 +170,22 @@ TEST(GruSequence, ResetStopsTheGradientFromReachingEarlierSteps) {
   EXPECT_GT(h0.grad()[1].abs().sum().item<double>(), 0.0);
 }
 
+TEST(GruSequence, RecurrentWeightsChangedBeforeTheBackwardPassAreAnError) {
+  // As with any autograd operation: a gradient from weights an optimiser step already changed
+  // would be silently wrong.
+  torch::manual_seed(7);
+  const int64_t steps = 4, batch = 2, hidden = 8;
+  const torch::Tensor gates = torch::randn({steps, batch, 3 * hidden}).requires_grad_(true);
+  const torch::Tensor w = torch::randn({3 * hidden, hidden}).requires_grad_(true);
+  const torch::Tensor b = torch::randn({3 * hidden}).requires_grad_(true);
+  const torch::Tensor states = gruSequence(gates, torch::ones({steps, batch}), torch::zeros({batch, hidden}), w, b);
+  {
+    const torch::NoGradGuard no_grad;
+    w.add_(1.0);
+  }
+  EXPECT_THROW(states.sum().backward(), c10::Error);
+}
+
 TEST(GruNet, StateResetsWhereAnEpisodeStartsInsideASequence) {
   torch::manual_seed(2);
   HiderNet net(kSize, kSize, NetworkKind::kGru);
