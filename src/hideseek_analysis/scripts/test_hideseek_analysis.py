@@ -222,3 +222,48 @@ def run_report_on_synthetic_inputs(tmp_path, with_memory):
 def csv_rows(f):
     import csv
     return csv.DictReader(f)
+
+
+def write_log(path, lengths):
+    header = ("update,steps,wall_s,steps_per_s,episodes,mean_length,mean_return,policy_loss,value_loss,entropy,"
+              "approx_kl,clip_fraction,learning_rate\n")
+    with open(path, "w") as f:
+        f.write(header)
+        for i, length in enumerate(lengths):
+            f.write("%d,%d,%d,800,%d,%f,0.5,0.01,0.1,1.5,0.01,0.1,0.0003\n" % (i + 1, 1024 * (i + 1), i, 10 * i, length))
+
+
+def test_plot_learning_curve_draws_several_labelled_runs_on_one_figure(tmp_path):
+    import matplotlib.pyplot as plt
+    import plot_learning_curve as plc
+
+    before, after = tmp_path / "before.csv", tmp_path / "after.csv"
+    write_log(before, [0, 50, 80, 120])
+    write_log(after, [0, 60, 70, 200, 260])
+    drawn = []
+    real_savefig = plt.Figure.savefig
+
+    def spy(fig, *args, **kwargs):
+        drawn.append([[(line.get_label(), len(line.get_xdata())) for line in ax.get_lines()] for ax in fig.axes])
+        return real_savefig(fig, *args, **kwargs)
+
+    plt.Figure.savefig = spy
+    try:
+        plc.main(["--run", "before", str(before), "--run", "after", str(after), "--output", str(tmp_path / "both.png"),
+                  "--title", "before and after"])
+    finally:
+        plt.Figure.savefig = real_savefig
+    assert (tmp_path / "both.png").stat().st_size > 0
+    # Every panel holds both runs, each with all its updates, under its label.
+    assert drawn == [[[("before", 4), ("after", 5)]] * 3]
+
+
+def test_plot_learning_curve_names_a_file_that_is_not_a_training_log(tmp_path):
+    import plot_learning_curve as plc
+
+    bad = tmp_path / "bad.csv"
+    bad.write_text("a,b\n1,2\n")
+    with pytest.raises(SystemExit) as e:
+        plc.main([str(bad), str(tmp_path / "out.png")])
+    assert "bad.csv: not a training log" in str(e.value)
+    assert not (tmp_path / "out.png").exists()

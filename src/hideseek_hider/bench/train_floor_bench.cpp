@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "hideseek_hider/heap.h"
+#include "hideseek_game/heap.h"
 #include "hideseek_hider/ppo.h"
 
 int main(int argc, char** argv) {
@@ -28,9 +28,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "train_floor_bench: ARENAS, UPDATES and THREADS must be positive\n");
     return 2;
   }
-  // As the hider node does (hideseek_hider/heap.h); HIDESEEK_DEFAULT_HEAP=1 measures without it.
+  // As the hider node does (hideseek_game/heap.h); HIDESEEK_DEFAULT_HEAP=1 measures without it.
   const char* default_heap = std::getenv("HIDESEEK_DEFAULT_HEAP");
-  if (!(default_heap && std::string(default_heap) == "1")) hideseek_hider::keepFreedMemoryInHeap();
+  if (!(default_heap && std::string(default_heap) == "1")) hideseek_game::keepFreedMemoryInHeap();
   torch::set_num_threads(threads);
   torch::manual_seed(0);
   const hideseek_hider::PrecisionChoice choice = hideseek_hider::choosePrecision(

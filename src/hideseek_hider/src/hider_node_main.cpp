@@ -2,14 +2,14 @@
 
 #include <exception>
 
-#include "hideseek_hider/heap.h"
+#include "hideseek_game/heap.h"
 #include "hideseek_hider/hider_node.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "hider");
   // The hider trains or infers batches of images: reuse freed memory instead of faulting it in
-  // again every update (hideseek_hider/heap.h).
-  if (!hideseek_hider::keepFreedMemoryInHeap())
+  // again every update (hideseek_game/heap.h).
+  if (!hideseek_game::keepFreedMemoryInHeap())
     ROS_WARN("hider: the allocator refused its settings; training may be slower");
   // The node handles outlive the try block: an error thrown while the node starts is logged
   // while roscpp still runs, so roslaunch shows it instead of only "process has died".
