@@ -25,7 +25,9 @@ name=${6:-${name}_seed$seed}
 case "$name" in
   ''|*/*|.*) echo "train_variant: NAME '$name' must be a plain file name (no '/', not starting with '.')" >&2; exit 2 ;;
 esac
-/usr/bin/python3 scripts/hideseek_registry.py variants | grep -qx "$variant" \
+# grep reads the whole list (no -q): a grep that stopped at the first match would break the
+# writer's pipe, and pipefail would then report a known variant as unknown.
+/usr/bin/python3 scripts/hideseek_registry.py variants | grep -x "$variant" > /dev/null \
   || { echo "train_variant: no variant '$variant' in config/variants" >&2; exit 2; }
 run="$runs/$name"
 port=${ROS_PORT:-$((11700 + seed + $([ "$network" = gru ] && echo 50 || echo 0)))}
