@@ -1,20 +1,22 @@
 #!/usr/bin/env bash
 # Training through the graph against the in-process floor, with where the loop's time and the
-# processes' CPU time go: the floor (train_floor_bench), then UPDATES PPO updates through
-# train.launch timed from update 3 (as make bench does), then the floor again. Prints the
-# efficiency (graph over the mean of the two floors), the hider's loop split per update (its
-# loop_profile.csv) and the CPU time the world, seeker and hider used per update (/proc/PID/stat,
-# from update 3 to the end). Run it with nothing else on the machine, and compare only figures
+# processes' CPU time go: the floor (train_floor_bench), then a training run through train.launch
+# whose updates 3 to UPDATES + 2 are timed (after 2 to warm up, as make bench does; one more
+# update runs after them so that the processes are still there to be read), then the floor
+# again. Prints the efficiency (graph over the mean of the two floors), the hider's loop split per
+# update (its loop_profile.csv) and the CPU time this workspace's world, seeker and hider nodes
+# used per update (/proc/PID/stat), all over the same UPDATES updates. Run it with nothing else on the machine, and compare only figures
 # taken alternating: this kind of virtual machine drifts by 10 to 40 % over minutes.
 # usage: scripts/measure_loop.sh [ARENAS=16] [PPO_CONFIG=config/ppo.yaml] [UPDATES=20] [LABEL] [roslaunch args ...]
 #   e.g. scripts/measure_loop.sh 32 /tmp/ppo_rollout32.yaml 20 32x32
 #        scripts/measure_loop.sh 16 config/ppo.yaml 20 rt0 render_threads:=0
 #   NETWORK (ff), PRECISION (auto) and ROS_PORT (11533) come from the environment.
 set -euo pipefail
+config=$(realpath "${2:-$(dirname "$0")/../config/ppo.yaml}")
 cd "$(dirname "$0")/.."
 arenas=${1:-16}
-config=$(realpath "${2:-config/ppo.yaml}")
 updates=${3:-20}
+[ "$updates" -ge 1 ] 2> /dev/null || { echo "measure_loop: UPDATES must be a whole number >= 1, got '$updates'" >&2; exit 2; }
 label=${4:-${arenas}x$(awk '/^rollout_steps:/ { print $2 }' "$config")}
 shift $(($# < 4 ? $# : 4))
 network=${NETWORK:-ff}
@@ -27,7 +29,7 @@ floor() {
 }
 ticks() {  # CPU time (user + system, clock ticks) of this workspace's nodes of one package
   local t=0 p
-  for p in $(pgrep -f "devel/lib/hideseek_$1/" || true); do
+  for p in $(pgrep -f "$PWD/devel/lib/hideseek_$1/" || true); do
     t=$((t + $(awk '{ print $14 + $15 }' "/proc/$p/stat" 2>/dev/null || echo 0)))
   done
   echo "$t"
@@ -39,22 +41,25 @@ trap 'rm -rf "$run"' EXIT
 port=${ROS_PORT:-11533}
 export ROS_MASTER_URI=http://localhost:$port
 roslaunch -p "$port" hideseek_world train.launch num_arenas:="$arenas" ppo_config:="$config" network:="$network" \
-  precision:="$precision" steps:=$((arenas * rollout * (updates + 2))) output_dir:="$run" checkpoint_interval:=100000 \
+  precision:="$precision" steps:=$((arenas * rollout * (updates + 3))) output_dir:="$run" checkpoint_interval:=100000 \
   "$@" > "$run/launch.log" 2>&1 &
 launch=$!
-# The log has a header row, so update 3 has ended when it has 4 rows.
-until [ "$(rows)" -ge 4 ]; do kill -0 $launch 2> /dev/null || { cat "$run/launch.log" >&2; exit 1; }; sleep 0.05; done
+# The log has a header row: update k has ended when it has k + 1 rows.
+died() { kill -0 $launch 2> /dev/null && return 1; cat "$run/launch.log" >&2; echo "measure_loop: the graph stopped early" >&2; exit 1; }
+until [ "$(rows)" -ge 3 ]; do died || sleep 0.02; done
 w0=$(ticks world) s0=$(ticks seeker) h0=$(ticks hider) r0=$(rows)
-until [ "$(rows)" -ge $((updates + 1)) ]; do kill -0 $launch 2> /dev/null || break; sleep 0.05; done
+until [ "$(rows)" -ge $((updates + 3)) ]; do died || sleep 0.02; done
 w1=$(ticks world) s1=$(ticks seeker) h1=$(ticks hider) r1=$(rows)
 wait $launch || true
 floor_after=$(floor)
-graph=$(awk -F, 'NR == 4 { s0 = $2; t0 = $3 } END { printf "%.0f", ($2 - s0) / ($3 - t0) }' "$run/training_log.csv")
+# Rows r0 and r1 as read above (the polling may have seen them a few ms late; the log's own times are exact).
+graph=$(awk -F, -v a="$r0" -v b="$r1" 'NR == a { s0 = $2; t0 = $3 } NR == b { printf "%.0f", ($2 - s0) / ($3 - t0) }' \
+  "$run/training_log.csv")
 hz=$(getconf CLK_TCK)
 awk -v l="$label" -v f0="$floor_before" -v f1="$floor_after" -v g="$graph" -v n=$((r1 - r0)) -v hz="$hz" \
   -v w=$((w1 - w0)) -v s=$((s1 - s0)) -v h=$((h1 - h0)) 'BEGIN {
   printf "%s: floor %s / %s, graph %s samples/s, efficiency %.3f\n", l, f0, f1, g, 2 * g / (f0 + f1)
   printf "%s: core-seconds per update: world %.3f, seeker %.3f, hider %.3f\n", l, w / hz / n, s / hz / n, h / hz / n }'
-awk -F, -v l="$label" 'NR > 4 { w += $3; i += $4; u += $5; o += $6; n++ }
+awk -F, -v l="$label" -v a="$r0" -v b="$r1" 'NR > a && NR <= b { w += $3; i += $4; u += $5; o += $6; n++ }
   END { printf "%s: seconds per update: wait %.3f, inference %.3f, update %.3f, other %.3f\n", l, w / n, i / n, u / n, o / n }' \
   "$run/loop_profile.csv"

@@ -10,7 +10,7 @@
 #   GAME (environment, default v2) is the game (train.launch's game); PRECISION (default auto) its
 #   precision; the one the hider chose is recorded. ROS_PORT (default 11700 + seed, + 50 for the
 #   GRU) is the run's ROS master port: set it to train two runs of one seed at once; its
-#   evaluation uses ROS_PORT + 100 (HIDESEEK_PORT overrides).
+#   evaluation uses ROS_PORT + 1000 (HIDESEEK_PORT overrides).
 set -euo pipefail
 variant=$1
 seed=${2:-0}
@@ -69,8 +69,8 @@ commits=$(paste -sd ';' "$run/commit" | sed 's/;/; /g')
 echo "train_variant: $name recorded in policies/policies.yaml; weights in $run/policy.pt"
 # What the run learned, beside its log: the evaluation (seeds 0-99, greedy, fp32) and six seeded
 # episodes drawn from above (seeds 0-5).
-# On its own port (the run's + 100), so that two runs finishing together do not share a master.
-HIDESEEK_PORT=${HIDESEEK_PORT:-$((port + 100))} scripts/evaluate_run.sh "$name" "$run/policy.pt"
+# On its own port (the run's + 1000), so that two runs finishing together do not share a master.
+HIDESEEK_PORT=${HIDESEEK_PORT:-$((port + 1000))} scripts/evaluate_run.sh "$name" "$run/policy.pt"
 if [ "${SHIP:-0}" = 1 ]; then
   /usr/bin/python3 scripts/hideseek_registry.py ship "$name" "$run/policy.pt"
   echo "train_variant: $name shipped as the $variant policy"

@@ -70,7 +70,7 @@ def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     if not argv:
         sys.exit(__doc__)
-    if argv[0].startswith("--"):
+    if any(a.startswith("--") for a in argv):
         parser = argparse.ArgumentParser(description="Learning curves of several runs on one plot.")
         parser.add_argument("--run", nargs=2, action="append", required=True, metavar=("LABEL", "LOG"),
                             help="a run's label and its training_log.csv; repeat for each run")

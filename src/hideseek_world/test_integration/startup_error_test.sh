@@ -14,7 +14,7 @@ expect_fatal() {  # name, expected text, launch arguments...
   local name=$1 expected=$2
   shift 2
   timeout 120 roslaunch -p "$port" hideseek_world "$@" > "$dir/$name.log" 2>&1
-  grep -F "[FATAL]" "$dir/$name.log" | grep -qF -- "$expected" ||
+  grep -F "[FATAL]" "$dir/$name.log" | grep -F -- "$expected" > /dev/null ||
     failures+=("$name: no FATAL line with '$expected' (got: $(grep -F '[FATAL]' "$dir/$name.log" | head -c 200))")
 }
 expect_fatal missing_policy "checkpoint /nonexistent/policy.pt cannot be read" basic.launch policy:=/nonexistent/policy.pt
