@@ -19,7 +19,7 @@ expect_fatal() {  # name, expected text, launch arguments...
 }
 expect_fatal missing_policy "checkpoint /nonexistent/policy.pt cannot be read" basic.launch policy:=/nonexistent/policy.pt
 expect_fatal bad_precision "/hider/precision must be auto, fp32 or bf16, got 'fp16'" basic.launch precision:=fp16
-config="$(cd "$(dirname "$0")/../config" && pwd)"
+config="$(cd "$(dirname "$0")/../../hideseek_game/config" && pwd)"  # the game package holds the maps
 printf 'variant: basic\nmap: %s/maps/deterministic.yaml\nhider:\n  sped: 3.0\n' "$config" > "$dir/typo.yaml"
 expect_fatal bad_field "field 'hider.sped': unknown field" game.launch.xml variant:=basic variant_config:="$dir/typo.yaml"
 policies="$(cd "$(dirname "$0")/../policies" && pwd)"
