@@ -1,6 +1,7 @@
 #!/bin/bash
 # Trains the before (2fc186d) and after runs of #27 in turns of SLICE s, so that both see the same
-# machine (its speed drifts by 40 % over hours). turns.log: "<name> <start> <end>" of each turn a
+# machine (its speed drifts by 40 % over hours). A run whose tree is not built yet (no devel/) waits;
+# the other trains meanwhile. turns.log: "<name> <start> <end>" of each turn a
 # run had the CPU alone, and "finished <name> <time>" when its log reached its steps; a run's wall
 # time is the sum of its turns up to then. touch hold: both stopped until it is removed.
 SLICE=${SLICE:-120}
@@ -26,6 +27,7 @@ while true; do
   for i in 0 1; do { [ -z "${pids[$i]}" ] && [ ! -f $AB/done_$i ]; } || alive $i && left=1; done
   [ $left = 0 ] && { echo "both ended $(date +%s)" >> $AB/turns.log; exit 0; }
   if ! { [ -z "${pids[$cur]}" ] && [ ! -f $AB/done_$cur ]; } && ! alive $cur; then cur=$((1 - cur)); continue; fi
+  if [ -z "${pids[$cur]}" ] && [ ! -x "${trees[$cur]}/devel/lib/hideseek_hider/hider_node" ]; then cur=$((1 - cur)); sleep 1; continue; fi
   t0=$(date +%s.%N)
   if [ -z "${pids[$cur]}" ]; then start $cur; else pkill -CONT -f "$(procs $cur)"; fi
   end=$(( $(date +%s) + SLICE ))
