@@ -5,8 +5,9 @@
 # update runs after them so that the processes are still there to be read), then the floor
 # again. Prints the efficiency (graph over the mean of the two floors), the hider's loop split per
 # update (its loop_profile.csv) and the CPU time this workspace's world, seeker and hider nodes
-# used per update (/proc/PID/stat), all over the same UPDATES updates. Run it with nothing else on the machine, and compare only figures
-# taken alternating: this kind of virtual machine drifts by 10 to 40 % over minutes.
+# used per update (/proc/PID/stat), all over the same UPDATES updates. Run it with nothing else
+# on the machine, and compare only figures taken alternating: this kind of virtual machine drifts
+# by 10 to 40 % over minutes.
 # usage: scripts/measure_loop.sh [ARENAS=16] [PPO_CONFIG=config/ppo.yaml] [UPDATES=20] [LABEL] [roslaunch args ...]
 #   e.g. scripts/measure_loop.sh 32 /tmp/ppo_rollout32.yaml 20 32x32
 #        scripts/measure_loop.sh 16 config/ppo.yaml 20 rt0 render_threads:=0
@@ -17,13 +18,13 @@ cd "$(dirname "$0")/.."
 arenas=${1:-16}
 updates=${3:-20}
 [ "$updates" -ge 1 ] 2> /dev/null || { echo "measure_loop: UPDATES must be a whole number >= 1, got '$updates'" >&2; exit 2; }
-label=${4:-${arenas}x$(awk '/^rollout_steps:/ { print $2 }' "$config")}
+rollout=$(awk '/^rollout_steps:/ { print $2 }' "$config")
+[ -n "$rollout" ] || { echo "measure_loop: $config has no rollout_steps" >&2; exit 2; }
+label=${4:-${arenas}x$rollout}
 shift $(($# < 4 ? $# : 4))
 network=${NETWORK:-ff}
 precision=${PRECISION:-auto}
 source scripts/env.sh
-rollout=$(awk '/^rollout_steps:/ { print $2 }' "$config")
-[ -n "$rollout" ] || { echo "measure_loop: $config has no rollout_steps" >&2; exit 2; }
 floor() {
   devel/lib/hideseek_hider/train_floor_bench "$config" "$arenas" 4 2 "$precision" "$network" | awk '$1 ~ /_samples_per_s$/ { print $2 }'
 }
