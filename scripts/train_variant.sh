@@ -10,7 +10,9 @@
 #   GAME (environment, default v2) is the game (train.launch's game); PRECISION (default auto) its
 #   precision; the one the hider chose is recorded. ROS_PORT (default 11700 + seed, + 50 for the
 #   GRU) is the run's ROS master port: set it to train two runs of one seed at once; its
-#   evaluation uses ROS_PORT + 1000 (HIDESEEK_PORT overrides).
+#   evaluation uses ROS_PORT + 1000 (HIDESEEK_PORT overrides). NUM_ARENAS (default 16, train.launch's)
+#   and PPO_CONFIG (default config/ppo.yaml) set the rollout; when set they are part of the
+#   command the registry records.
 set -euo pipefail
 variant=$1
 seed=${2:-0}
@@ -42,9 +44,17 @@ elif [ "$(head -n 1 "$run/commit")" != "$commit" ] && ! grep -qx "resumed at $co
   echo "resumed at $commit" >> "$run/commit"
   echo "train_variant: $name started at commit $(head -n 1 "$run/commit"), resumes at $commit"
 fi
+arenas=${NUM_ARENAS:-16}
+[ "$arenas" -ge 1 ] 2> /dev/null || { echo "train_variant: NUM_ARENAS must be a whole number >= 1, got '$arenas'" >&2; exit 2; }
+ppo_config=$(realpath -m "${PPO_CONFIG:-config/ppo.yaml}")
+[ -f "$ppo_config" ] || { echo "train_variant: PPO_CONFIG: no file $ppo_config" >&2; exit 2; }
+# What reproduces the run: the rollout's settings when they are not the defaults.
+env_prefix=""
+[ -z "${NUM_ARENAS:-}" ] || env_prefix+="NUM_ARENAS=$arenas "
+[ -z "${PPO_CONFIG:-}" ] || env_prefix+="PPO_CONFIG=$(realpath -m --relative-to=. "$ppo_config") "
 echo "train_variant: $name (variant $variant, network $network, game $game, training seed $seed), $steps steps, into $run (log: $run/launch.log)"
 roslaunch -p "$port" hideseek_world train.launch variant:="$variant" game:="$game" seed:="$seed" steps:="$steps" \
-  network:="$network" precision:="${PRECISION:-auto}" output_dir:="$run" > "$run/launch.log" 2>&1
+  num_arenas:="$arenas" ppo_config:="$ppo_config" network:="$network" precision:="${PRECISION:-auto}" output_dir:="$run" > "$run/launch.log" 2>&1
 # roslaunch exits 0 even when the hider dies: record only a run that trained all its steps.
 trained=$(tail -n 1 "$run/training_log.csv" | cut -d, -f2)
 if [ "${trained:-0}" -lt "$steps" ]; then
@@ -65,7 +75,7 @@ commits=$(paste -sd ';' "$run/commit" | sed 's/;/; /g')
 /usr/bin/python3 scripts/hideseek_registry.py record "$name" variant="$variant" network="$network" game="$game" \
   training_seed="$seed" steps="$trained" wall_s="${wall%.*}" precision="${precision:-unknown}" commit="$commits" \
   log="$docs/training_log.csv" curve="$docs/learning_curve.png" \
-  command="scripts/train_variant.sh $variant $seed $steps RUNS_DIR $network $name"
+  command="${env_prefix}scripts/train_variant.sh $variant $seed $steps RUNS_DIR $network $name"
 echo "train_variant: $name recorded in policies/policies.yaml; weights in $run/policy.pt"
 # What the run learned, beside its log: the evaluation (seeds 0-99, greedy, fp32) and six seeded
 # episodes drawn from above (seeds 0-5).
