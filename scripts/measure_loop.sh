@@ -5,7 +5,11 @@
 # update runs after them so that the processes are still there to be read), then the floor
 # again. Prints the efficiency (graph over the mean of the two floors), the hider's loop split per
 # update (its loop_profile.csv) and the CPU time this workspace's world, seeker and hider nodes
-# used per update (/proc/PID/stat), all over the same UPDATES updates. Run it with nothing else
+# used per update (/proc/PID/stat), all over the same UPDATES updates. It also prints the
+# efficiency at the graph's own speed: the PPO update is the same computation in the floor and
+# in the graph, so the graph's own update time, scaled by the floor's ratio of a whole update
+# loop to its PPO update, estimates what the floor would have taken in the same seconds; that
+# ratio does not depend on how fast the host runs at the moment, the floors' samples/s do. Run it with nothing else
 # on the machine, and compare only figures taken alternating: this kind of virtual machine drifts
 # by 10 to 40 % over minutes.
 # usage: scripts/measure_loop.sh [ARENAS=16] [PPO_CONFIG=config/ppo.yaml] [UPDATES=20] [LABEL] [roslaunch args ...]
@@ -25,8 +29,9 @@ shift $(($# < 4 ? $# : 4))
 network=${NETWORK:-ff}
 precision=${PRECISION:-auto}
 source scripts/env.sh
-floor() {
-  devel/lib/hideseek_hider/train_floor_bench "$config" "$arenas" 4 2 "$precision" "$network" | awk '$1 ~ /_samples_per_s$/ { print $2 }'
+floor() {  # "samples/s inference_s update_s" of the floor (train_floor_bench's own split per update)
+  devel/lib/hideseek_hider/train_floor_bench "$config" "$arenas" 4 2 "$precision" "$network" |
+    awk '/^# per update:/ { i = $5; u = $8 } $1 ~ /_samples_per_s$/ { s = $2 } END { print s, i, u }'
 }
 ticks() {  # CPU time (user + system, clock ticks) of this workspace's nodes of one package
   local t=0 p
@@ -36,7 +41,7 @@ ticks() {  # CPU time (user + system, clock ticks) of this workspace's nodes of 
   echo "$t"
 }
 rows() { if [ -f "$run/training_log.csv" ]; then wc -l < "$run/training_log.csv"; else echo 0; fi; }
-floor_before=$(floor)
+read -r floor_before fi0 fu0 <<< "$(floor)"
 run=$(mktemp -d)
 trap 'rm -rf "$run"' EXIT
 port=${ROS_PORT:-11533}
@@ -52,7 +57,7 @@ w0=$(ticks world) s0=$(ticks seeker) h0=$(ticks hider) r0=$(rows)
 until [ "$(rows)" -ge $((updates + 3)) ]; do died || sleep 0.02; done
 w1=$(ticks world) s1=$(ticks seeker) h1=$(ticks hider) r1=$(rows)
 wait $launch || true
-floor_after=$(floor)
+read -r floor_after fi1 fu1 <<< "$(floor)"
 # Rows r0 and r1 as read above (the polling may have seen them a few ms late; the log's own times are exact).
 graph=$(awk -F, -v a="$r0" -v b="$r1" 'NR == a { s0 = $2; t0 = $3 } NR == b { printf "%.0f", ($2 - s0) / ($3 - t0) }' \
   "$run/training_log.csv")
@@ -61,6 +66,10 @@ awk -v l="$label" -v f0="$floor_before" -v f1="$floor_after" -v g="$graph" -v n=
   -v w=$((w1 - w0)) -v s=$((s1 - s0)) -v h=$((h1 - h0)) 'BEGIN {
   printf "%s: floor %s / %s, graph %s samples/s, efficiency %.3f\n", l, f0, f1, g, 2 * g / (f0 + f1)
   printf "%s: core-seconds per update: world %.3f, seeker %.3f, hider %.3f\n", l, w / hz / n, s / hz / n, h / hz / n }'
-awk -F, -v l="$label" -v a="$r0" -v b="$r1" 'NR > a && NR <= b { w += $3; i += $4; u += $5; o += $6; n++ }
-  END { printf "%s: seconds per update: wait %.3f, inference %.3f, update %.3f, other %.3f\n", l, w / n, i / n, u / n, o / n }' \
+awk -F, -v l="$label" -v a="$r0" -v b="$r1" -v fi="$fi0 $fi1" -v fu="$fu0 $fu1" \
+  'NR > a && NR <= b { w += $3; i += $4; u += $5; o += $6; n++ }
+  END {
+    printf "%s: seconds per update: wait %.3f, inference %.3f, update %.3f, other %.3f\n", l, w / n, i / n, u / n, o / n
+    split(fi, x, " "); split(fu, y, " "); loop = (x[1] + y[1] + x[2] + y[2]) / (y[1] + y[2])
+    printf "%s: floor loop / floor update %.3f, efficiency at the graph'"'"'s own speed %.3f\n", l, loop, loop * u / (w + i + u + o) }' \
   "$run/loop_profile.csv"
