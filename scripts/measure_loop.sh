@@ -17,7 +17,8 @@
 #        scripts/measure_loop.sh 16 config/ppo.yaml 20 rt0 render_threads:=0
 #   NETWORK (ff), PRECISION (auto) and ROS_PORT (11533) come from the environment.
 set -euo pipefail
-config=$(realpath "${2:-$(dirname "$0")/../config/ppo.yaml}")
+config=$(realpath -m "${2:-$(dirname "$0")/../config/ppo.yaml}")
+[ -f "$config" ] || { echo "measure_loop: PPO_CONFIG: no file ${2:-config/ppo.yaml}" >&2; exit 2; }
 cd "$(dirname "$0")/.."
 arenas=${1:-16}
 updates=${3:-20}
