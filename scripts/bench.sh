@@ -9,6 +9,7 @@ ARENAS=${ARENAS:-16}
 SECONDS_PER_RUN=${SECONDS_PER_RUN:-10}
 ROS_UPDATES=${ROS_UPDATES:-20}
 FLOOR_UPDATES=${FLOOR_UPDATES:-4}
+ROLLOUT=$(awk '/^rollout_steps:/ { print $2 }' config/ppo.yaml)  # config/ppo.yaml's steps per arena per update
 echo "# world core: physics, labels and rendering of $ARENAS arenas at 84x84 in one process"
 devel/lib/hideseek_game/world_core_bench config/game.yaml config/variants/basic.yaml "$ARENAS" "$SECONDS_PER_RUN"
 echo "# world node in lockstep with two minimal agents as separate processes, $ARENAS arenas"
@@ -55,7 +56,7 @@ ros_train() {  # NETWORK: "samples_per_s update inference wait other" (shares of
   local run
   run=$(mktemp -d)
   roslaunch -p 11433 hideseek_world train.launch num_arenas:="$ARENAS" network:="$1" \
-    steps:=$((ARENAS * 64 * (ROS_UPDATES + 2))) output_dir:="$run" checkpoint_interval:=100000 >/dev/null 2>&1
+    steps:=$((ARENAS * ROLLOUT * (ROS_UPDATES + 2))) output_dir:="$run" checkpoint_interval:=100000 >/dev/null 2>&1
   awk -F, 'NR == 3 { s0 = $2; t0 = $3 } END { printf "%.0f ", ($2 - s0) / ($3 - t0) }' "$run/training_log.csv"
   awk -F, 'NR > 3 { w += $3; i += $4; u += $5; o += $6 }
     END { t = w + i + u + o; printf "%.3f %.3f %.3f %.3f\n", u / t, i / t, w / t, o / t }' "$run/loop_profile.csv"

@@ -10,7 +10,7 @@
 #   GAME (environment, default v2) is the game (train.launch's game); PRECISION (default auto) its
 #   precision; the one the hider chose is recorded. ROS_PORT (default 11700 + seed, + 50 for the
 #   GRU) is the run's ROS master port: set it to train two runs of one seed at once; its
-#   evaluation uses ROS_PORT + 1000 (HIDESEEK_PORT overrides). NUM_ARENAS (default 16, train.launch's)
+#   evaluation uses ROS_PORT + 1000 (HIDESEEK_PORT overrides). NUM_ARENAS (default: train.launch's, 16)
 #   and PPO_CONFIG (default config/ppo.yaml) set the rollout; when set they are part of the
 #   command the registry records.
 set -euo pipefail
@@ -44,17 +44,20 @@ elif [ "$(head -n 1 "$run/commit")" != "$commit" ] && ! grep -qx "resumed at $co
   echo "resumed at $commit" >> "$run/commit"
   echo "train_variant: $name started at commit $(head -n 1 "$run/commit"), resumes at $commit"
 fi
-arenas=${NUM_ARENAS:-16}
-[ "$arenas" -ge 1 ] 2> /dev/null || { echo "train_variant: NUM_ARENAS must be a whole number >= 1, got '$arenas'" >&2; exit 2; }
+rollout_args=()
+if [ -n "${NUM_ARENAS:-}" ]; then
+  [ "$NUM_ARENAS" -ge 1 ] 2> /dev/null || { echo "train_variant: NUM_ARENAS must be a whole number >= 1, got '$NUM_ARENAS'" >&2; exit 2; }
+  rollout_args+=(num_arenas:="$NUM_ARENAS")
+fi
 ppo_config=$(realpath -m "${PPO_CONFIG:-config/ppo.yaml}")
 [ -f "$ppo_config" ] || { echo "train_variant: PPO_CONFIG: no file $ppo_config" >&2; exit 2; }
 # What reproduces the run: the rollout's settings when they are not the defaults.
 env_prefix=""
-[ -z "${NUM_ARENAS:-}" ] || env_prefix+="NUM_ARENAS=$arenas "
+[ -z "${NUM_ARENAS:-}" ] || env_prefix+="NUM_ARENAS=$NUM_ARENAS "
 [ -z "${PPO_CONFIG:-}" ] || env_prefix+="PPO_CONFIG=$(realpath -m --relative-to=. "$ppo_config") "
 echo "train_variant: $name (variant $variant, network $network, game $game, training seed $seed), $steps steps, into $run (log: $run/launch.log)"
 roslaunch -p "$port" hideseek_world train.launch variant:="$variant" game:="$game" seed:="$seed" steps:="$steps" \
-  num_arenas:="$arenas" ppo_config:="$ppo_config" network:="$network" precision:="${PRECISION:-auto}" output_dir:="$run" > "$run/launch.log" 2>&1
+  "${rollout_args[@]}" ppo_config:="$ppo_config" network:="$network" precision:="${PRECISION:-auto}" output_dir:="$run" > "$run/launch.log" 2>&1
 # roslaunch exits 0 even when the hider dies: record only a run that trained all its steps.
 trained=$(tail -n 1 "$run/training_log.csv" | cut -d, -f2)
 if [ "${trained:-0}" -lt "$steps" ]; then
