@@ -10,6 +10,7 @@ SECONDS_PER_RUN=${SECONDS_PER_RUN:-10}
 ROS_UPDATES=${ROS_UPDATES:-20}
 FLOOR_UPDATES=${FLOOR_UPDATES:-4}
 ROLLOUT=$(awk '/^rollout_steps:/ { print $2 }' config/ppo.yaml)  # config/ppo.yaml's steps per arena per update
+[ -n "$ROLLOUT" ] || { echo "bench: config/ppo.yaml has no rollout_steps" >&2; exit 2; }
 echo "# world core: physics, labels and rendering of $ARENAS arenas at 84x84 in one process"
 devel/lib/hideseek_game/world_core_bench config/game.yaml config/variants/basic.yaml "$ARENAS" "$SECONDS_PER_RUN"
 echo "# world node in lockstep with two minimal agents as separate processes, $ARENAS arenas"
@@ -25,7 +26,7 @@ floor_bench() {  # PRECISION NETWORK: the floor's output
 }
 field() { awk -v k="$1" '$1 ~ k { print $2 }'; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
-loop_over_update() { awk '/^# per update:/ { printf "%.4f", ($5 + $8 + $11) / $8 }'; }  # the floor's loop / its PPO update
+loop_over_update() { awk '/^# per update:/ && $8 > 0 { printf "%.4f", ($5 + $8 + $11) / $8 }'; }  # the floor's loop / its PPO update
 ratio_to_mean() { awk -v a="$1" -v b="$2" -v c="$3" 'BEGIN { printf "%.2f", 2 * a / (b + c) }'; }  # A / mean(B, C)
 echo "# training floor: the network and PPO update in one process (2 intra-op threads, as the hider"
 echo "# node trains), on observations drawn before timing; in fp32 and in the default precision (auto)"
@@ -75,8 +76,11 @@ echo "train_efficiency $(ratio_to_mean "$ros" "$floor" "$floor_after")"
 # The same ratio at the graph's own speed: the PPO update is the same computation in the floor and
 # the graph, so the graph's update share times the floor's loop-to-update ratio (the mean of both
 # floors') is what the floor would have reached in the graph's seconds; the host's drift between
-# the floor runs and the graph does not move it (see docs/performance.md).
-loop_ratio=$(awk -v a="$(echo "$default" | loop_over_update)" -v b="$(echo "$after" | loop_over_update)" 'BEGIN { print (a + b) / 2 }')
+# the floor runs and the graph does not move it; it leans high where the other processes slow the
+# graph's update (see docs/performance.md).
+ratio_before=$(echo "$default" | loop_over_update) ratio_after=$(echo "$after" | loop_over_update)
+[ -n "$ratio_before" ] && [ -n "$ratio_after" ] || { echo "bench: train_floor_bench printed no split per update" >&2; exit 1; }
+loop_ratio=$(awk -v a="$ratio_before" -v b="$ratio_after" 'BEGIN { print (a + b) / 2 }')
 echo "train_efficiency_own_speed $(awk -v u="$update" -v r="$loop_ratio" 'BEGIN { printf "%.2f", u * r }')"
 echo "train_ros_update_share $update"
 echo "train_ros_inference_share $inference"

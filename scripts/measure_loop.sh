@@ -9,7 +9,9 @@
 # efficiency at the graph's own speed: the PPO update is the same computation in the floor and
 # in the graph, so the graph's own update time, scaled by the floor's ratio of a whole update
 # loop to its PPO update, estimates what the floor would have taken in the same seconds; that
-# ratio does not depend on how fast the host runs at the moment, the floors' samples/s do. Run it with nothing else
+# ratio does not depend on how fast the host runs at the moment, the floors' samples/s do. It
+# leans high: where the world's and the seeker's threads slow the learner's update in the graph,
+# that loss counts as the floor's. Run it with nothing else
 # on the machine, and compare only figures taken alternating: this kind of virtual machine drifts
 # by 10 to 40 % over minutes.
 # usage: scripts/measure_loop.sh [ARENAS=16] [PPO_CONFIG=config/ppo.yaml] [UPDATES=20] [LABEL] [roslaunch args ...]
@@ -30,9 +32,12 @@ shift $(($# < 4 ? $# : 4))
 network=${NETWORK:-ff}
 precision=${PRECISION:-auto}
 source scripts/env.sh
-floor() {  # "samples/s inference_s update_s" of the floor (train_floor_bench's own split per update)
-  devel/lib/hideseek_hider/train_floor_bench "$config" "$arenas" 4 2 "$precision" "$network" |
-    awk '/^# per update:/ { i = $5; u = $8 } $1 ~ /_samples_per_s$/ { s = $2 } END { print s, i, u }'
+floor() {  # "samples/s loop/update" of the floor: its whole loop over its PPO update, from its own split
+  local out
+  out=$(devel/lib/hideseek_hider/train_floor_bench "$config" "$arenas" 4 2 "$precision" "$network" |
+    awk '/^# per update:/ && $8 > 0 { r = ($5 + $8 + $11) / $8 } $1 ~ /_samples_per_s$/ { s = $2 } END { if (s && r) print s, r }')
+  [ -n "$out" ] || { echo "measure_loop: train_floor_bench gave no samples/s or no split per update" >&2; exit 1; }
+  echo "$out"
 }
 ticks() {  # CPU time (user + system, clock ticks) of this workspace's nodes of one package
   local t=0 p
@@ -42,7 +47,7 @@ ticks() {  # CPU time (user + system, clock ticks) of this workspace's nodes of 
   echo "$t"
 }
 rows() { if [ -f "$run/training_log.csv" ]; then wc -l < "$run/training_log.csv"; else echo 0; fi; }
-read -r floor_before fi0 fu0 <<< "$(floor)"
+out=$(floor) && read -r floor_before ratio0 <<< "$out"
 run=$(mktemp -d)
 trap 'rm -rf "$run"' EXIT
 port=${ROS_PORT:-11533}
@@ -58,7 +63,7 @@ w0=$(ticks world) s0=$(ticks seeker) h0=$(ticks hider) r0=$(rows)
 until [ "$(rows)" -ge $((updates + 3)) ]; do died || sleep 0.02; done
 w1=$(ticks world) s1=$(ticks seeker) h1=$(ticks hider) r1=$(rows)
 wait $launch || true
-read -r floor_after fi1 fu1 <<< "$(floor)"
+out=$(floor) && read -r floor_after ratio1 <<< "$out"
 # Rows r0 and r1 as read above (the polling may have seen them a few ms late; the log's own times are exact).
 graph=$(awk -F, -v a="$r0" -v b="$r1" 'NR == a { s0 = $2; t0 = $3 } NR == b { printf "%.0f", ($2 - s0) / ($3 - t0) }' \
   "$run/training_log.csv")
@@ -67,10 +72,10 @@ awk -v l="$label" -v f0="$floor_before" -v f1="$floor_after" -v g="$graph" -v n=
   -v w=$((w1 - w0)) -v s=$((s1 - s0)) -v h=$((h1 - h0)) 'BEGIN {
   printf "%s: floor %s / %s, graph %s samples/s, efficiency %.3f\n", l, f0, f1, g, 2 * g / (f0 + f1)
   printf "%s: core-seconds per update: world %.3f, seeker %.3f, hider %.3f\n", l, w / hz / n, s / hz / n, h / hz / n }'
-awk -F, -v l="$label" -v a="$r0" -v b="$r1" -v fi="$fi0 $fi1" -v fu="$fu0 $fu1" \
+awk -F, -v l="$label" -v a="$r0" -v b="$r1" -v r0="$ratio0" -v r1="$ratio1" \
   'NR > a && NR <= b { w += $3; i += $4; u += $5; o += $6; n++ }
   END {
     printf "%s: seconds per update: wait %.3f, inference %.3f, update %.3f, other %.3f\n", l, w / n, i / n, u / n, o / n
-    split(fi, x, " "); split(fu, y, " "); loop = (x[1] + y[1] + x[2] + y[2]) / (y[1] + y[2])
+    loop = (r0 + r1) / 2  # as make bench computes train_efficiency_own_speed
     printf "%s: floor loop / floor update %.3f, efficiency at the graph'"'"'s own speed %.3f\n", l, loop, loop * u / (w + i + u + o) }' \
   "$run/loop_profile.csv"

@@ -20,6 +20,7 @@ steps=${3:-2000000}
 runs=$(realpath -m "${4:-$HOME/hideseek_runs}")
 network=${5:-ff}
 game=${GAME:-v2}
+[ -z "${PPO_CONFIG:-}" ] || PPO_CONFIG=$(realpath -m "$PPO_CONFIG")  # as RUNS_DIR: from where it was called
 cd "$(dirname "$0")/.."
 source scripts/env.sh
 name=$variant
