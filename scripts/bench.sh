@@ -26,7 +26,6 @@ floor_bench() {  # PRECISION NETWORK: the floor's output
 }
 field() { awk -v k="$1" '$1 ~ k { print $2 }'; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
-loop_over_update() { awk '/^# per update:/ && $8 > 0 { printf "%.4f", ($5 + $8 + $11) / $8 }'; }  # the floor's loop / its PPO update
 ratio_to_mean() { awk -v a="$1" -v b="$2" -v c="$3" 'BEGIN { printf "%.2f", 2 * a / (b + c) }'; }  # A / mean(B, C)
 echo "# training floor: the network and PPO update in one process (2 intra-op threads, as the hider"
 echo "# node trains), on observations drawn before timing; in fp32 and in the default precision (auto)"
@@ -78,8 +77,8 @@ echo "train_efficiency $(ratio_to_mean "$ros" "$floor" "$floor_after")"
 # floors') is what the floor would have reached in the graph's seconds; the host's drift between
 # the floor runs and the graph does not move it; it leans high where the other processes slow the
 # graph's update (see docs/performance.md).
-ratio_before=$(echo "$default" | loop_over_update) ratio_after=$(echo "$after" | loop_over_update)
-[ -n "$ratio_before" ] && [ -n "$ratio_after" ] || { echo "bench: train_floor_bench printed no split per update" >&2; exit 1; }
+ratio_before=$(echo "$default" | field '^loop_over_update') ratio_after=$(echo "$after" | field '^loop_over_update')
+[ -n "$ratio_before" ] && [ -n "$ratio_after" ] || { echo "bench: train_floor_bench printed no loop_over_update" >&2; exit 1; }
 loop_ratio=$(awk -v a="$ratio_before" -v b="$ratio_after" 'BEGIN { print (a + b) / 2 }')
 echo "train_efficiency_own_speed $(awk -v u="$update" -v r="$loop_ratio" 'BEGIN { printf "%.2f", u * r }')"
 echo "train_ros_update_share $update"

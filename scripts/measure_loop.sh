@@ -11,9 +11,8 @@
 # loop to its PPO update, estimates what the floor would have taken in the same seconds; that
 # ratio does not depend on how fast the host runs at the moment, the floors' samples/s do. It
 # leans high: where the world's and the seeker's threads slow the learner's update in the graph,
-# that loss counts as the floor's. Run it with nothing else
-# on the machine, and compare only figures taken alternating: this kind of virtual machine drifts
-# by 10 to 40 % over minutes.
+# that loss counts as the floor's. Run it with nothing else on the machine, and compare only
+# figures taken alternating: this kind of virtual machine drifts by 10 to 40 % over minutes.
 # usage: scripts/measure_loop.sh [ARENAS=16] [PPO_CONFIG=config/ppo.yaml] [UPDATES=20] [LABEL] [roslaunch args ...]
 #   e.g. scripts/measure_loop.sh 32 /tmp/ppo_rollout32.yaml 20 32x32
 #        scripts/measure_loop.sh 16 config/ppo.yaml 20 rt0 render_threads:=0
@@ -32,11 +31,11 @@ shift $(($# < 4 ? $# : 4))
 network=${NETWORK:-ff}
 precision=${PRECISION:-auto}
 source scripts/env.sh
-floor() {  # "samples/s loop/update" of the floor: its whole loop over its PPO update, from its own split
+floor() {  # "samples/s loop_over_update" of the floor
   local out
   out=$(devel/lib/hideseek_hider/train_floor_bench "$config" "$arenas" 4 2 "$precision" "$network" |
-    awk '/^# per update:/ && $8 > 0 { r = ($5 + $8 + $11) / $8 } $1 ~ /_samples_per_s$/ { s = $2 } END { if (s && r) print s, r }')
-  [ -n "$out" ] || { echo "measure_loop: train_floor_bench gave no samples/s or no split per update" >&2; exit 1; }
+    awk '$1 ~ /_samples_per_s$/ { s = $2 } $1 == "loop_over_update" { r = $2 } END { if (s && r) print s, r }')
+  [ -n "$out" ] || { echo "measure_loop: train_floor_bench gave no samples/s or no loop_over_update" >&2; exit 1; }
   echo "$out"
 }
 ticks() {  # CPU time (user + system, clock ticks) of this workspace's nodes of one package

@@ -3,11 +3,13 @@
 // Usage: train_floor_bench CONFIG ARENAS UPDATES THREADS PRECISION(auto|fp32|bf16) [NETWORK(ff|gru)]
 // Prints `# precision: <reason>`, `# peak: <formula>`, `# blas: ...`, `# per update: inference, update, other`
 // (seconds per timed update, to set beside the hider's loop profile), then `train_floor_<fp32|bf16>_samples_per_s N`
-// (ff) or `train_gru_<fp32|bf16>_samples_per_s N` (gru: recurrent PPO over sequences), and
+// (ff) or `train_gru_<fp32|bf16>_samples_per_s N` (gru: recurrent PPO over sequences),
+// loop_over_update (the timed loop's seconds over its PPO updates' seconds), and
 // flops_per_sample (counted from the layers, trainingFlopsPerSample), gflops (achieved),
 // peak_gflops and peak_fraction (over the CPU's peak for the precision, detectCpuPeak).
 // The observations, rewards and done flags are drawn once, before the clock starts, and cycled:
 // drawing 16 random images per step would be timed as training, which the graph does not pay.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -81,6 +83,9 @@ int main(int argc, char** argv) {
               (seconds - act_s - update_s) / updates);
   std::printf("%s_%s_samples_per_s %.0f\n", network == hideseek_hider::NetworkKind::kGru ? "train_gru" : "train_floor",
               hideseek_hider::precisionName(choice.precision), samples_per_s);
+  // The whole loop's seconds over the PPO update's: with the graph's own update time it estimates the
+  // floor at the graph's speed (make bench's train_efficiency_own_speed, scripts/measure_loop.sh).
+  std::printf("loop_over_update %.4f\n", seconds / std::max(update_s, 1e-9));
   std::printf("flops_per_sample %.4g\n", flops);
   std::printf("gflops %.1f\n", flops * samples_per_s / 1e9);
   std::printf("peak_gflops %.1f\n", peak.gflops(choice.precision));
