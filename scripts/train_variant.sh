@@ -10,9 +10,9 @@
 #   GAME (environment, default v2) is the game (train.launch's game); PRECISION (default auto) its
 #   precision; the one the hider chose is recorded. ROS_PORT (default 11700 + seed, + 50 for the
 #   GRU) is the run's ROS master port: set it to train two runs of one seed at once; its
-#   evaluation uses ROS_PORT + 1000 (HIDESEEK_PORT overrides). NUM_ARENAS (default: train.launch's, 16)
-#   and PPO_CONFIG (default config/ppo.yaml) set the rollout; when set they are part of the
-#   command the registry records.
+#   evaluation uses ROS_PORT + 1000 (HIDESEEK_PORT overrides). NUM_ARENAS and PPO_CONFIG (default:
+#   train.launch's, 16 and config/ppo.yaml) set the rollout; when set they are part of the command
+#   the registry records.
 set -euo pipefail
 variant=$1
 seed=${2:-0}
@@ -50,15 +50,17 @@ if [ -n "${NUM_ARENAS:-}" ]; then
   [ "$NUM_ARENAS" -ge 1 ] 2> /dev/null || { echo "train_variant: NUM_ARENAS must be a whole number >= 1, got '$NUM_ARENAS'" >&2; exit 2; }
   rollout_args+=(num_arenas:="$NUM_ARENAS")
 fi
-ppo_config=$(realpath -m "${PPO_CONFIG:-config/ppo.yaml}")
-[ -f "$ppo_config" ] || { echo "train_variant: PPO_CONFIG: no file $ppo_config" >&2; exit 2; }
+if [ -n "${PPO_CONFIG:-}" ]; then
+  [ -f "$PPO_CONFIG" ] || { echo "train_variant: PPO_CONFIG: no file $PPO_CONFIG" >&2; exit 2; }
+  rollout_args+=(ppo_config:="$PPO_CONFIG")
+fi
 # What reproduces the run: the rollout's settings when they are not the defaults.
 env_prefix=""
 [ -z "${NUM_ARENAS:-}" ] || env_prefix+="NUM_ARENAS=$NUM_ARENAS "
-[ -z "${PPO_CONFIG:-}" ] || env_prefix+="PPO_CONFIG=$(realpath -m --relative-to=. "$ppo_config") "
+[ -z "${PPO_CONFIG:-}" ] || env_prefix+="PPO_CONFIG=$(realpath -m --relative-to=. "$PPO_CONFIG") "
 echo "train_variant: $name (variant $variant, network $network, game $game, training seed $seed), $steps steps, into $run (log: $run/launch.log)"
 roslaunch -p "$port" hideseek_world train.launch variant:="$variant" game:="$game" seed:="$seed" steps:="$steps" \
-  "${rollout_args[@]}" ppo_config:="$ppo_config" network:="$network" precision:="${PRECISION:-auto}" output_dir:="$run" > "$run/launch.log" 2>&1
+  "${rollout_args[@]}" network:="$network" precision:="${PRECISION:-auto}" output_dir:="$run" > "$run/launch.log" 2>&1
 # roslaunch exits 0 even when the hider dies: record only a run that trained all its steps.
 trained=$(tail -n 1 "$run/training_log.csv" | cut -d, -f2)
 if [ "${trained:-0}" -lt "$steps" ]; then
