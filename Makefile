@@ -5,7 +5,7 @@ CATKIN := source scripts/env.sh && catkin_make -DCMAKE_BUILD_TYPE=Release \
 	-DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=ON
 JOBS ?= $(shell nproc)
 
-.PHONY: deps build run test bench reproduce clean
+.PHONY: deps build run test bench reproduce sweep clean
 
 deps:
 	scripts/install_deps.sh
@@ -26,6 +26,11 @@ bench: build
 # Table 2, the analysis of every variant with a shipped policy, Table 3 and the figures, in docs/report.
 reproduce: build
 	scripts/reproduce.sh
+
+# The sweep's queue (config/sweep.yaml) in the background, from its own worktree at the pinned
+# commit: scripts/sweep.sh status | pause | resume | stop.
+sweep: deps
+	scripts/sweep.sh start
 
 clean:
 	rm -rf build devel install

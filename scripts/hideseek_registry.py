@@ -29,6 +29,8 @@ usage:
                                                       registries disagree with each other or the tree
 """
 import argparse
+import contextlib
+import fcntl
 import glob
 import os
 import shutil
@@ -42,8 +44,8 @@ REGISTRY = os.path.join(ROOT, "policies", "policies.yaml")
 PAPER = os.path.join(ROOT, "config", "paper_reference.yaml")
 NETWORKS = ("ff", "gru")
 # Keys a run may carry (the C++ loader refuses any other, so that a typo is found).
-RUN_KEYS = ("variant", "network", "game", "training_seed", "steps", "wall_s", "precision", "commit", "log",
-            "curve", "command", "note", "weights")
+RUN_KEYS = ("variant", "network", "game", "training_seed", "steps", "wall_s", "paused_s", "precision", "commit",
+            "log", "curve", "command", "note", "weights")
 REQUIRED = ("variant", "network", "game")
 
 
@@ -167,13 +169,26 @@ def _value(text):
     return text
 
 
+@contextlib.contextmanager
+def _locked(registry):
+    """Holds an exclusive lock beside the registry, so that two runs recording at once (the sweep's
+    concurrent runs) do not lose each other's entries."""
+    with open(registry + ".lock", "a") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+
+
 def record(name, fields, registry=REGISTRY):
-    entries = runs(registry)
-    entry = dict(entries.get(name, {}))
-    entry.update(fields)
-    entries[name] = {k: entry[k] for k in RUN_KEYS if k in entry}
-    _write(entries, registry)
-    runs(registry)  # refuse what was just written if it is malformed
+    with _locked(registry):
+        entries = runs(registry)
+        entry = dict(entries.get(name, {}))
+        entry.update(fields)
+        entries[name] = {k: entry[k] for k in RUN_KEYS if k in entry}
+        _write(entries, registry)
+        runs(registry)  # refuse what was just written if it is malformed
 
 
 def ship(name, weights, registry=REGISTRY):

@@ -12,7 +12,13 @@
 #   GRU) is the run's ROS master port: set it to train two runs of one seed at once; its
 #   evaluation uses ROS_PORT + 1000 (HIDESEEK_PORT overrides). NUM_ARENAS and PPO_CONFIG (default:
 #   train.launch's, 16 and config/ppo.yaml) set the rollout; when set they are part of the command
-#   the registry records.
+#   the registry records. HIDER_THREADS (default train.launch's, 2) is the learner's intra-op
+#   threads (1 when two runs share two cores). RECORD_ROOT (default this checkout) is the checkout
+#   that receives docs/runs/<run>/ and the registry entry: the sweep trains from its own pinned
+#   worktree and records into the main checkout. PAUSED_FILE (default none) holds the seconds the
+#   run was held paused (the sweep writes it), read when the run is recorded: they are recorded as
+#   paused_s and left out of wall_s. EVAL_MODES (default greedy) is
+#   passed to evaluate_run.sh.
 set -euo pipefail
 variant=$1
 seed=${2:-0}
@@ -21,8 +27,12 @@ runs=$(realpath -m "${4:-$HOME/hideseek_runs}")
 network=${5:-ff}
 game=${GAME:-v2}
 [ -z "${PPO_CONFIG:-}" ] || PPO_CONFIG=$(realpath -m "$PPO_CONFIG")  # as RUNS_DIR: from where it was called
+[ -z "${RECORD_ROOT:-}" ] || RECORD_ROOT=$(realpath "$RECORD_ROOT")
 cd "$(dirname "$0")/.."
 source scripts/env.sh
+records=${RECORD_ROOT:-$PWD}
+[ -f "$records/policies/policies.yaml" ] || { echo "train_variant: RECORD_ROOT: no policies/policies.yaml in $records" >&2; exit 2; }
+registry=(/usr/bin/python3 scripts/hideseek_registry.py --registry "$records/policies/policies.yaml")
 name=$variant
 [ "$network" = ff ] || name=${name}_$network
 name=${6:-${name}_seed$seed}
@@ -50,6 +60,10 @@ if [ -n "${NUM_ARENAS:-}" ]; then
   [ "$NUM_ARENAS" -ge 1 ] 2> /dev/null || { echo "train_variant: NUM_ARENAS must be a whole number >= 1, got '$NUM_ARENAS'" >&2; exit 2; }
   rollout_args+=(num_arenas:="$NUM_ARENAS")
 fi
+if [ -n "${HIDER_THREADS:-}" ]; then
+  [ "$HIDER_THREADS" -ge 1 ] 2> /dev/null || { echo "train_variant: HIDER_THREADS must be a whole number >= 1, got '$HIDER_THREADS'" >&2; exit 2; }
+  rollout_args+=(hider_threads:="$HIDER_THREADS")
+fi
 if [ -n "${PPO_CONFIG:-}" ]; then
   [ -f "$PPO_CONFIG" ] || { echo "train_variant: PPO_CONFIG: no file $PPO_CONFIG" >&2; exit 2; }
   rollout_args+=(ppo_config:="$PPO_CONFIG")
@@ -57,6 +71,7 @@ fi
 # What reproduces the run: the rollout's settings when they are not the defaults.
 env_prefix=""
 [ -z "${NUM_ARENAS:-}" ] || env_prefix+="NUM_ARENAS=$NUM_ARENAS "
+[ -z "${HIDER_THREADS:-}" ] || env_prefix+="HIDER_THREADS=$HIDER_THREADS "
 [ -z "${PPO_CONFIG:-}" ] || env_prefix+="PPO_CONFIG=$(realpath -m --relative-to=. "$PPO_CONFIG") "
 echo "train_variant: $name (variant $variant, network $network, game $game, training seed $seed), $steps steps, into $run (log: $run/launch.log)"
 roslaunch -p "$port" hideseek_world train.launch variant:="$variant" game:="$game" seed:="$seed" steps:="$steps" \
@@ -68,7 +83,7 @@ if [ "${trained:-0}" -lt "$steps" ]; then
   exit 1
 fi
 devel/lib/hideseek_hider/export_policy "$run/checkpoint.pt" "$run/policy.pt"
-docs="docs/runs/$name"
+docs="$records/docs/runs/$name"
 mkdir -p "$docs"
 cp "$run/training_log.csv" "$docs/training_log.csv"
 /usr/bin/python3 src/hideseek_analysis/scripts/plot_learning_curve.py "$docs/training_log.csv" "$docs/learning_curve.png" \
@@ -77,17 +92,23 @@ cp "$run/training_log.csv" "$docs/training_log.csv"
 # start's, since each resume rewrites launch.log.
 precision=$(grep -oE 'PPO, network [a-z]+, on [^ ]+ in [^,]*' "$run/launch.log" | tail -n 1 | grep -oE 'bf16|fp32' | head -n 1)
 wall=$(tail -n 1 "$run/training_log.csv" | cut -d, -f3)
+paused=0
+[ -z "${PAUSED_FILE:-}" ] || [ ! -s "$PAUSED_FILE" ] || paused=$(head -n 1 "$PAUSED_FILE")
+paused=${paused%.*}
+[ "$paused" -ge 0 ] 2> /dev/null || { echo "train_variant: $PAUSED_FILE must hold a number of seconds >= 0, holds '$paused'" >&2; exit 2; }
+paused_field=()
+[ "$paused" = 0 ] || paused_field=(paused_s="$paused")
 commits=$(paste -sd ';' "$run/commit" | sed 's/;/; /g')
-/usr/bin/python3 scripts/hideseek_registry.py record "$name" variant="$variant" network="$network" game="$game" \
-  training_seed="$seed" steps="$trained" wall_s="${wall%.*}" precision="${precision:-unknown}" commit="$commits" \
-  log="$docs/training_log.csv" curve="$docs/learning_curve.png" \
+"${registry[@]}" record "$name" variant="$variant" network="$network" game="$game" \
+  training_seed="$seed" steps="$trained" wall_s="$((${wall%.*} - paused))" "${paused_field[@]}" precision="${precision:-unknown}" commit="$commits" \
+  log="docs/runs/$name/training_log.csv" curve="docs/runs/$name/learning_curve.png" \
   command="${env_prefix}scripts/train_variant.sh $variant $seed $steps RUNS_DIR $network $name"
-echo "train_variant: $name recorded in policies/policies.yaml; weights in $run/policy.pt"
+echo "train_variant: $name recorded in $records/policies/policies.yaml; weights in $run/policy.pt"
 # What the run learned, beside its log: the evaluation (seeds 0-99, greedy, fp32) and six seeded
 # episodes drawn from above (seeds 0-5).
 # On its own port (the run's + 1000), so that two runs finishing together do not share a master.
-HIDESEEK_PORT=${HIDESEEK_PORT:-$((port + 1000))} scripts/evaluate_run.sh "$name" "$run/policy.pt"
+HIDESEEK_PORT=${HIDESEEK_PORT:-$((port + 1000))} RECORD_ROOT=$records scripts/evaluate_run.sh "$name" "$run/policy.pt"
 if [ "${SHIP:-0}" = 1 ]; then
-  /usr/bin/python3 scripts/hideseek_registry.py ship "$name" "$run/policy.pt"
+  "${registry[@]}" ship "$name" "$run/policy.pt"
   echo "train_variant: $name shipped as the $variant policy"
 fi

@@ -56,7 +56,7 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
     r.steps = static_cast<long long>(f.number("steps", 0, 0, static_cast<double>(kMaxSteps)));
     const std::string weights = f.text("weights", "", {});
     // Recorded for people and the scripts; read here so that a typo in a key is still refused.
-    for (const char* key : {"wall_s", "precision", "commit", "log", "curve", "command", "note"}) {
+    for (const char* key : {"wall_s", "paused_s", "precision", "commit", "log", "curve", "command", "note"}) {
       if (f.has(key)) f.child(key);
     }
     f.rejectUnknown();

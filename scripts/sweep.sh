@@ -1,0 +1,269 @@
+#!/usr/bin/env bash
+# The sweep's queue: trains every missing run of config/sweep.yaml (variants x training seeds,
+# seed-major) from a git worktree built at the pinned commit, evaluates each run the moment it
+# finishes (seeds 0-99, greedy and sampled) and records it into this checkout (docs/runs/<run>/
+# and policies/policies.yaml), ready to commit. Runs resume from their checkpoints.
+#
+# usage: scripts/sweep.sh [COMMAND]
+#   start    (default) start the queue in the background (it builds the worktree first when needed)
+#            and return; a queue already running is left alone
+#   run      the queue in the foreground (what start runs)
+#   status   the pin, and every run in queue order: done (with its evaluation), training (its
+#            steps), partial (a checkpoint), lost (recorded, weights gone) or missing
+#   pause    SIGSTOP every training run (for make bench, timing work, make test); the paused time
+#            is recorded apart from the run's wall time
+#   resume   SIGCONT them
+#   stop     stop the queue and its runs (each resumes from its last checkpoint at the next start)
+#
+# SWEEP_DIR (default ~/hideseek_sweep) holds the worktree (tree/), the runs' weights and
+# checkpoints (runs/<run>/), the logs (logs/) and the queue's state. SWEEP_<KEY> overrides a key of
+# config/sweep.yaml (SWEEP_SEEDS="0 1 2 3 4", SWEEP_JOBS=2, SWEEP_VARIANTS="basic slowerhider").
+set -euo pipefail
+cd "$(dirname "$0")/.."
+main=$PWD
+source scripts/env.sh
+dir=$(realpath -m "${SWEEP_DIR:-$HOME/hideseek_sweep}")
+tree=$dir/tree
+runs=$dir/runs
+state=$dir/state
+mkdir -p "$runs" "$state" "$dir/logs"
+
+say() { echo "sweep $(date +%H:%M:%S): $*"; }
+die() { echo "sweep: $*" >&2; exit 2; }
+
+# config/sweep.yaml, with SWEEP_<KEY> overrides; lists come out space-separated.
+setting() {
+  local key=$1 env_name
+  env_name=SWEEP_$(echo "$1" | tr '[:lower:]' '[:upper:]')
+  if [ -n "${!env_name:-}" ]; then echo "${!env_name}"; return; fi
+  /usr/bin/python3 - "$main/config/sweep.yaml" "$key" <<'PY'
+import sys, yaml
+with open(sys.argv[1]) as f:
+    c = yaml.safe_load(f) or {}
+if sys.argv[2] not in c:
+    sys.exit("sweep: config/sweep.yaml has no key %r" % sys.argv[2])
+v = c[sys.argv[2]]
+print(" ".join(str(x) for x in v) if isinstance(v, list) else v)
+PY
+}
+pin=$(setting commit)
+seeds=$(setting seeds)
+steps=$(setting steps)
+network=$(setting network)
+precision=$(setting precision)
+jobs=$(setting jobs)
+threads=$(setting hider_threads)
+port_base=$(setting port)
+for n in "$steps" "$jobs" "$threads" "$port_base" $seeds; do
+  [ "$n" -ge 0 ] 2> /dev/null || die "config/sweep.yaml: '$n' is not a whole number (steps, jobs, hider_threads, port, seeds)"
+done
+[ "$jobs" -ge 1 ] || die "config/sweep.yaml: jobs must be >= 1"
+variants=$(setting variants)
+if [ "$variants" = all ]; then variants=$(/usr/bin/python3 scripts/hideseek_registry.py variants --paper-order | tr '\n' ' '); fi
+known=$(/usr/bin/python3 scripts/hideseek_registry.py variants | tr '\n' ' ')
+for v in $variants; do
+  case " $known " in *" $v "*) ;; *) die "config/sweep.yaml: variants: no variant '$v' in config/variants" ;; esac
+done
+run_name() { if [ "$network" = ff ]; then echo "${1}_seed$2"; else echo "${1}_${network}_seed$2"; fi; }
+
+# The queue in seed-major order: "NAME VARIANT SEED" lines.
+queue() {
+  local s v
+  for s in $seeds; do for v in $variants; do echo "$(run_name "$v" "$s") $v $s"; done; done
+}
+
+# A run is done when this checkout records it with all its steps and both evaluations.
+recorded_steps() {
+  /usr/bin/python3 -c 'import sys; sys.path.insert(0, "scripts"); import hideseek_registry as r
+e = r.runs().get(sys.argv[1]); print(e.get("steps", 0) if e else 0)' "$1"
+}
+is_done() {
+  [ "$(recorded_steps "$1")" -ge "$steps" ] && [ -s "docs/runs/$1/evaluation.csv" ] && [ -s "docs/runs/$1/sampled/evaluation.csv" ]
+}
+
+# The process tree under a PID (itself first).
+tree_pids() {
+  local pid=$1 child
+  echo "$pid"
+  for child in $(ps -o pid= --ppid "$pid" 2> /dev/null); do tree_pids "$child"; done
+}
+alive() { [ -n "${1:-}" ] && kill -0 "$1" 2> /dev/null; }
+queue_pid() { local p; p=$(cat "$state/queue.pid" 2> /dev/null || true); alive "$p" && echo "$p" || true; }
+job_pids() { local f p; for f in "$state"/job.*; do [ -e "$f" ] || continue; p=$(cat "$f"); alive "$p" && echo "$p"; done; true; }
+port_free() { ! (exec 3<> "/dev/tcp/127.0.0.1/$1") 2> /dev/null; }
+
+native_bf16() { grep -qwE 'avx512_bf16|amx_bf16' /proc/cpuinfo; }
+
+# The worktree at the pinned commit, built (catkin_make, Release, no tests) once per commit.
+prepare_tree() {
+  [ "$pin" != PIN ] || die "config/sweep.yaml: commit is not set (pin a commit of main)"
+  git rev-parse --verify -q "$pin^{commit}" > /dev/null || die "config/sweep.yaml: commit $pin is not in this repository (fetch it first)"
+  pin=$(git rev-parse "$pin")
+  git worktree prune
+  if [ ! -e "$tree/.git" ]; then
+    say "creating the worktree $tree at $pin"
+    git worktree add --detach "$tree" "$pin" > /dev/null
+  elif [ "$(git -C "$tree" rev-parse HEAD)" != "$pin" ]; then
+    say "moving the worktree from $(git -C "$tree" rev-parse --short=12 HEAD) to the new pin $pin"
+    git -C "$tree" checkout -q --detach "$pin"
+  fi
+  [ -z "$(git -C "$tree" status --porcelain)" ] || die "the worktree $tree has uncommitted changes; a sweep run trains from a clean tree (git -C $tree status)"
+  if [ "$(cat "$tree/.sweep_built" 2> /dev/null || true)" != "$pin" ]; then
+    say "building the worktree at $pin (log: $dir/logs/build.log)"
+    (cd "$tree" && source scripts/env.sh && catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+      -DPython3_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=OFF -j"$(nproc)") > "$dir/logs/build.log" 2>&1 \
+      || die "the worktree's build failed: $dir/logs/build.log"
+    echo "$pin" > "$tree/.sweep_built"
+  fi
+}
+
+# One run: train (or resume), export, record and evaluate into this checkout.
+job() {
+  local name=$1 variant=$2 seed=$3 slot=$4 port rc
+  port=$((port_base + 10 * slot))
+  for p in "$port" $((port + 1)) $((port + 2)); do
+    port_free "$p" || { say "$name: port $p is in use; not started"; return 3; }
+  done
+  [ -z "$(git -C "$tree" status --porcelain)" ] || { say "$name: the worktree is not clean; not started"; return 3; }
+  say "$name: training (slot $slot, port $port, $threads learner threads; log $dir/logs/$name.log)"
+  set +e
+  RECORD_ROOT=$main PRECISION=$precision HIDER_THREADS=$threads ROS_PORT=$port HIDESEEK_PORT=$((port + 1)) \
+    EVAL_MODES="greedy sampled" PAUSED_FILE=$runs/$name/paused_s \
+    "$tree/scripts/train_variant.sh" "$variant" "$seed" "$steps" "$runs" "$network" "$name" > "$dir/logs/$name.log" 2>&1
+  rc=$?
+  set -e
+  if [ $rc -eq 0 ]; then
+    say "$name: done: $(grep 'evaluate_run:.*(greedy)\|evaluate_run:.*(sampled)' "$dir/logs/$name.log" | sed 's/.*(\(greedy\|sampled\)): \([^(]*\).*/\1 \2/' | paste -sd ';')"
+  else
+    say "$name: failed (exit $rc); see $dir/logs/$name.log"
+  fi
+  return $rc
+}
+
+run_queue() {
+  exec 9> "$state/queue.lock"
+  flock -n 9 || die "a queue is already running (pid $(cat "$state/queue.pid" 2> /dev/null))"
+  echo $$ > "$state/queue.pid"
+  rm -f "$state"/job.* "$state/stop"
+  if [ -e "$state/paused" ]; then say "a pause from an earlier queue is cleared (its runs were stopped)"; rm -f "$state/paused"; fi
+  native_bf16 || die "this CPU has no native bf16 (avx512_bf16 or amx_bf16): sweep runs train only in bf16 on such a CPU; evaluate and analyse here instead"
+  prepare_tree
+  say "queue: $(queue | wc -l) runs (seeds $seeds; $steps steps; $network; $precision; $jobs at once, $threads learner threads each) at $(git rev-parse --short=12 "$pin")"
+  trap 'say "stopping"; for p in $(job_pids); do kill -INT $(tree_pids "$p") 2> /dev/null || true; done; wait; exit 143' INT TERM
+  declare -A slot_of failed
+  local name variant seed slot free started
+  while [ ! -e "$state/stop" ]; do
+    started=0
+    if [ ! -e "$state/paused" ] && [ "${#slot_of[@]}" -lt "$jobs" ]; then
+      while read -r name variant seed; do
+        [ -z "${slot_of[$name]:-}" ] && [ -z "${failed[$name]:-}" ] || continue
+        is_done "$name" && continue
+        for ((slot = 0; slot < jobs; slot++)); do
+          free=1
+          for n in "${!slot_of[@]}"; do [ "${slot_of[$n]}" != "$slot" ] || free=0; done
+          [ $free = 0 ] || break
+        done
+        job "$name" "$variant" "$seed" "$slot" &
+        echo $! > "$state/job.$name"
+        slot_of[$name]=$slot
+        started=1
+        break
+      done < <(queue)
+    fi
+    [ $started = 1 ] && continue
+    if [ "${#slot_of[@]}" = 0 ]; then
+      if [ ! -e "$state/paused" ]; then
+        local left=0
+        while read -r name _ _; do is_done "$name" || left=$((left + 1)); done < <(queue)
+        if [ $left = 0 ]; then say "every run of the queue is done"; else say "nothing left to start: $left runs failed (see the logs); start again to retry them"; fi
+        break
+      fi
+      sleep 5
+      continue
+    fi
+    sleep 5
+    for name in "${!slot_of[@]}"; do
+      if ! alive "$(cat "$state/job.$name")"; then
+        wait "$(cat "$state/job.$name")" || failed[$name]=1
+        rm -f "$state/job.$name"
+        unset "slot_of[$name]"
+      fi
+    done
+  done
+  rm -f "$state/queue.pid"
+}
+
+status() {
+  local name variant seed f steps_now
+  echo "sweep: pin $(git rev-parse --short=12 "$pin" 2> /dev/null || echo "$pin") (config/sweep.yaml), worktree $tree, runs $runs"
+  echo "sweep: queue $(if [ -n "$(queue_pid)" ]; then echo "running (pid $(queue_pid))"; else echo "not running"; fi)$([ -e "$state/paused" ] && echo ", PAUSED since $(date -d @"$(cat "$state/paused")" +%H:%M:%S)")"
+  native_bf16 || echo "sweep: this CPU has no native bf16: the queue will not train here"
+  while read -r name variant seed; do
+    if is_done "$name"; then
+      printf '%-34s done      greedy %s, sampled %s (living steps, success); %s\n' "$name" \
+        "$(tail -n 1 "docs/runs/$name/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
+        "$(tail -n 1 "docs/runs/$name/sampled/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
+        "$([ -s "$runs/$name/policy.pt" ] && echo "weights in $runs/$name" || echo "weights not on this machine")"
+    elif [ -e "$state/job.$name" ] && alive "$(cat "$state/job.$name")"; then
+      steps_now=$(tail -n 1 "$runs/$name/training_log.csv" 2> /dev/null | cut -d, -f2,3 || true)
+      printf '%-34s training  %s steps of %s, %s s\n' "$name" "${steps_now%,*}" "$steps" "${steps_now#*,}"
+    elif [ -s "$runs/$name/checkpoint.pt" ]; then
+      printf '%-34s partial   checkpoint in %s (resumes at the next start)\n' "$name" "$runs/$name"
+    else
+      printf '%-34s missing\n' "$name"
+    fi
+  done < <(queue)
+}
+
+pause() {
+  [ ! -e "$state/paused" ] || { echo "sweep: already paused"; return 0; }
+  date +%s > "$state/paused"
+  local p n=0
+  for p in $(job_pids); do kill -STOP $(tree_pids "$p") 2> /dev/null || true; n=$((n + 1)); done
+  echo "sweep: paused ($n runs held; the queue starts no new run until 'scripts/sweep.sh resume')"
+}
+
+resume() {
+  [ -e "$state/paused" ] || { echo "sweep: not paused"; return 0; }
+  local since p f name held
+  since=$(cat "$state/paused")
+  held=$(($(date +%s) - since))
+  for f in "$state"/job.*; do
+    [ -e "$f" ] || continue
+    p=$(cat "$f")
+    alive "$p" || continue
+    kill -CONT $(tree_pids "$p") 2> /dev/null || true
+    name=${f##*/job.}
+    mkdir -p "$runs/$name"
+    echo $(($(cat "$runs/$name/paused_s" 2> /dev/null || echo 0) + held)) > "$runs/$name/paused_s"
+  done
+  rm -f "$state/paused"
+  echo "sweep: resumed after $held s"
+}
+
+stop() {
+  local q p
+  q=$(queue_pid)
+  touch "$state/stop"
+  [ -e "$state/paused" ] && resume > /dev/null
+  for p in $(job_pids); do kill -INT $(tree_pids "$p") 2> /dev/null || true; done
+  [ -z "$q" ] || kill -TERM "$q" 2> /dev/null || true
+  for _ in $(seq 60); do [ -z "$(queue_pid)$(job_pids)" ] && break; sleep 1; done
+  for p in $(job_pids); do kill -KILL $(tree_pids "$p") 2> /dev/null || true; done
+  echo "sweep: stopped; 'scripts/sweep.sh start' resumes each run from its last checkpoint"
+}
+
+case "${1:-start}" in
+  start)
+    if [ -n "$(queue_pid)" ]; then echo "sweep: the queue is already running (pid $(queue_pid)); scripts/sweep.sh status"; exit 0; fi
+    native_bf16 || die "this CPU has no native bf16 (avx512_bf16 or amx_bf16): sweep runs train only in bf16 on such a CPU; evaluate and analyse here instead"
+    nohup setsid "$0" run >> "$dir/logs/queue.log" 2>&1 < /dev/null &
+    echo "sweep: queue started (log: $dir/logs/queue.log; scripts/sweep.sh status)"
+    ;;
+  run) run_queue ;;
+  status) status ;;
+  pause) pause ;;
+  resume) resume ;;
+  stop) stop ;;
+  *) die "unknown command '$1' (start, run, status, pause, resume, stop)" ;;
+esac
