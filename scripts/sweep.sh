@@ -8,6 +8,7 @@
 #   start    (default) start the queue in the background (it builds the worktree first when needed)
 #            and return; a queue already running is left alone
 #   run      the queue in the foreground (what start runs)
+#   build    only create and build the worktree at the pin
 #   status   the pin, and every run in queue order: done (with its evaluation), training (its
 #            steps), partial (a checkpoint), lost (recorded, weights gone) or missing
 #   pause    SIGSTOP every training run (for make bench, timing work, make test); the paused time
@@ -261,9 +262,10 @@ case "${1:-start}" in
     echo "sweep: queue started (log: $dir/logs/queue.log; scripts/sweep.sh status)"
     ;;
   run) run_queue ;;
+  build) prepare_tree ;;
   status) status ;;
   pause) pause ;;
   resume) resume ;;
   stop) stop ;;
-  *) die "unknown command '$1' (start, run, status, pause, resume, stop)" ;;
+  *) die "unknown command '$1' (start, run, build, status, pause, resume, stop)" ;;
 esac
