@@ -109,12 +109,12 @@ prepare_tree() {
     git -C "$tree" checkout -q --detach "$pin"
   fi
   [ -z "$(git -C "$tree" status --porcelain)" ] || die "the worktree $tree has uncommitted changes; a sweep run trains from a clean tree (git -C $tree status)"
-  if [ "$(cat "$tree/.sweep_built" 2> /dev/null || true)" != "$pin" ]; then
+  if [ "$(cat "$state/built" 2> /dev/null || true)" != "$pin" ]; then
     say "building the worktree at $pin (log: $dir/logs/build.log)"
     (cd "$tree" && source scripts/env.sh && catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
       -DPython3_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=OFF -j"$(nproc)") > "$dir/logs/build.log" 2>&1 \
       || die "the worktree's build failed: $dir/logs/build.log"
-    echo "$pin" > "$tree/.sweep_built"
+    echo "$pin" > "$state/built"
   fi
 }
 
@@ -151,7 +151,7 @@ run_queue() {
   prepare_tree
   say "queue: $(queue | wc -l) runs (seeds $seeds; $steps steps; $network; $precision; $jobs at once, $threads learner threads each) at $(git rev-parse --short=12 "$pin")"
   trap 'say "stopping"; for p in $(job_pids); do kill -INT $(tree_pids "$p") 2> /dev/null || true; done; wait; exit 143' INT TERM
-  declare -A slot_of failed
+  declare -A slot_of=() failed=()
   local name variant seed slot free started
   while [ ! -e "$state/stop" ]; do
     started=0

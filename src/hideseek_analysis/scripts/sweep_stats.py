@@ -1,0 +1,108 @@
+"""Statistics across training seeds, after the rliable method (Agarwal et al., "Deep RL at the
+edge of the statistical precipice"), on numpy and scipy alone.
+
+A variant's sample is its runs (training seeds), each with its evaluation episodes (seeds 0-99).
+With few runs per variant the interquartile mean of the run scores is their mean (3 runs: nothing
+is trimmed), so the IQM is taken over the pooled episodes of the variant's runs, and every interval
+comes from a two-level bootstrap: resample the runs with replacement, then the episodes within
+each drawn run. The interval so covers both the spread between training seeds and the spread
+between evaluation episodes; with three seeds it is wide, and it can only be as wide as three
+draws of the training seed allow (it does not cover seeds whose behaviour none of the three showed).
+"""
+import numpy as np
+from scipy import stats
+
+BOOTSTRAP = 2000
+CONFIDENCE = 0.95
+
+
+def iqm(values):
+    """Interquartile mean: the mean of the middle 50 % (scipy's trim_mean, 25 % cut at each end)."""
+    return float(stats.trim_mean(np.asarray(values, dtype=np.float64), 0.25))
+
+
+def mean(values):
+    return float(np.mean(values))
+
+
+def two_level_samples(runs, rng, reps=BOOTSTRAP):
+    """Yields `reps` bootstrap samples of a variant: runs drawn with replacement, then episodes
+    drawn with replacement within each drawn run; each sample is a list of per-run arrays."""
+    runs = [np.asarray(r, dtype=np.float64) for r in runs]
+    for _ in range(reps):
+        picked = rng.integers(0, len(runs), size=len(runs))
+        yield [runs[i][rng.integers(0, len(runs[i]), size=len(runs[i]))] for i in picked]
+
+
+def interval(estimates):
+    """The percentile interval of bootstrap estimates at CONFIDENCE."""
+    lo, hi = np.percentile(estimates, [50 * (1 - CONFIDENCE), 100 - 50 * (1 - CONFIDENCE)])
+    return float(lo), float(hi)
+
+
+def pooled_statistic(runs, statistic, rng, reps=BOOTSTRAP):
+    """(point estimate, (low, high)) of `statistic` over the pooled episodes of `runs`, with the
+    two-level bootstrap interval."""
+    point = statistic(np.concatenate([np.asarray(r, dtype=np.float64) for r in runs]))
+    boot = [statistic(np.concatenate(s)) for s in two_level_samples(runs, rng, reps)]
+    return point, interval(boot)
+
+
+def performance_profile(runs, taus, rng, reps=BOOTSTRAP):
+    """The fraction of pooled episodes whose score exceeds each tau, with two-level bootstrap bands:
+    (profile, low, high), arrays over taus."""
+    taus = np.asarray(taus, dtype=np.float64)
+
+    def profile(x):
+        return (x[None, :] > taus[:, None]).mean(axis=1)
+
+    point = profile(np.concatenate([np.asarray(r, dtype=np.float64) for r in runs]))
+    boot = np.array([profile(np.concatenate(s)) for s in two_level_samples(runs, rng, reps)])
+    lo, hi = np.percentile(boot, [50 * (1 - CONFIDENCE), 100 - 50 * (1 - CONFIDENCE)], axis=0)
+    return point, lo, hi
+
+
+def _poi(x, y):
+    """P(X > Y) + P(X = Y) / 2 between two samples (the Mann-Whitney U statistic over n m)."""
+    x = np.asarray(x, dtype=np.float64)
+    y = np.asarray(y, dtype=np.float64)
+    greater = (x[:, None] > y[None, :]).mean()
+    equal = (x[:, None] == y[None, :]).mean()
+    return float(greater + 0.5 * equal)
+
+
+def probability_of_improvement(runs_x, runs_y, rng, reps=BOOTSTRAP):
+    """rliable's probability of improvement of X over Y, at two levels:
+
+    - runs: P(a run of X scores a higher mean than a run of Y), over run means, with an interval
+      from resampling the runs of each side (what the paper's claim is about: training X rather
+      than Y);
+    - episodes: P(an episode of X lives longer than one of Y), over the pooled episodes, with the
+      two-level bootstrap interval.
+
+    Returns {"runs": (p, (lo, hi)), "episodes": (p, (lo, hi))}."""
+    mx = [float(np.mean(r)) for r in runs_x]
+    my = [float(np.mean(r)) for r in runs_y]
+    run_boot, ep_boot = [], []
+    for sx, sy in zip(two_level_samples(runs_x, rng, reps), two_level_samples(runs_y, rng, reps)):
+        run_boot.append(_poi([s.mean() for s in sx], [s.mean() for s in sy]))
+        ep_boot.append(_poi(np.concatenate(sx), np.concatenate(sy)))
+    return {
+        "runs": (_poi(mx, my), interval(run_boot)),
+        "episodes": (_poi(np.concatenate(runs_x), np.concatenate(runs_y)), interval(ep_boot)),
+    }
+
+
+def rank_correlation(runs_by_variant, reference, rng, reps=BOOTSTRAP):
+    """Spearman's rho between the variants' mean scores (pooled episodes) and `reference` (the
+    paper's figures, same order), with a two-level bootstrap interval (each variant resampled on its
+    own). Returns (rho, (lo, hi))."""
+    point = stats.spearmanr([np.mean(np.concatenate(r)) for r in runs_by_variant], reference)[0]
+    generators = [two_level_samples(r, rng, reps) for r in runs_by_variant]
+    boot = []
+    for samples in zip(*generators):
+        scores = [np.mean(np.concatenate(s)) for s in samples]
+        rho = stats.spearmanr(scores, reference)[0]
+        if np.isfinite(rho):
+            boot.append(rho)
+    return float(point), interval(boot)

@@ -1,0 +1,247 @@
+#!/usr/bin/env python3
+"""Table 2 across training seeds, with 95 % intervals (the rliable method; see sweep_stats.py).
+
+usage: sweep_table2.py [--root DIR] [--out DIR] [--steps N] [--extra RUN ...] [--reps N]
+
+Reads the run registry (ROOT/policies/policies.yaml): the sweep's runs are its feed-forward game-v2
+entries named <variant>_seed<S> whose variant is <variant>, trained for at least --steps steps
+(--extra adds other runs by name, each to its own variant). Each run's episodes come from
+ROOT/docs/runs/<run>/episodes.csv (greedy) and sampled/episodes.csv (sampled). Beside them: the
+paper's figures (config/paper_reference.yaml) and the random hider and scripted evaders
+(docs/calibration_table.csv).
+
+Writes into OUT (default ROOT/docs/table2):
+- table2.md / table2.csv: per variant and mode (greedy, sampled), the runs, the mean and the IQM of
+  living steps and of success over the pooled episodes, each with its interval;
+- orderings.md / orderings.csv: the probability of improvement for each ordering the paper reports,
+  at the level of runs and of episodes, and Spearman's rank correlation with the paper's ordering;
+- performance_profile.png: the fraction of episodes living longer than tau, per variant, with bands.
+"""
+import argparse
+import csv
+import os
+import re
+import sys
+
+import numpy as np
+import yaml
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sweep_stats as st  # noqa: E402
+
+MODES = (("greedy", ""), ("sampled", "sampled"))
+NAME = re.compile(r"^(?P<variant>.+)_seed(?P<seed>\d+)$")
+
+
+def paper_orderings(variants):
+    """The orderings the paper reports, among the variants present: (better, worse) pairs."""
+    pairs = [("basic", "stochasticseeker"), ("basic", "visibilityreward"), ("fasterhider", "visibilityreward_faster")]
+    pairs += [(v, "slowerhider") for v in variants if v != "slowerhider"]
+    return pairs
+
+
+def load_episodes(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        raise ValueError("%s: no episodes" % path)
+    living = np.array([float(r["living_steps"]) for r in rows])
+    success = np.array([1.0 if r["outcome"] != "captured" else 0.0 for r in rows])
+    return living, success
+
+
+def sweep_runs(root, steps, extra):
+    """variant -> [(run, entry)], in training-seed order."""
+    with open(os.path.join(root, "policies", "policies.yaml")) as f:
+        entries = yaml.safe_load(f) or {}
+    found = {}
+    for name, e in entries.items():
+        m = NAME.match(name)
+        chosen = name in extra or (
+            m and m.group("variant") == e.get("variant") and e.get("network") == "ff" and e.get("game") == "v2"
+            and int(e.get("steps", 0)) >= steps)
+        if chosen:
+            found.setdefault(e["variant"], []).append((name, e))
+    for v in found:
+        found[v].sort(key=lambda ne: (int(ne[1].get("training_seed", 0)), ne[0]))
+    missing = [n for n in extra if n not in entries]
+    if missing:
+        raise SystemExit("sweep_table2: --extra: no run %s in the registry" % ", ".join(missing))
+    return found
+
+
+def fmt_ci(point, ci, digits=1, scale=1.0):
+    f = "%%.%df" % digits
+    return (f + " [" + f + ", " + f + "]") % (point * scale, ci[0] * scale, ci[1] * scale)
+
+
+def main(argv=None):
+    here = os.path.dirname(os.path.abspath(__file__))
+    default_root = os.path.normpath(os.path.join(here, "..", "..", ".."))
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--root", default=default_root, help="the checkout (registry, docs/runs, config)")
+    p.add_argument("--out", help="output folder (default ROOT/docs/table2)")
+    p.add_argument("--steps", type=int, default=2000000, help="a sweep run's training steps (default 2000000)")
+    p.add_argument("--extra", nargs="*", default=[], help="other runs to count, by registry name")
+    p.add_argument("--reps", type=int, default=st.BOOTSTRAP, help="bootstrap resamples (default %d)" % st.BOOTSTRAP)
+    p.add_argument("--seed", type=int, default=0, help="the bootstrap's random seed")
+    args = p.parse_args(argv)
+    root = os.path.abspath(args.root)
+    out = args.out or os.path.join(root, "docs", "table2")
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(root, "config", "paper_reference.yaml")) as f:
+        paper = (yaml.safe_load(f) or {}).get("variants") or {}
+    calib = {}
+    calib_path = os.path.join(root, "docs", "calibration_table.csv")
+    if os.path.exists(calib_path):
+        with open(calib_path) as f:
+            for r in csv.DictReader(f):
+                calib.setdefault(r["variant"], []).append(r)
+    found = sweep_runs(root, args.steps, set(args.extra))
+    variant_files = sorted(n[:-5] for n in os.listdir(os.path.join(root, "config", "variants")) if n.endswith(".yaml"))
+    order = [v for v in paper if v in variant_files] + [v for v in variant_files if v not in paper]
+
+    rng = np.random.default_rng(args.seed)
+    rows, data = [], {}
+    for v in order:
+        for mode, sub in MODES:
+            runs = []
+            for name, _ in found.get(v, []):
+                path = os.path.join(root, "docs", "runs", name, sub, "episodes.csv")
+                if os.path.exists(path):
+                    runs.append((name, load_episodes(path)))
+            if not runs:
+                continue
+            living = [r[1][0] for r in runs]
+            success = [r[1][1] for r in runs]
+            data[(v, mode)] = living
+            row = {"variant": v, "mode": mode, "runs": len(runs), "run_names": " ".join(r[0] for r in runs),
+                   "episodes": sum(len(x) for x in living),
+                   "per_run_living": " ".join("%.1f" % x.mean() for x in living),
+                   "per_run_success": " ".join("%.0f" % (100 * x.mean()) for x in success)}
+            for key, values, stat in (("living_mean", living, st.mean), ("living_iqm", living, st.iqm),
+                                      ("success_mean", success, st.mean), ("success_iqm", success, st.iqm)):
+                point, ci = st.pooled_statistic(values, stat, rng, args.reps)
+                row[key], row[key + "_lo"], row[key + "_hi"] = point, ci[0], ci[1]
+            rows.append(row)
+
+    fields = ["variant", "mode", "runs", "episodes", "living_mean", "living_mean_lo", "living_mean_hi", "living_iqm",
+              "living_iqm_lo", "living_iqm_hi", "success_mean", "success_mean_lo", "success_mean_hi", "success_iqm",
+              "success_iqm_lo", "success_iqm_hi", "per_run_living", "per_run_success", "run_names"]
+    with open(os.path.join(out, "table2.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: (round(r[k], 4) if isinstance(r[k], float) else r[k]) for k in fields})
+
+    md = ["# Table 2 across training seeds", "",
+          "Evaluation seeds 0-99, at most 1000 steps, per run; greedy is the headline, sampled beside it. "
+          "Mean and interquartile mean (IQM) over the pooled episodes of a variant's runs, each with its 95 %% "
+          "interval from a two-level bootstrap (%d resamples: the runs, then the episodes within each run). "
+          "The interval covers the spread between training seeds and between evaluation episodes; with three "
+          "training seeds it is wide, and it cannot cover a behaviour none of the runs showed. "
+          "The IQM of success, a 0/1 outcome, is clip((p - 0.25) / 0.5, 0, 1) of the success rate p: it is "
+          "given because the protocol asks for it, and the mean is the figure to read." % args.reps, "",
+          "| variant | hider | runs | living steps: mean [95 % CI] | IQM [95 % CI] | success %: mean [95 % CI] | "
+          "IQM [95 % CI] | per run (living steps / success %) |",
+          "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for v in order:
+        for r in (x for x in rows if x["variant"] == v):
+            md.append("| %s | PPO, %s | %d | %s | %s | %s | %s | %s / %s |" % (
+                v, r["mode"], r["runs"], fmt_ci(r["living_mean"], (r["living_mean_lo"], r["living_mean_hi"])),
+                fmt_ci(r["living_iqm"], (r["living_iqm_lo"], r["living_iqm_hi"])),
+                fmt_ci(r["success_mean"], (r["success_mean_lo"], r["success_mean_hi"]), 0, 100),
+                fmt_ci(r["success_iqm"], (r["success_iqm_lo"], r["success_iqm_hi"]), 0, 100),
+                r["per_run_living"], r["per_run_success"]))
+        if v in paper:
+            md.append("| %s | paper, trained (8M steps) | 1 | %s | | %.0f | | |" % (v, paper[v]["living_trained"],
+                                                                               paper[v]["success_trained"]))
+        for c in calib.get(v, []):
+            who = "random hider" if c["evader"] == "random" else "scripted %s (reads the true state)" % c["evader"]
+            md.append("| %s | %s | | %.1f | | %.0f | | median %s |" % (
+                v, who, float(c["avg_living_steps"]), 100 * float(c["success_rate"]), c["median_living_steps"]))
+        if v in paper:
+            md.append("| %s | paper, random | | %s | | %.0f | | |" % (v, paper[v]["living_random"], paper[v]["success_random"]))
+    md.append("")
+    missing = [v for v in order if (v, "greedy") not in data]
+    if missing:
+        md.append("No sweep run evaluated yet: %s." % ", ".join(missing))
+        md.append("")
+
+    # Orderings and rank correlation, greedy.
+    orow = []
+    present = [v for v in order if (v, "greedy") in data]
+    for better, worse in paper_orderings(present):
+        if (better, "greedy") in data and (worse, "greedy") in data:
+            poi = st.probability_of_improvement(data[(better, "greedy")], data[(worse, "greedy")], rng, args.reps)
+            orow.append({"better": better, "worse": worse,
+                         "runs": "%d vs %d" % (len(data[(better, "greedy")]), len(data[(worse, "greedy")])),
+                         "poi_runs": poi["runs"][0], "poi_runs_lo": poi["runs"][1][0], "poi_runs_hi": poi["runs"][1][1],
+                         "poi_episodes": poi["episodes"][0], "poi_episodes_lo": poi["episodes"][1][0],
+                         "poi_episodes_hi": poi["episodes"][1][1]})
+    in_paper = [v for v in present if v in paper]
+    rho = None
+    if len(in_paper) >= 3:
+        rho = st.rank_correlation([data[(v, "greedy")] for v in in_paper],
+                                  [paper[v]["living_trained"] for v in in_paper], rng, args.reps)
+    ofields = ["better", "worse", "runs", "poi_runs", "poi_runs_lo", "poi_runs_hi", "poi_episodes", "poi_episodes_lo",
+               "poi_episodes_hi"]
+    with open(os.path.join(out, "orderings.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=ofields)
+        w.writeheader()
+        for r in orow:
+            w.writerow({k: (round(r[k], 4) if isinstance(r[k], float) else r[k]) for k in ofields})
+        if rho:
+            f.write("# spearman_rho_with_paper,%d variants,%.4f,%.4f,%.4f\n" % (len(in_paper), rho[0], *rho[1]))
+    omd = ["# The paper's orderings", "",
+           "Greedy evaluations. The probability of improvement P(X > Y) (ties count half) at two levels: "
+           "**runs**, a run of X against a run of Y by mean living steps (rliable's definition: what training X "
+           "rather than Y gives), its interval from the two-level bootstrap; **episodes**, an episode of X against "
+           "one of Y. 0.5 is no difference; an interval that holds 0.5 does not decide the ordering.", "",
+           "| ordering (paper) | runs | P(X > Y), runs [95 % CI] | P(X > Y), episodes [95 % CI] |",
+           "| --- | --- | --- | --- |"]
+    for r in orow:
+        omd.append("| %s > %s | %s | %s | %s |" % (r["better"], r["worse"], r["runs"],
+                                                   fmt_ci(r["poi_runs"], (r["poi_runs_lo"], r["poi_runs_hi"]), 2),
+                                                   fmt_ci(r["poi_episodes"], (r["poi_episodes_lo"], r["poi_episodes_hi"]), 2)))
+    omd.append("")
+    if rho:
+        omd.append("Spearman's rank correlation between the variants' mean living steps and the paper's (%d variants: "
+                   "%s): **%s** (95 %% two-level bootstrap interval)." % (len(in_paper), ", ".join(in_paper),
+                                                                          fmt_ci(rho[0], rho[1], 2)))
+    else:
+        omd.append("Rank correlation with the paper: needs at least three of the paper's variants evaluated "
+                   "(%d so far)." % len(in_paper))
+    omd.append("")
+    with open(os.path.join(out, "table2.md"), "w") as f:
+        f.write("\n".join(md + omd))
+    with open(os.path.join(out, "orderings.md"), "w") as f:
+        f.write("\n".join(omd))
+
+    if present:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        taus = np.arange(0, 1001, 10)
+        fig, ax = plt.subplots(figsize=(8, 5))
+        for v in present:
+            prof, lo, hi = st.performance_profile(data[(v, "greedy")], taus, rng, max(200, args.reps // 4))
+            line, = ax.plot(taus, prof, label="%s (%d runs)" % (v, len(data[(v, "greedy")])))
+            ax.fill_between(taus, lo, hi, color=line.get_color(), alpha=0.15)
+        ax.set_xlabel("living steps tau")
+        ax.set_ylabel("fraction of episodes living more than tau")
+        ax.set_title("Performance profiles, greedy, evaluation seeds 0-99 (bands: 95 % two-level bootstrap)")
+        ax.set_xlim(0, 1000)
+        ax.set_ylim(0, 1)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, "performance_profile.png"), dpi=110)
+        plt.close(fig)
+    print("sweep_table2: %d variant rows from %d runs into %s" % (
+        len(rows), sum(len(x) for x in found.values()), out))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
