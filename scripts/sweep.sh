@@ -19,9 +19,15 @@
 # SWEEP_DIR (default ~/hideseek_sweep) holds the worktree (tree/), the runs' weights and
 # checkpoints (runs/<run>/), the logs (logs/) and the queue's state. SWEEP_<KEY> overrides a key of
 # config/sweep.yaml (SWEEP_SEEDS="0 1 2 3 4", SWEEP_JOBS=2, SWEEP_VARIANTS="basic slowerhider").
+# SWEEP_RECORD_ROOT (default this checkout) is the checkout that receives the records and whose
+# registry says which runs are done.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+# The queue runs from a copy of this script (start makes it), so that editing the checkout's copy
+# never changes a running queue; SWEEP_CHECKOUT then names the checkout.
+cd "${SWEEP_CHECKOUT:-$(dirname "$0")/..}"
 main=$PWD
+records=$(realpath "${SWEEP_RECORD_ROOT:-$main}")
+[ -f "$records/policies/policies.yaml" ] || { echo "sweep: SWEEP_RECORD_ROOT: no policies/policies.yaml in $records" >&2; exit 2; }
 source scripts/env.sh
 dir=$(realpath -m "${SWEEP_DIR:-$HOME/hideseek_sweep}")
 tree=$dir/tree
@@ -76,10 +82,11 @@ queue() {
 # A run is done when this checkout records it with all its steps and both evaluations.
 recorded_steps() {
   /usr/bin/python3 -c 'import sys; sys.path.insert(0, "scripts"); import hideseek_registry as r
-e = r.runs().get(sys.argv[1]); print(e.get("steps", 0) if e else 0)' "$1"
+e = r.runs(sys.argv[2]).get(sys.argv[1]); print(e.get("steps", 0) if e else 0)' "$1" "$records/policies/policies.yaml"
 }
 is_done() {
-  [ "$(recorded_steps "$1")" -ge "$steps" ] && [ -s "docs/runs/$1/evaluation.csv" ] && [ -s "docs/runs/$1/sampled/evaluation.csv" ]
+  [ "$(recorded_steps "$1")" -ge "$steps" ] && [ -s "$records/docs/runs/$1/evaluation.csv" ] \
+    && [ -s "$records/docs/runs/$1/sampled/evaluation.csv" ]
 }
 
 # The process tree under a PID (itself first).
@@ -128,7 +135,7 @@ job() {
   [ -z "$(git -C "$tree" status --porcelain)" ] || { say "$name: the worktree is not clean; not started"; return 3; }
   say "$name: training (slot $slot, port $port, $threads learner threads; log $dir/logs/$name.log)"
   set +e
-  RECORD_ROOT=$main PRECISION=$precision HIDER_THREADS=$threads ROS_PORT=$port HIDESEEK_PORT=$((port + 1)) \
+  RECORD_ROOT=$records PRECISION=$precision HIDER_THREADS=$threads ROS_PORT=$port HIDESEEK_PORT=$((port + 1)) \
     EVAL_MODES="greedy sampled" PAUSED_FILE=$runs/$name/paused_s \
     "$tree/scripts/train_variant.sh" "$variant" "$seed" "$steps" "$runs" "$network" "$name" > "$dir/logs/$name.log" 2>&1
   rc=$?
@@ -202,8 +209,8 @@ status() {
   while read -r name variant seed; do
     if is_done "$name"; then
       printf '%-34s done      greedy %s, sampled %s (living steps, success); %s\n' "$name" \
-        "$(tail -n 1 "docs/runs/$name/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
-        "$(tail -n 1 "docs/runs/$name/sampled/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
+        "$(tail -n 1 "$records/docs/runs/$name/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
+        "$(tail -n 1 "$records/docs/runs/$name/sampled/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
         "$([ -s "$runs/$name/policy.pt" ] && echo "weights in $runs/$name" || echo "weights not on this machine")"
     elif [ -e "$state/job.$name" ] && alive "$(cat "$state/job.$name")"; then
       steps_now=$(tail -n 1 "$runs/$name/training_log.csv" 2> /dev/null | cut -d, -f2,3 || true)
@@ -258,7 +265,8 @@ case "${1:-start}" in
   start)
     if [ -n "$(queue_pid)" ]; then echo "sweep: the queue is already running (pid $(queue_pid)); scripts/sweep.sh status"; exit 0; fi
     native_bf16 || die "this CPU has no native bf16 (avx512_bf16 or amx_bf16): sweep runs train only in bf16 on such a CPU; evaluate and analyse here instead"
-    nohup setsid "$0" run >> "$dir/logs/queue.log" 2>&1 < /dev/null &
+    cp "$main/scripts/sweep.sh" "$state/queue.sh"
+    SWEEP_CHECKOUT=$main nohup setsid "$state/queue.sh" run >> "$dir/logs/queue.log" 2>&1 < /dev/null &
     echo "sweep: queue started (log: $dir/logs/queue.log; scripts/sweep.sh status)"
     ;;
   run) run_queue ;;

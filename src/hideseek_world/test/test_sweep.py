@@ -1,0 +1,195 @@
+"""scripts/sweep.sh's queue (order, what counts as done, pause and resume with the paused time kept
+apart) and sweep_table2.py's statistics across training seeds (two-level bootstrap, probability of
+improvement, rank correlation), on small made-up registries: no training, no ROS master."""
+import csv
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+import yaml
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+SWEEP = os.path.join(ROOT, "scripts", "sweep.sh")
+ANALYSIS = os.path.join(ROOT, "src", "hideseek_analysis", "scripts")
+sys.path.insert(0, ANALYSIS)
+import sweep_stats as st  # noqa: E402
+
+
+def make_records(tmp_path, runs):
+    """A checkout-like folder: a registry with `runs` (name -> steps) and, for each, its greedy and
+    sampled evaluations (episodes given as living-step lists)."""
+    rec = tmp_path / "records"
+    (rec / "policies").mkdir(parents=True)
+    entries = {}
+    for name, (variant, seed, steps, greedy, sampled) in runs.items():
+        entries[name] = {"variant": variant, "network": "ff", "game": "v2", "training_seed": seed, "steps": steps}
+        for sub, living in (("", greedy), ("sampled", sampled)):
+            if living is None:
+                continue
+            d = rec / "docs" / "runs" / name / sub
+            d.mkdir(parents=True, exist_ok=True)
+            with open(d / "episodes.csv", "w") as f:
+                f.write("seed,living_steps,outcome\n")
+                for i, x in enumerate(living):
+                    f.write("%d,%d,%s\n" % (i, x, "survived" if x >= 1000 else "captured"))
+            with open(d / "evaluation.csv", "w") as f:
+                f.write("variant,policy,episodes,avg_living_steps,success_rate\n%s,%s,%d,%.2f,%.4f\n" % (
+                    variant, name, len(living), np.mean(living), np.mean(np.array(living) >= 1000)))
+    with open(rec / "policies" / "policies.yaml", "w") as f:
+        yaml.safe_dump(entries, f, sort_keys=False)
+    return rec
+
+
+def sweep(tmp_path, rec, *args, **env):
+    e = dict(os.environ, SWEEP_DIR=str(tmp_path / "sweep"), SWEEP_RECORD_ROOT=str(rec), SWEEP_SEEDS="0 1",
+             SWEEP_VARIANTS="basic slowerhider", SWEEP_STEPS="2048", PATH="/usr/bin:" + os.environ["PATH"])
+    e.update(env)
+    return subprocess.run([SWEEP] + list(args), env=e, capture_output=True, text=True, timeout=120)
+
+
+def test_status_lists_runs_seed_major_with_their_state(tmp_path):
+    rec = make_records(tmp_path, {
+        "basic_seed0": ("basic", 0, 2048, [30, 1000], [20, 40]),
+        # recorded but short of the steps: not done
+        "slowerhider_seed0": ("slowerhider", 0, 1024, [30], [30]),
+        # all steps, but no sampled evaluation yet: not done
+        "basic_seed1": ("basic", 1, 2048, [30], None),
+    })
+    ck = tmp_path / "sweep" / "runs" / "slowerhider_seed1"
+    ck.mkdir(parents=True)
+    (ck / "checkpoint.pt").write_bytes(b"x")
+    r = sweep(tmp_path, rec, "status")
+    assert r.returncode == 0, r.stderr
+    rows = [line.split()[:2] for line in r.stdout.splitlines() if not line.startswith("sweep:")]
+    assert rows == [["basic_seed0", "done"], ["slowerhider_seed0", "missing"], ["basic_seed1", "missing"],
+                    ["slowerhider_seed1", "partial"]]
+    assert "greedy 515.00/0.5000" in r.stdout
+
+
+def test_more_seeds_only_lengthen_the_queue(tmp_path):
+    rec = make_records(tmp_path, {})
+    r = sweep(tmp_path, rec, "status", SWEEP_SEEDS="0 1 2 3 4", SWEEP_VARIANTS="basic")
+    assert [line.split()[0] for line in r.stdout.splitlines() if not line.startswith("sweep:")] == [
+        "basic_seed%d" % s for s in range(5)]
+
+
+def test_an_unknown_variant_or_bad_number_is_refused_by_name(tmp_path):
+    rec = make_records(tmp_path, {})
+    r = sweep(tmp_path, rec, "status", SWEEP_VARIANTS="basic nosuchvariant")
+    assert r.returncode == 2 and "no variant 'nosuchvariant'" in r.stderr
+    r = sweep(tmp_path, rec, "status", SWEEP_STEPS="2M")
+    assert r.returncode == 2 and "'2M' is not a whole number" in r.stderr
+    r = sweep(tmp_path, rec, "frobnicate")
+    assert r.returncode == 2 and "unknown command 'frobnicate'" in r.stderr
+
+
+def proc_state(pid):
+    with open("/proc/%d/stat" % pid) as f:
+        return f.read().rsplit(")", 1)[1].split()[0]
+
+
+def test_pause_stops_the_runs_processes_and_resume_books_the_paused_time(tmp_path):
+    rec = make_records(tmp_path, {})
+    state = tmp_path / "sweep" / "state"
+    state.mkdir(parents=True)
+    # A running run as the queue leaves it: state/job.<run> holds the PID of its process tree.
+    job = subprocess.Popen(["bash", "-c", "sleep 300 & wait"])
+    try:
+        time.sleep(0.3)
+        child = int(subprocess.check_output(["ps", "-o", "pid=", "--ppid", str(job.pid)]).split()[0])
+        (state / "job.basic_seed1").write_text("%d\n" % job.pid)
+        r = sweep(tmp_path, rec, "pause")
+        assert r.returncode == 0 and "1 runs held" in r.stdout, r.stdout + r.stderr
+        assert proc_state(job.pid) == "T" and proc_state(child) == "T"
+        assert "PAUSED" in sweep(tmp_path, rec, "status").stdout
+        time.sleep(2.2)
+        r = sweep(tmp_path, rec, "resume")
+        assert r.returncode == 0, r.stderr
+        assert proc_state(child) in ("S", "R")
+        paused = int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text())
+        assert 2 <= paused <= 10
+        # A second pause adds to the first.
+        sweep(tmp_path, rec, "pause")
+        time.sleep(1.1)
+        sweep(tmp_path, rec, "resume")
+        assert int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text()) >= paused + 1
+    finally:
+        subprocess.run(["pkill", "-KILL", "-P", str(job.pid)])
+        job.kill()
+        job.wait()
+
+
+# ---- statistics -------------------------------------------------------------------------------
+
+def test_iqm_trims_a_quarter_at_each_end():
+    assert st.iqm([0, 1, 2, 3, 4, 5, 6, 100]) == pytest.approx(np.mean([2, 3, 4, 5]))
+
+
+def test_two_level_interval_covers_the_spread_between_runs():
+    rng = np.random.default_rng(1)
+    # Three runs that agree: a narrow interval. Three runs that differ by seed: a wide one.
+    same = [rng.normal(300, 50, 100) for _ in range(3)]
+    apart = [rng.normal(m, 50, 100) for m in (100, 300, 500)]
+    _, (lo1, hi1) = st.pooled_statistic(same, st.mean, np.random.default_rng(0), 500)
+    _, (lo2, hi2) = st.pooled_statistic(apart, st.mean, np.random.default_rng(0), 500)
+    assert hi1 - lo1 < 40
+    assert hi2 - lo2 > 150
+    # an episode-level bootstrap alone would give about the narrow width for both
+    assert lo2 < 250 and hi2 > 350
+
+
+def test_probability_of_improvement():
+    rng = np.random.default_rng(2)
+    better = [np.full(100, 500.0), np.full(100, 600.0), np.full(100, 700.0)]
+    worse = [np.full(100, 50.0), np.full(100, 60.0), np.full(100, 70.0)]
+    poi = st.probability_of_improvement(better, worse, rng, 300)
+    assert poi["runs"][0] == 1.0 and poi["runs"][1] == (1.0, 1.0)
+    assert poi["episodes"][0] == 1.0
+    same = st.probability_of_improvement(worse, worse, rng, 300)
+    assert same["runs"][0] == pytest.approx(0.5)
+    assert same["runs"][1][0] < 0.5 < same["runs"][1][1]
+
+
+def test_rank_correlation_follows_the_reference_order():
+    rng = np.random.default_rng(3)
+    runs = [[np.full(50, float(m))] * 2 for m in (100, 200, 300, 400)]
+    rho, (lo, hi) = st.rank_correlation(runs, [1, 2, 3, 4], rng, 200)
+    assert rho == pytest.approx(1.0) and lo == pytest.approx(1.0)
+    rho, _ = st.rank_correlation(runs, [4, 3, 2, 1], rng, 200)
+    assert rho == pytest.approx(-1.0)
+
+
+def test_sweep_table2_reads_the_sweep_runs_and_writes_the_tables(tmp_path):
+    rec = make_records(tmp_path, {
+        "basic_seed0": ("basic", 0, 2048, [100] * 10 + [1000] * 10, [50] * 20),
+        "basic_seed1": ("basic", 1, 2048, [200] * 20, [60] * 20),
+        "slowerhider_seed0": ("slowerhider", 0, 2048, [40] * 20, [40] * 20),
+        # not a sweep run (another name) and a short one: both left out
+        "basic_pilot_seed0": ("basic", 0, 2048, [5] * 20, None),
+        "slowerhider_seed1": ("slowerhider", 1, 1024, [5] * 20, [5] * 20),
+    })
+    shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
+    out = tmp_path / "t2"
+    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "sweep_table2.py"), "--root", str(rec), "--out", str(out),
+                        "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    with open(out / "table2.csv") as f:
+        rows = {(x["variant"], x["mode"]): x for x in csv.DictReader(f)}
+    b = rows[("basic", "greedy")]
+    assert b["runs"] == "2" and b["run_names"] == "basic_seed0 basic_seed1"
+    assert float(b["living_mean"]) == pytest.approx((100 * 10 + 1000 * 10 + 200 * 20) / 40)
+    assert float(b["success_mean"]) == pytest.approx(0.25)
+    assert float(b["living_mean_lo"]) <= float(b["living_mean"]) <= float(b["living_mean_hi"])
+    assert rows[("slowerhider", "greedy")]["runs"] == "1"
+    assert rows[("basic", "sampled")]["per_run_living"] == "50.0 60.0"
+    with open(out / "orderings.csv") as f:
+        order = [x for x in csv.DictReader(f) if not x["better"].startswith("#")]
+    assert [(x["better"], x["worse"]) for x in order] == [("basic", "slowerhider")]
+    assert float(order[0]["poi_runs"]) == 1.0
+    assert (out / "performance_profile.png").stat().st_size > 10000
+    text = (out / "table2.md").read_text()
+    assert "two-level bootstrap" in text and "| basic | paper, trained (8M steps) | 1 | 500 |" in text
