@@ -9,6 +9,8 @@
 #            and return; a queue already running is left alone
 #   run      the queue in the foreground (what start runs)
 #   build    only create and build the worktree at the pin
+#   analyze  the per-run analysis (scripts/analyze_run.sh) of every done run that lacks it and
+#            whose weights are on this machine
 #   status   the pin, and every run in queue order: done (with its evaluation), training (its
 #            steps), partial (a checkpoint), lost (recorded, weights gone) or missing
 #   pause    SIGSTOP every training run (for make bench, timing work, make test); the paused time
@@ -141,11 +143,36 @@ job() {
   rc=$?
   set -e
   if [ $rc -eq 0 ]; then
+    analyze "$name" || true
     say "$name: done: $(grep 'evaluate_run:.*(greedy)\|evaluate_run:.*(sampled)' "$dir/logs/$name.log" | sed 's/.*(\(greedy\|sampled\)): \([^(]*\).*/\1 \2/' | paste -sd ';')"
   else
     say "$name: failed (exit $rc); see $dir/logs/$name.log"
   fi
   return $rc
+}
+
+# The per-run analysis (scripts/analyze_run.sh of the records' checkout, with its own build):
+# probes on the shared probe set and behaviour, into docs/runs/<run>/analysis/. Its failure does
+# not undo the run: `scripts/sweep.sh analyze` retries every done run whose weights are here.
+analyze() {
+  local name=$1
+  [ -s "$runs/$name/policy.pt" ] || { say "$name: no weights in $runs/$name: not analysed"; return 1; }
+  if RECORD_ROOT=$records "$records/scripts/analyze_run.sh" "$name" "$runs/$name/policy.pt" >> "$dir/logs/$name.analysis.log" 2>&1; then
+    say "$name: analysed into $records/docs/runs/$name/analysis"
+  else
+    say "$name: the analysis failed; see $dir/logs/$name.analysis.log"
+    return 1
+  fi
+}
+
+analyze_all() {
+  local name n=0
+  while read -r name _ _; do
+    if is_done "$name" && [ ! -s "$records/docs/runs/$name/analysis/probes.csv" ]; then
+      analyze "$name" && n=$((n + 1))
+    fi
+  done < <(queue)
+  say "$n runs analysed"
 }
 
 run_queue() {
@@ -208,9 +235,10 @@ status() {
   native_bf16 || echo "sweep: this CPU has no native bf16: the queue will not train here"
   while read -r name variant seed; do
     if is_done "$name"; then
-      printf '%-34s done      greedy %s, sampled %s (living steps, success); %s\n' "$name" \
+      printf '%-34s done      greedy %s, sampled %s (living steps, success); %s; %s\n' "$name" \
         "$(tail -n 1 "$records/docs/runs/$name/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
         "$(tail -n 1 "$records/docs/runs/$name/sampled/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
+        "$([ -s "$records/docs/runs/$name/analysis/probes.csv" ] && echo analysed || echo "NOT analysed")" \
         "$([ -s "$runs/$name/policy.pt" ] && echo "weights in $runs/$name" || echo "weights not on this machine")"
     elif [ -e "$state/job.$name" ] && alive "$(cat "$state/job.$name")"; then
       steps_now=$(tail -n 1 "$runs/$name/training_log.csv" 2> /dev/null | cut -d, -f2,3 || true)
@@ -271,9 +299,10 @@ case "${1:-start}" in
     ;;
   run) run_queue ;;
   build) prepare_tree ;;
+  analyze) analyze_all ;;
   status) status ;;
   pause) pause ;;
   resume) resume ;;
   stop) stop ;;
-  *) die "unknown command '$1' (start, run, build, status, pause, resume, stop)" ;;
+  *) die "unknown command '$1' (start, run, build, analyze, status, pause, resume, stop)" ;;
 esac

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The per-run analysis, small outputs committed so that a run's weights may go afterwards: its
+# probes on the shared probe set (scripts/probe_set.sh; the results, not the features) and its
+# behaviour on 100 rollouts (play_episodes, seeds 10000-10099, greedy: states, transitions,
+# distance over time, how often it walks backward, keeps the seeker in view, breaks the line of
+# sight), into docs/runs/<run>/analysis/.
+# usage: scripts/analyze_run.sh RUN WEIGHTS          (RUN as in policies/policies.yaml)
+#        scripts/analyze_run.sh --baseline VARIANT POLICY   (random or scripted/EVADER: behaviour
+#                                                            only, into docs/analysis/baselines/<variant>/<policy>/)
+#   RECORD_ROOT (default this checkout): where the registry and docs/runs are (the sweep's checkout).
+#   ROLLOUT_EPISODES (default 100), ROLLOUT_SEED (default 10000).
+set -euo pipefail
+[ -z "${RECORD_ROOT:-}" ] || RECORD_ROOT=$(realpath "$RECORD_ROOT")
+if [ "${1:-}" = --baseline ]; then
+  baseline=1; variant=$2; policy=$3; name=${variant}_${policy//\//_}
+else
+  baseline=0; name=$1; policy=$(realpath "$2")
+fi
+cd "$(dirname "$0")/.."
+source scripts/env.sh
+records=${RECORD_ROOT:-$PWD}
+episodes=${ROLLOUT_EPISODES:-100}
+first=${ROLLOUT_SEED:-10000}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+if [ $baseline = 1 ]; then
+  out=$records/docs/analysis/baselines/$variant/${policy//\//_}
+else
+  variant=$(/usr/bin/python3 -c 'import sys; sys.path.insert(0, "scripts"); import hideseek_registry as r
+print(r.runs(sys.argv[2])[sys.argv[1]]["variant"])' "$name" "$records/policies/policies.yaml")
+  out=$records/docs/runs/$name/analysis
+  probe=$(scripts/probe_set.sh)
+  devel/lib/hideseek_analysis/probe_set features "$probe" "$tmp/trained.npy" --policy "$policy" > /dev/null
+  mkdir -p "$out"
+  /usr/bin/python3 src/hideseek_analysis/scripts/probes.py run "$probe" "$tmp/trained.npy" docs/probe_set/baselines.csv \
+    "$out/probes.csv" --run "$name"
+fi
+mkdir -p "$out"
+devel/lib/hideseek_hider/play_episodes "$variant" "$policy" "$first" "$episodes" "$tmp/steps.csv" greedy > /dev/null
+/usr/bin/python3 src/hideseek_analysis/scripts/behaviour.py "$tmp/steps.csv" "$out" --run "$name"
+echo "analyze_run: $name: $out"

@@ -1,0 +1,99 @@
+"""probes.py (probes on the shared probe set) and behaviour.py (a run's states, transitions,
+distance and behaviour) on synthetic data whose answers are known."""
+import csv
+import os
+import sys
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import behaviour  # noqa: E402
+import probes  # noqa: E402
+
+
+def synthetic_labels(n_episodes=40, per_episode=30, seed=0):
+    rng = np.random.default_rng(seed)
+    n = n_episodes * per_episode
+    episode = np.repeat(np.arange(n_episodes), per_episode)
+    return {"S": rng.integers(0, 2, n), "H": rng.integers(0, 2, n), "episode": episode,
+            "test": episode % 10 < 3, "variant": np.array(["basic"] * n)}
+
+
+def test_a_feature_that_encodes_the_label_is_found_and_noise_is_not():
+    labels = synthetic_labels()
+    rng = np.random.default_rng(1)
+    n = len(labels["S"])
+    noise = rng.normal(size=(n, 20))
+    informative = noise.copy()
+    informative[:, 3] += 3.0 * labels["S"]
+    informative[:, 7] += 3.0 * labels["H"]
+    good = {r["target"]: r for r in probes.probe_all(informative, labels, "x")}
+    bad = {r["target"]: r for r in probes.probe_all(noise, labels, "x")}
+    for t in probes.TARGETS:
+        assert good[t]["balanced_accuracy"] > 0.85, t
+        assert abs(bad[t]["balanced_accuracy"] - 0.5) < 0.12, t
+    # H where S = 1 uses only those images, scored on the test episodes alone
+    assert good["H|S=1"]["test_images"] == int((labels["S"] == 1)[labels["test"]].sum())
+    assert good["S"]["train_images"] + good["S"]["test_images"] == n
+
+
+def test_regularisation_is_chosen_on_train_episodes():
+    labels = synthetic_labels()
+    rng = np.random.default_rng(2)
+    x = rng.normal(size=(len(labels["S"]), 300))
+    x[:, 0] += 0.8 * labels["S"]
+    r = probes.probe(x, labels, "S")
+    assert r["C"] in probes.CS
+    # with 300 noisy features and one weak signal, strong regularisation wins
+    assert r["C"] <= 0.1
+
+
+def test_pixel_baseline_averages_4x4_blocks():
+    images = np.zeros((2, 84, 84, 3), dtype=np.uint8)
+    images[1, :4, :4, 0] = 255
+    f = probes.pixel_features(images)
+    assert f.shape == (2, 21 * 21 * 3)
+    assert f[1, 0] == pytest.approx(1.0) and f[1, 1] == 0.0 and f[0].max() == 0.0
+
+
+def write_steps(path, episodes):
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["seed", "step", "hider_x", "hider_y", "hider_yaw", "seeker_x", "seeker_y", "seeker_yaw", "S", "H", "O",
+                    "distance", "hider_action", "outcome"])
+        for seed, steps in episodes:
+            for k, (s, h, o, dist, action) in enumerate(steps):
+                last = k == len(steps) - 1
+                w.writerow([seed, k, 0, 0, 0, 1, 1, 0, s, h, o, dist, action,
+                            ("survived" if len(steps) >= 1000 else "captured") if last else ""])
+
+
+def test_behaviour_counts_states_transitions_and_behaviour(tmp_path):
+    # episode 0: seen and seeing, turns away (S 1 -> 0), then breaks the line of sight (H 1 -> 0)
+    e0 = [(1, 1, 0, 5.0, 3), (0, 1, 0, 5.5, 2), (0, 0, 1, 6.0, 2), (0, 0, 1, 6.5, 1)]
+    e1 = [(1, 1, 0, 2.0, 0), (1, 1, 0, 1.0, 0)]
+    steps = tmp_path / "steps.csv"
+    write_steps(steps, [(10000, e0), (10001, e1)])
+    out = tmp_path / "out"
+    behaviour.write(str(out), behaviour.summarise(behaviour.read_steps(str(steps))), "r")
+    with open(out / "behaviour.csv") as f:
+        row = next(csv.DictReader(f))
+    assert row["episodes"] == "2" and row["steps"] == "6"
+    assert float(row["mean_living_steps"]) == 3.0 and float(row["success_rate"]) == 0.0
+    assert float(row["backward_share"]) == pytest.approx(2 / 6, abs=1e-4)
+    assert float(row["line_of_sight_breaks_per_100"]) == pytest.approx(100 / 6, abs=1e-2)
+    with open(out / "transitions.csv") as f:
+        t = {(r["from"], r["to"]): r for r in csv.DictReader(f)}
+    assert len(t) == 56
+    assert t[("S1 H1 O0", "S0 H1 O0")]["count"] == "1" and t[("S1 H1 O0", "S0 H1 O0")]["probability"] == "1.0"
+    assert t[("S0 H1 O0", "S0 H0 O1")]["count"] == "1"
+    # no transition across the episode boundary (e0's last state to e1's first)
+    assert t[("S0 H0 O1", "S1 H1 O0")]["count"] == "0"
+    with open(out / "states.csv") as f:
+        s = {r["state"]: r for r in csv.DictReader(f)}
+    assert s["S1 H1 O0"]["steps"] == "3"
+    with open(out / "distance.csv") as f:
+        d = list(csv.DictReader(f))
+    assert float(d[0]["mean_distance"]) == pytest.approx((5 + 5.5 + 6 + 6.5 + 2 + 1) / 6, abs=1e-3)
+    assert d[0]["episodes_running"] == "2" and d[1]["mean_distance"] == ""
