@@ -11,8 +11,8 @@
 //   probe_set make OUT_DIR [--config DIR] [--game FILE] [--first-seed N] [--episodes N]
 //                  [--every N] [--per-cell N] [--test-fraction F] [--seed N]
 //       plays every variant (config/variants) with each scripted hider (random, backpedal, flee,
-//       hide, lap) on seeds first_seed.. (default 30000, 8 episodes each: clear of the evaluation
-//       seeds 0-99 and the analysis rollouts' 10000..), keeps every `every`-th step (4), draws
+//       hide, lap) on seeds first_seed.. (default 30000, 40 episodes each: clear of the evaluation
+//       seeds 0-99 and the analysis rollouts' 10000..), keeps every `every`-th step (1), draws
 //       `per-cell` steps (150, fewer where a cell holds fewer: then every cell of that variant
 //       gets as many as its smallest) of each of the four (S, H) cells per variant, renders each
 //       one's hider image from its poses, and writes OUT_DIR/images.npy ([N, H, W, 3] uint8),
@@ -67,8 +67,8 @@ struct Sample {
 struct MakeOptions {
   std::string out_dir, config_dir, game_file;
   long first_seed = 30000;
-  int episodes = 8;
-  int every = 4;
+  int episodes = 40;
+  int every = 1;
   int per_cell = 150;
   double test_fraction = 0.3;
   uint32_t seed = 0;
