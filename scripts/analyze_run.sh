@@ -6,7 +6,8 @@
 # sight), into docs/runs/<run>/analysis/.
 # usage: scripts/analyze_run.sh RUN WEIGHTS          (RUN as in policies/policies.yaml)
 #        scripts/analyze_run.sh --baseline VARIANT POLICY   (random or scripted/EVADER: behaviour
-#                                                            only, into docs/analysis/baselines/<variant>/<policy>/)
+#                                                            only, into docs/analysis/baselines/<variant>/<policy>/;
+#                                                            the random hider's: ROLLOUT_EPISODES=1000, about 43,000 steps)
 #   RECORD_ROOT (default this checkout): where the registry and docs/runs are (the sweep's checkout).
 #   ROLLOUT_EPISODES (default 100), ROLLOUT_SEED (default 10000).
 set -euo pipefail
@@ -36,6 +37,11 @@ print(r.runs(sys.argv[2])[sys.argv[1]]["variant"])' "$name" "$records/policies/p
     "$out/probes.csv" --run "$name"
 fi
 mkdir -p "$out"
-devel/lib/hideseek_hider/play_episodes "$variant" "$policy" "$first" "$episodes" "$tmp/steps.csv" greedy > /dev/null
+# play_episodes plays at most 64 episodes at once: chunks of 50, one CSV.
+for ((at = 0; at < episodes; at += 50)); do
+  n=$((episodes - at < 50 ? episodes - at : 50))
+  devel/lib/hideseek_hider/play_episodes "$variant" "$policy" $((first + at)) "$n" "$tmp/chunk.csv" greedy > /dev/null
+  if [ $at = 0 ]; then cp "$tmp/chunk.csv" "$tmp/steps.csv"; else tail -n +2 "$tmp/chunk.csv" >> "$tmp/steps.csv"; fi
+done
 /usr/bin/python3 src/hideseek_analysis/scripts/behaviour.py "$tmp/steps.csv" "$out" --run "$name"
 echo "analyze_run: $name: $out"

@@ -4,7 +4,13 @@
 # (analyze.launch: 50,000 recorded steps, probes, t-SNE, state statistics, distance over time),
 # and gathers it all into one report folder with Table 3, the figures across variants, the
 # survival-vs-representation plot and an index.md.
-# usage: scripts/reproduce.sh [REPORT_DIR=docs/report] [WORK_DIR=~/.ros/hideseek_reproduce]
+# By default it works from the committed outputs alone, in under a minute: Table 2 across training
+# seeds (REPORT_DIR/table2_seeds/: sweep_table2.py), the claims table (claims.py) and Figures 4-7
+# across seeds (seed_figures.py), from every sweep run's evaluation and per-run analysis. Given
+# the weights, --from-scratch first analyses again every sweep run whose weights are on this machine
+# and lacks its analysis (scripts/sweep.sh analyze), then re-evaluates and re-analyses the shipped
+# policies through the ROS graph as described above.
+# usage: scripts/reproduce.sh [--from-scratch] [REPORT_DIR=docs/report] [WORK_DIR=~/.ros/hideseek_reproduce]
 #   WORK_DIR receives the bags and feature arrays (large; not part of the report).
 #   HIDESEEK_ANALYSIS_STEPS overrides the 50,000 steps per variant (a quick look: 5000).
 #   HIDESEEK_VARIANTS="v1 v2" evaluates and analyses those variants only (with their GRU hiders) and
@@ -12,6 +18,8 @@
 #   variants: for a newly trained policy. After a change to the game, run it all.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+scratch=0
+if [ "${1:-}" = --from-scratch ]; then scratch=1; shift; fi
 report=$(realpath -m "${1:-docs/report}")
 work=$(realpath -m "${2:-$HOME/.ros/hideseek_reproduce}")
 steps=${HIDESEEK_ANALYSIS_STEPS:-50000}
@@ -20,6 +28,18 @@ port=${HIDESEEK_PORT:-11478}
 export ROS_MASTER_URI=http://localhost:$port
 start=$(date +%s)
 mkdir -p "$report" "$work"
+across_seeds() {
+  echo "reproduce: across training seeds, from the committed evaluations and analyses"
+  /usr/bin/python3 src/hideseek_analysis/scripts/sweep_table2.py --out "$report/table2_seeds"
+  /usr/bin/python3 src/hideseek_analysis/scripts/claims.py --out "$report"
+  /usr/bin/python3 src/hideseek_analysis/scripts/seed_figures.py --out "$report"
+}
+if [ $scratch = 0 ]; then
+  across_seeds
+  echo "reproduce: done in $(($(date +%s) - start)) s; open $report/claims.md ($0 --from-scratch also re-evaluates and re-analyses)"
+  exit 0
+fi
+scripts/sweep.sh analyze
 echo "reproduce: [1/3] Table 2: every shipped policy and the random hider, seeds 0-99, all variants"
 HIDESEEK_PORT=$port scripts/evaluate_all.sh "$report"
 # Every shipped policy (policies/policies.yaml): its label (the report's folder), variant and weights.
@@ -46,4 +66,5 @@ for v in "${variants[@]}"; do
 done
 echo "reproduce: [3/3] tables and figures across variants"
 /usr/bin/python3 src/hideseek_analysis/scripts/reproduce_report.py "$report" --paper config/paper_reference.yaml
+across_seeds
 echo "reproduce: done in $(($(date +%s) - start)) s; open $report/index.md"

@@ -21,12 +21,15 @@ import csv
 import os
 import sys
 
-import numpy as np
-from sklearn.linear_model import LogisticRegression
-from sklearn.metrics import accuracy_score, balanced_accuracy_score
-from sklearn.model_selection import GroupKFold
-from sklearn.pipeline import make_pipeline
-from sklearn.preprocessing import StandardScaler
+# One BLAS thread: the probes are many small fits, and they usually share the cores with training.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+import numpy as np  # noqa: E402
+from sklearn.linear_model import LogisticRegression  # noqa: E402
+from sklearn.metrics import accuracy_score, balanced_accuracy_score  # noqa: E402
+from sklearn.model_selection import GroupKFold  # noqa: E402
+from sklearn.pipeline import make_pipeline  # noqa: E402
+from sklearn.preprocessing import StandardScaler  # noqa: E402
 
 CS = (0.001, 0.01, 0.1, 1.0, 10.0)
 RANDOM_INIT_SEEDS = (0, 1, 2, 3, 4)

@@ -10,7 +10,7 @@ ROOT/docs/runs/<run>/episodes.csv (greedy) and sampled/episodes.csv (sampled). B
 paper's figures (config/paper_reference.yaml) and the random hider and scripted evaders
 (docs/calibration_table.csv).
 
-Writes into OUT (default ROOT/docs/table2):
+Writes into OUT (default ROOT/docs/report/table2_seeds; make reproduce writes it there):
 - table2.md / table2.csv: per variant and mode (greedy, sampled), the runs, the mean and the IQM of
   living steps and of success over the pooled episodes, each with its interval;
 - orderings.md / orderings.csv: the probability of improvement for each ordering the paper reports,
@@ -80,14 +80,14 @@ def main(argv=None):
     default_root = os.path.normpath(os.path.join(here, "..", "..", ".."))
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--root", default=default_root, help="the checkout (registry, docs/runs, config)")
-    p.add_argument("--out", help="output folder (default ROOT/docs/table2)")
+    p.add_argument("--out", help="output folder (default ROOT/docs/report/table2_seeds)")
     p.add_argument("--steps", type=int, default=2000000, help="a sweep run's training steps (default 2000000)")
     p.add_argument("--extra", nargs="*", default=[], help="other runs to count, by registry name")
     p.add_argument("--reps", type=int, default=st.BOOTSTRAP, help="bootstrap resamples (default %d)" % st.BOOTSTRAP)
     p.add_argument("--seed", type=int, default=0, help="the bootstrap's random seed")
     args = p.parse_args(argv)
     root = os.path.abspath(args.root)
-    out = args.out or os.path.join(root, "docs", "table2")
+    out = args.out or os.path.join(root, "docs", "report", "table2_seeds")
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(root, "config", "paper_reference.yaml")) as f:
         paper = (yaml.safe_load(f) or {}).get("variants") or {}

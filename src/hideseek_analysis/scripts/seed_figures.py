@@ -1,0 +1,199 @@
+#!/usr/bin/env python3
+"""The paper's Figures 4-7 across training seeds, from the committed per-run analysis outputs
+(docs/runs/<run>/analysis/, scripts/analyze_run.sh) and the random hider's
+(docs/analysis/baselines/<variant>/random/).
+
+usage: seed_figures.py [--root DIR] [--out DIR] [--steps N] [--extra RUN ...] [--reps N]
+
+Writes into OUT (default ROOT/docs/report):
+- state_frequencies_seeds.png/.csv (Figure 4): each state's frequency, trained minus the random
+  hider of the same variant, mean over runs with a 95 % bootstrap interval over runs;
+- transitions_seeds.png/.csv (Figure 5): P(S1H1 -> S0H1 | leaving S1H1) (turning away) and
+  P(S0H1 -> S0H0 | leaving S0H1) (leaving the seeker's view), per variant, trained and random;
+- distance_seeds.png (Figure 6): the mean distance between the agents over the episode, per
+  variant, with the spread between its runs;
+- survival_representation.png/.csv (Figure 7): probe gain (mean of S and H, over the 5 random-init
+  networks) against living steps, one point per run, with the quadratic fit.
+An interval over one run is no interval: variants with one run are drawn without one.
+"""
+import argparse
+import csv
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import sweep_stats as st  # noqa: E402
+from claims import Runs, probe_value, read_csv, transition_prob  # noqa: E402
+from hideseek_analysis import STATE_NAMES  # noqa: E402
+from sweep_table2 import load_episodes, sweep_runs  # noqa: E402
+
+
+def order(root, found):
+    import yaml
+    with open(os.path.join(root, "config", "paper_reference.yaml")) as f:
+        paper = list((yaml.safe_load(f) or {}).get("variants") or {})
+    return [v for v in paper if v in found] + sorted(v for v in found if v not in paper)
+
+
+def ci_over_runs(values, rng, reps):
+    values = np.asarray(values, dtype=float)
+    if len(values) < 2:
+        return float(values.mean()), (np.nan, np.nan)
+    boot = [values[rng.integers(0, len(values), len(values))].mean() for _ in range(reps)]
+    return float(values.mean()), st.interval(boot)
+
+
+def main(argv=None):
+    here = os.path.dirname(os.path.abspath(__file__))
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--root", default=os.path.normpath(os.path.join(here, "..", "..", "..")))
+    p.add_argument("--out")
+    p.add_argument("--steps", type=int, default=2000000)
+    p.add_argument("--extra", nargs="*", default=[])
+    p.add_argument("--reps", type=int, default=st.BOOTSTRAP)
+    args = p.parse_args(argv)
+    root = os.path.abspath(args.root)
+    out = args.out or os.path.join(root, "docs", "report")
+    os.makedirs(out, exist_ok=True)
+    rng = np.random.default_rng(0)
+    found = sweep_runs(root, args.steps, set(args.extra))
+    R = Runs(root, found)
+    variants = [v for v in order(root, found) if R.analysed(v, "states")]
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    if not variants:
+        print("seed_figures: no analysed run yet; nothing drawn")
+        return 0
+
+    # Figure 4: states relative to random.
+    rows = []
+    fig, ax = plt.subplots(figsize=(11, 4.5))
+    width = 0.8 / len(variants)
+    for k, v in enumerate(variants):
+        base = R.baseline(v, "states")
+        if not base:
+            continue
+        b = np.array([float(r["frequency"]) for r in base])
+        runs = [np.array([float(r["frequency"]) for r in rows_]) - b for _, rows_ in R.analysed(v, "states")]
+        means, lo, hi = [], [], []
+        for i in range(8):
+            m, ci = ci_over_runs([r[i] for r in runs], rng, args.reps)
+            means.append(m)
+            lo.append(ci[0])
+            hi.append(ci[1])
+            rows.append({"variant": v, "state": STATE_NAMES[i], "runs": len(runs), "relative_frequency": round(m, 5),
+                         "ci_low": "" if np.isnan(ci[0]) else round(ci[0], 5),
+                         "ci_high": "" if np.isnan(ci[1]) else round(ci[1], 5)})
+        x = np.arange(8) + (k - (len(variants) - 1) / 2) * width
+        err = None if np.isnan(lo).any() else [np.array(means) - lo, np.array(hi) - means]
+        ax.bar(x, means, width, yerr=err, capsize=2, label="%s (%d runs)" % (v, len(runs)))
+    ax.axhline(0, color="k", lw=0.8)
+    ax.set_xticks(np.arange(8))
+    ax.set_xticklabels(STATE_NAMES)
+    ax.set_ylabel("frequency, trained minus random hider")
+    ax.set_title("States (S: hider sees seeker, H: seeker sees hider, O: obstacle in view); bars: 95 % CI over runs")
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "state_frequencies_seeds.png"), dpi=110)
+    plt.close(fig)
+    with open(os.path.join(out, "state_frequencies_seeds.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+    # Figure 5: the two highlighted transitions.
+    trows = []
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    for ax, (src, dst, title) in zip(axes, (((1, 1), (0, 1), "turns away: S1H1 -> S0H1"),
+                                            ((0, 1), (0, 0), "leaves the view: S0H1 -> S0H0"))):
+        for k, v in enumerate(variants):
+            vals = [transition_prob(r, src, dst) for _, r in R.analysed(v, "transitions")]
+            vals = [x for x in vals if np.isfinite(x)]
+            base = R.baseline(v, "transitions")
+            rnd = transition_prob(base, src, dst) if base else np.nan
+            if not vals:
+                continue
+            m, ci = ci_over_runs(vals, rng, args.reps)
+            err = None if np.isnan(ci[0]) else [[m - ci[0]], [ci[1] - m]]
+            ax.errorbar([k], [m], yerr=err, fmt="o", capsize=3, color="C0", label="trained" if k == 0 else None)
+            ax.plot([k], [rnd], "x", color="C3", label="random hider" if k == 0 else None)
+            trows.append({"transition": title, "variant": v, "runs": len(vals), "trained": round(m, 4),
+                          "ci_low": "" if np.isnan(ci[0]) else round(ci[0], 4),
+                          "ci_high": "" if np.isnan(ci[1]) else round(ci[1], 4), "random": round(float(rnd), 4)})
+        ax.set_xticks(range(len(variants)))
+        ax.set_xticklabels(variants, rotation=30, ha="right", fontsize=8)
+        ax.set_ylim(0, 1)
+        ax.set_title(title)
+        ax.set_ylabel("P(to | a change out of from)")
+        ax.legend(fontsize=8)
+    fig.suptitle("Transitions, trained (95 % CI over runs) and random hider")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "transitions_seeds.png"), dpi=110)
+    plt.close(fig)
+    with open(os.path.join(out, "transitions_seeds.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(trows[0]))
+        w.writeheader()
+        w.writerows(trows)
+
+    # Figure 6: distance over the episode.
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    for k, v in enumerate(variants):
+        curves = []
+        for _, rows_ in R.analysed(v, "distance"):
+            curves.append([float(r["mean_distance"]) if r["mean_distance"] else np.nan for r in rows_])
+            bins = [int(r["step_bin_start"]) for r in rows_]
+        c = np.array(curves)
+        with np.errstate(invalid="ignore"):
+            mean = np.nanmean(c, axis=0)
+        line, = ax.plot(bins, mean, label="%s (%d runs)" % (v, len(curves)))
+        if len(curves) > 1:
+            ax.fill_between(bins, np.nanmin(c, axis=0), np.nanmax(c, axis=0), color=line.get_color(), alpha=0.15)
+    ax.set_xlabel("step of the episode")
+    ax.set_ylabel("mean distance between the agents (m)")
+    ax.set_title("Distance over the episode (seeds 10000-10099, greedy); band: the runs' range")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "distance_seeds.png"), dpi=110)
+    plt.close(fig)
+
+    # Figure 7: survival against representation.
+    pts = []
+    for v in variants:
+        for name, rows_ in R.analysed(v, "probes"):
+            ep = os.path.join(root, "docs", "runs", name, "episodes.csv")
+            if os.path.exists(ep):
+                pts.append({"run": name, "variant": v, "living_steps": round(float(load_episodes(ep)[0].mean()), 2),
+                            "probe_gain": round((probe_value(rows_, "S") + probe_value(rows_, "H")) / 2, 4)})
+    if pts:
+        fig, ax = plt.subplots(figsize=(7, 5))
+        for k, v in enumerate(variants):
+            xs = [q["living_steps"] for q in pts if q["variant"] == v]
+            ys = [q["probe_gain"] for q in pts if q["variant"] == v]
+            if xs:
+                ax.scatter(xs, ys, label=v, color="C%d" % k)
+        if len({q["living_steps"] for q in pts}) >= 3:
+            x = np.array([q["living_steps"] for q in pts])
+            coef = np.polyfit(x, [q["probe_gain"] for q in pts], 2)
+            grid = np.linspace(x.min(), x.max(), 100)
+            ax.plot(grid, np.polyval(coef, grid), "k--", lw=1, label="quadratic fit")
+        ax.set_xlabel("average living steps (evaluation seeds 0-99, greedy)")
+        ax.set_ylabel("probe gain over random init (balanced accuracy, mean of S and H)")
+        ax.set_title("Representation against survival, one point per run")
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, "survival_representation.png"), dpi=110)
+        plt.close(fig)
+        with open(os.path.join(out, "survival_representation.csv"), "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(pts[0]))
+            w.writeheader()
+            w.writerows(pts)
+    print("seed_figures: %d variants, %d analysed runs into %s" % (len(variants), sum(len(R.analysed(v, "states"))
+                                                                                      for v in variants), out))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
