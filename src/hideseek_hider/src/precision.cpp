@@ -79,8 +79,9 @@ double CpuPeak::gflops(Precision precision) const {
 std::string CpuPeak::describe(Precision precision) const {
   char text[320];
   std::snprintf(text, sizeof(text),
-                "%d cores x %.3f GHz (%s) x %d-bit FMA (%d fp32 lanes) x 2 flops x %d FMA units%s = %.1f GFLOP/s %s",
+                "%d cores x %.3f GHz (%s) x %d-bit FMA (%d fp32 lanes) x 2 flops x %d FMA units%s%s = %.1f GFLOP/s %s",
                 cores, ghz, clock_source.c_str(), vector_bits, vector_bits / 32, fma_units,
+                zen4 ? " (Zen 4: a 512-bit FMA per cycle)" : "",
                 precision == Precision::kBf16 && avx512_bf16 ? " x 2 (AVX512_BF16 pairs)" : "", gflops(precision),
                 precisionName(precision));
   return text;
@@ -89,16 +90,19 @@ std::string CpuPeak::describe(Precision precision) const {
 CpuPeak cpuPeakFrom(const std::string& cpuinfo, double max_khz, int threads, int online_cpus, int fma_units) {
   CpuPeak p;
   p.cores = std::max(1, std::min(threads, online_cpus));
-  p.fma_units = fma_units;
   std::istringstream in(cpuinfo);
   std::set<std::string> flags;
   double mhz = 0.0;
+  std::string vendor;
+  int family = -1;
   for (std::string line; std::getline(in, line);) {
     const size_t colon = line.find(':');
     if (colon == std::string::npos) continue;
     std::string key = line.substr(0, colon);
     key.erase(key.find_last_not_of(" \t") + 1);
     if (key == "cpu MHz") mhz = std::max(mhz, std::atof(line.c_str() + colon + 1));
+    if (key == "vendor_id" && vendor.empty()) std::istringstream(line.substr(colon + 1)) >> vendor;
+    if (key == "cpu family" && family < 0) family = std::atoi(line.c_str() + colon + 1);
     if (key == "flags" && flags.empty()) {
       std::istringstream words(line.substr(colon + 1));
       for (std::string w; words >> w;) flags.insert(w);
@@ -110,6 +114,10 @@ CpuPeak cpuPeakFrom(const std::string& cpuinfo, double max_khz, int threads, int
     p.vector_bits = 256;
   }
   p.avx512_bf16 = flags.count("avx512_bf16") > 0;
+  // Zen 4 (AMD family 19h with AVX-512) executes a 512-bit FMA as two 256-bit halves on its two
+  // 256-bit pipes: one 512-bit FMA per cycle.
+  p.zen4 = vendor == "AuthenticAMD" && family == 0x19 && p.vector_bits == 512;
+  p.fma_units = fma_units > 0 ? fma_units : (p.zen4 ? 1 : 2);
   if (max_khz > 0.0) {
     p.ghz = max_khz / 1e6;
     p.clock_source = "cpufreq cpuinfo_max_freq";
@@ -127,7 +135,7 @@ CpuPeak detectCpuPeak(int threads) {
   std::ifstream freq("/sys/devices/system/cpu/cpu0/cpufreq/cpuinfo_max_freq");
   if (!(freq >> max_khz)) max_khz = 0.0;
   const char* units = std::getenv("HIDESEEK_FMA_UNITS");
-  const int fma_units = units && std::atoi(units) > 0 ? std::atoi(units) : 2;
+  const int fma_units = units && std::atoi(units) > 0 ? std::atoi(units) : 0;  // 0: from the CPU
   return cpuPeakFrom(text, max_khz, threads, static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN)), fma_units);
 }
 

@@ -56,6 +56,20 @@ TEST(CpuPeak, ReadsVectorWidthClockAndCoresFromTheMachinesOwnDescription) {
   EXPECT_DOUBLE_EQ(q.gflops(Precision::kFp32), 4 * 3.7 * 16 * 2 * 1);
   EXPECT_DOUBLE_EQ(q.gflops(Precision::kBf16), 2 * q.gflops(Precision::kFp32));
   EXPECT_NE(q.describe(Precision::kBf16).find("cpuinfo_max_freq"), std::string::npos);
+  // Zen 4 (AMD family 19h with AVX-512) counts one 512-bit FMA per cycle unless told otherwise;
+  // Zen 3 (family 19h without AVX-512) and Intel keep two.
+  const std::string epyc9004 =
+      "vendor_id\t: AuthenticAMD\ncpu family\t: 25\ncpu MHz\t\t: 2596.0\nflags\t\t: avx2 fma avx512f avx512_bf16\n";
+  const CpuPeak z = cpuPeakFrom(epyc9004, 0.0, 2, 2, 0);
+  EXPECT_TRUE(z.zen4);
+  EXPECT_EQ(z.fma_units, 1);
+  EXPECT_NEAR(z.gflops(Precision::kBf16), 2 * 2.596 * 16 * 2 * 1 * 2, 1e-9);  // 332.3
+  EXPECT_NE(z.describe(Precision::kBf16).find("Zen 4"), std::string::npos);
+  EXPECT_EQ(cpuPeakFrom(epyc9004, 0.0, 2, 2, 2).fma_units, 2);  // HIDESEEK_FMA_UNITS wins
+  const std::string milan = "vendor_id : AuthenticAMD\ncpu family : 25\nflags : avx2 fma\n";
+  EXPECT_EQ(cpuPeakFrom(milan, 0.0, 2, 2, 0).fma_units, 2);
+  const std::string intel = "vendor_id : GenuineIntel\ncpu family : 6\nflags : avx2 fma avx512f\n";
+  EXPECT_EQ(cpuPeakFrom(intel, 0.0, 2, 2, 0).fma_units, 2);
   // Without AVX2 and FMA, 128-bit vectors.
   EXPECT_EQ(cpuPeakFrom("flags : sse sse2 avx\n", 0.0, 1, 1, 2).vector_bits, 128);
 }

@@ -31,22 +31,23 @@ CpuBf16Support detectCpuBf16();
 // virtual machine reports as its nominal clock and a boosting host can exceed), the cores the work
 // runs on (its threads, at most the CPUs online; a virtual CPU may be a hyperthread), and FMA
 // units per core, which no flag tells: 2 (every x86 server core since Haswell and Zen 2 has two
-// FMA pipes) unless HIDESEEK_FMA_UNITS says otherwise. bf16 doubles the rate where AVX512_BF16
-// dot products exist (AMX tiles are not counted). Zen 4 executes 512-bit vectors in two 256-bit
-// halves, so there this peak is twice what the core can do.
+// FMA pipes), except on Zen 4 (AMD family 19h with AVX-512), which executes a 512-bit FMA as two
+// 256-bit halves: one 512-bit FMA per cycle. HIDESEEK_FMA_UNITS overrides either. bf16 doubles the
+// rate where AVX512_BF16 dot products exist (AMX tiles are not counted).
 struct CpuPeak {
   int cores = 1;
   double ghz = 0.0;
   std::string clock_source;
   int vector_bits = 128;
   int fma_units = 2;
+  bool zen4 = false;  // AMD family 19h with AVX-512: fma_units 1 unless overridden
   bool avx512_bf16 = false;
   // cores x GHz x (vector_bits / 32 lanes) x 2 (multiply and add) x fma_units [x 2 in bf16].
   double gflops(Precision precision) const;
   std::string describe(Precision precision) const;  // the formula with its numbers
 };
 // From /proc/cpuinfo's text, cpufreq's maximum in kHz (0: none), the work's threads and the
-// online CPUs, and the FMA units per core.
+// online CPUs, and the FMA units per core (0: from the CPU, as above).
 CpuPeak cpuPeakFrom(const std::string& cpuinfo, double max_khz, int threads, int online_cpus, int fma_units);
 CpuPeak detectCpuPeak(int threads);
 
