@@ -128,6 +128,9 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     publishArenaZero(true);
   }
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(1.0), &WorldNode::publishDiagnostics, this);
+  if (options_.status_period > 0.0) {
+    status_timer_ = nh_.createWallTimer(ros::WallDuration(options_.status_period), &WorldNode::printStatus, this);
+  }
   ROS_INFO("world: variant '%s', map '%s', %d arena(s), %s mode, seed %u, images %dx%d", options_.variant.name.c_str(),
            options_.map.name.c_str(), n, lockstep ? "lockstep" : "realtime", options_.seed, game.camera.width,
            game.camera.height);
@@ -503,6 +506,15 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
     publishArenaZero(true);
   }
   return true;
+}
+
+void WorldNode::printStatus(const ros::WallTimerEvent&) {
+  if (!started_) return;
+  const Arena& a = game_.world().arena(0);
+  const Labels& l = a.labels();
+  ROS_INFO("arena 0: episode seed %u, step %d, distance %.1f m; hider %s the seeker, seeker %s the hider", a.seed(),
+           a.stepCount(), distance(a.hider().position, a.seeker().position), l.hider_sees_seeker ? "sees" : "does not see",
+           l.seeker_sees_hider ? "sees" : "does not see");
 }
 
 void WorldNode::publishDiagnostics(const ros::WallTimerEvent&) {

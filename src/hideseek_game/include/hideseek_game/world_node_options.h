@@ -26,6 +26,9 @@ struct WorldNodeOptions {
   double stale_action_timeout = 0.5;  // s of wall time; realtime agents without news stand still
   double resend_period = 1.0;         // s of wall time; lockstep re-sends a batch nobody answered
   double publish_rate = 30.0;         // Hz of wall time for rviz outputs (markers, paths, images) in lockstep
+  // s of wall time between two status lines of arena 0 on the console (its step, the distance,
+  // who sees whom; 0: none): a headless game that is not silent between episodes.
+  double status_period = 0.0;
   int render_threads = 2;             // llvmpipe rasteriser threads
   // The game starts once world/episodes has this many subscribers (an evaluator, a recorder for
   // analysis): whoever must see the first episodes, however late it connects.

@@ -94,6 +94,8 @@ class WorldNode {
   void publishArenaZero(bool force_visuals);
   void startEpisodeVisuals();
   void publishDiagnostics(const ros::WallTimerEvent&);
+  // One console line on arena 0: its episode and step, the distance, who sees whom.
+  void printStatus(const ros::WallTimerEvent&);
   // Sim time after `decisions` decision steps (lockstep), or wall time (realtime).
   ros::Time simTime(uint64_t decisions) const;
   ros::Time simNow() const { return simTime(game_.decisions()); }
@@ -119,7 +121,7 @@ class WorldNode {
       state_pub_, episodes_pub_, steps_pub_, diagnostics_pub_;
   ros::Subscriber hider_sub_, seeker_sub_;
   ros::ServiceServer reset_srv_;
-  ros::WallTimer tick_timer_, watchdog_timer_, diagnostics_timer_;
+  ros::WallTimer tick_timer_, watchdog_timer_, diagnostics_timer_, status_timer_;
   tf2_ros::TransformBroadcaster tf_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   nav_msgs::Path hider_path_, seeker_path_;
