@@ -166,7 +166,7 @@ def build(root, found, rng, reps, calib):
                          note="needs at least three of the paper's variants evaluated"))
 
     # 2. Every variant beats the random hider.
-    diffs, worst = {}, None
+    diffs = {}
     for v, runs in living.items():
         rnd = [float(r["avg_living_steps"]) for r in calib.get(v, []) if r["evader"] == "random"]
         if not rnd:
@@ -329,11 +329,7 @@ def build(root, found, rng, reps, calib):
 def write(out_dir, rows, header):
     os.makedirs(out_dir, exist_ok=True)
     fields = ["claim", "paper", "result", "effect", "ci_low", "ci_high", "runs", "measure", "note", "departure"]
-    with open(os.path.join(out_dir, "claims.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=fields)
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: r[k] for k in fields})
+    st.write_rows(os.path.join(out_dir, "claims.csv"), rows, fields)
     md = ["# The paper's claims, decided", "", header, "",
           "| claim | result | effect [95 % CI] | runs | measure | what could cause a miss |", "| --- | --- | --- | --- | --- | --- |"]
     for r in rows:
@@ -348,14 +344,8 @@ def write(out_dir, rows, header):
 
 
 def main(argv=None):
-    here = os.path.dirname(os.path.abspath(__file__))
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--root", default=os.path.normpath(os.path.join(here, "..", "..", "..")))
-    p.add_argument("--out")
-    p.add_argument("--steps", type=int, default=2000000)
-    p.add_argument("--extra", nargs="*", default=[])
-    p.add_argument("--reps", type=int, default=st.BOOTSTRAP)
-    p.add_argument("--seed", type=int, default=0)
+    st.add_selection_args(p, os.path.dirname(os.path.abspath(__file__)))
     args = p.parse_args(argv)
     root = os.path.abspath(args.root)
     found = sweep_runs(root, args.steps, set(args.extra))

@@ -17,7 +17,6 @@ Writes into OUT (default ROOT/docs/report):
 An interval over one run is no interval: variants with one run are drawn without one.
 """
 import argparse
-import csv
 import os
 import sys
 
@@ -25,7 +24,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sweep_stats as st  # noqa: E402
-from claims import Runs, probe_value, read_csv, transition_prob  # noqa: E402
+from claims import Runs, probe_value, transition_prob  # noqa: E402
 from hideseek_analysis import STATE_NAMES  # noqa: E402
 from sweep_table2 import load_episodes, sweep_runs  # noqa: E402
 
@@ -45,19 +44,24 @@ def ci_over_runs(values, rng, reps):
     return float(values.mean()), st.interval(boot)
 
 
+def save(fig, out, name, rows=None):
+    """A figure as OUT/NAME.png and, with rows, its numbers as OUT/NAME.csv."""
+    import matplotlib.pyplot as plt
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, name + ".png"), dpi=110)
+    plt.close(fig)
+    if rows:
+        st.write_rows(os.path.join(out, name + ".csv"), rows)
+
+
 def main(argv=None):
-    here = os.path.dirname(os.path.abspath(__file__))
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--root", default=os.path.normpath(os.path.join(here, "..", "..", "..")))
-    p.add_argument("--out")
-    p.add_argument("--steps", type=int, default=2000000)
-    p.add_argument("--extra", nargs="*", default=[])
-    p.add_argument("--reps", type=int, default=st.BOOTSTRAP)
+    st.add_selection_args(p, os.path.dirname(os.path.abspath(__file__)))
     args = p.parse_args(argv)
     root = os.path.abspath(args.root)
     out = args.out or os.path.join(root, "docs", "report")
     os.makedirs(out, exist_ok=True)
-    rng = np.random.default_rng(0)
+    rng = np.random.default_rng(args.seed)
     found = sweep_runs(root, args.steps, set(args.extra))
     R = Runs(root, found)
     variants = [v for v in order(root, found) if R.analysed(v, "states")]
@@ -96,13 +100,7 @@ def main(argv=None):
     ax.set_ylabel("frequency, trained minus random hider")
     ax.set_title("States (S: hider sees seeker, H: seeker sees hider, O: obstacle in view); bars: 95 % CI over runs")
     ax.legend(fontsize=7, ncol=2)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "state_frequencies_seeds.png"), dpi=110)
-    plt.close(fig)
-    with open(os.path.join(out, "state_frequencies_seeds.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    save(fig, out, "state_frequencies_seeds", rows)
 
     # Figure 5: the two highlighted transitions.
     trows = []
@@ -130,13 +128,7 @@ def main(argv=None):
         ax.set_ylabel("P(to | a change out of from)")
         ax.legend(fontsize=8)
     fig.suptitle("Transitions, trained (95 % CI over runs) and random hider")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "transitions_seeds.png"), dpi=110)
-    plt.close(fig)
-    with open(os.path.join(out, "transitions_seeds.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(trows[0]))
-        w.writeheader()
-        w.writerows(trows)
+    save(fig, out, "transitions_seeds", trows)
 
     # Figure 6: distance over the episode.
     fig, ax = plt.subplots(figsize=(9, 4.5))
@@ -155,9 +147,7 @@ def main(argv=None):
     ax.set_ylabel("mean distance between the agents (m)")
     ax.set_title("Distance over the episode (seeds 10000-10099, greedy); band: the runs' range")
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "distance_seeds.png"), dpi=110)
-    plt.close(fig)
+    save(fig, out, "distance_seeds")
 
     # Figure 7: survival against representation.
     pts = []
@@ -183,13 +173,7 @@ def main(argv=None):
         ax.set_ylabel("probe gain over random init (balanced accuracy, mean of S and H)")
         ax.set_title("Representation against survival, one point per run")
         ax.legend(fontsize=7)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "survival_representation.png"), dpi=110)
-        plt.close(fig)
-        with open(os.path.join(out, "survival_representation.csv"), "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=list(pts[0]))
-            w.writeheader()
-            w.writerows(pts)
+        save(fig, out, "survival_representation", pts)
     print("seed_figures: %d variants, %d analysed runs into %s" % (len(variants), sum(len(R.analysed(v, "states"))
                                                                                       for v in variants), out))
     return 0

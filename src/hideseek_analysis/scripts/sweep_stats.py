@@ -9,6 +9,9 @@ each drawn run. The interval so covers both the spread between training seeds an
 between evaluation episodes; with three seeds it is wide, and it can only be as wide as three
 draws of the training seed allow (it does not cover seeds whose behaviour none of the three showed).
 """
+import csv
+import os
+
 import numpy as np
 from scipy import stats
 
@@ -106,3 +109,24 @@ def rank_correlation(runs_by_variant, reference, rng, reps=BOOTSTRAP):
         if np.isfinite(rho):
             boot.append(rho)
     return float(point), interval(boot)
+
+
+def add_selection_args(parser, here):
+    """The options every tool across training seeds takes: which checkout, where to write, which
+    runs (the sweep's, by their steps, plus --extra by name), and how many bootstrap resamples."""
+    parser.add_argument("--root", default=os.path.normpath(os.path.join(here, "..", "..", "..")),
+                        help="the checkout (registry, docs/runs, config)")
+    parser.add_argument("--out", help="output folder")
+    parser.add_argument("--steps", type=int, default=2000000, help="a sweep run's training steps (default 2000000)")
+    parser.add_argument("--extra", nargs="*", default=[], help="other runs to count, by registry name")
+    parser.add_argument("--reps", type=int, default=BOOTSTRAP, help="bootstrap resamples (default %d)" % BOOTSTRAP)
+    parser.add_argument("--seed", type=int, default=0, help="the bootstrap's random seed")
+
+
+def write_rows(path, rows, fields=None):
+    """Rows (dicts) as a CSV file, with `fields` (default: the first row's keys) as its header."""
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields or list(rows[0]))
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: r.get(k, "") for k in (fields or list(rows[0]))})

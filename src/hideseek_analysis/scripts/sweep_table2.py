@@ -76,15 +76,8 @@ def fmt_ci(point, ci, digits=1, scale=1.0):
 
 
 def main(argv=None):
-    here = os.path.dirname(os.path.abspath(__file__))
-    default_root = os.path.normpath(os.path.join(here, "..", "..", ".."))
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--root", default=default_root, help="the checkout (registry, docs/runs, config)")
-    p.add_argument("--out", help="output folder (default ROOT/docs/report/table2_seeds)")
-    p.add_argument("--steps", type=int, default=2000000, help="a sweep run's training steps (default 2000000)")
-    p.add_argument("--extra", nargs="*", default=[], help="other runs to count, by registry name")
-    p.add_argument("--reps", type=int, default=st.BOOTSTRAP, help="bootstrap resamples (default %d)" % st.BOOTSTRAP)
-    p.add_argument("--seed", type=int, default=0, help="the bootstrap's random seed")
+    st.add_selection_args(p, os.path.dirname(os.path.abspath(__file__)))
     args = p.parse_args(argv)
     root = os.path.abspath(args.root)
     out = args.out or os.path.join(root, "docs", "report", "table2_seeds")
