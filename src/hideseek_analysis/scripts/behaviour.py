@@ -37,6 +37,8 @@ def read_steps(path):
         rows = list(csv.DictReader(f))
     if not rows:
         raise SystemExit("behaviour: %s holds no step" % path)
+    # play_episodes writes its arenas' steps interleaved: put each episode's steps together, in order.
+    rows.sort(key=lambda r: (int(r["seed"]), int(r["step"])))
     col = {k: np.array([r[k] for r in rows]) for k in ("seed", "step", "S", "H", "O", "distance", "hider_action",
                                                          "outcome")}
     return {

@@ -75,6 +75,11 @@ def test_behaviour_counts_states_transitions_and_behaviour(tmp_path):
     e1 = [(1, 1, 0, 2.0, 0), (1, 1, 0, 1.0, 0)]
     steps = tmp_path / "steps.csv"
     write_steps(steps, [(10000, e0), (10001, e1)])
+    # as play_episodes writes it: the arenas' steps interleaved, step by step
+    with open(steps) as f:
+        header, *body = f.read().splitlines()
+    body.sort(key=lambda line: (int(line.split(",")[1]), int(line.split(",")[0])))
+    steps.write_text("\n".join([header] + body) + "\n")
     out = tmp_path / "out"
     behaviour.write(str(out), behaviour.summarise(behaviour.read_steps(str(steps))), "r")
     with open(out / "behaviour.csv") as f:
