@@ -17,11 +17,12 @@ build: deps
 run: build
 	source scripts/env.sh && scripts/run_basic.sh
 
+# Both pause a running sweep (scripts/sweep.sh) while they run, and resume it after.
 test: build
-	scripts/run_tests.sh
+	scripts/sweep.sh hold scripts/run_tests.sh
 
 bench: build
-	scripts/bench.sh
+	scripts/sweep.sh hold scripts/bench.sh
 
 # Table 2, the analysis of every variant with a shipped policy, Table 3 and the figures, in docs/report.
 reproduce: build

@@ -17,6 +17,9 @@
 #            is recorded apart from the run's wall time
 #   resume   SIGCONT them
 #   stop     stop the queue and its runs (each resumes from its last checkpoint at the next start)
+#   hold CMD ...  pause a running queue, run CMD, resume it (whatever CMD's exit); with no queue
+#            running, just CMD. make bench and make test run under it: benchmarks are taken only
+#            while the sweep is paused
 #
 # SWEEP_DIR (default ~/hideseek_sweep) holds the worktree (tree/), the runs' weights and
 # checkpoints (runs/<run>/), the logs (logs/) and the queue's state. SWEEP_<KEY> overrides a key of
@@ -35,7 +38,7 @@ dir=$(realpath -m "${SWEEP_DIR:-$HOME/hideseek_sweep}")
 tree=$dir/tree
 runs=$dir/runs
 state=$dir/state
-mkdir -p "$runs" "$state" "$dir/logs"
+case "${1:-start}" in start|run|build|analyze|pause) mkdir -p "$runs" "$state" "$dir/logs" ;; esac
 
 say() { echo "sweep $(date +%H:%M:%S): $*"; }
 die() { echo "sweep: $*" >&2; exit 2; }
@@ -304,5 +307,16 @@ case "${1:-start}" in
   pause) pause ;;
   resume) resume ;;
   stop) stop ;;
-  *) die "unknown command '$1' (start, run, build, analyze, status, pause, resume, stop)" ;;
+  hold)
+    shift
+    [ $# -gt 0 ] || die "hold: name the command to run while the sweep is paused"
+    if [ -z "$(queue_pid)" ] || [ -e "$state/paused" ]; then exec "$@"; fi
+    pause
+    trap 'resume' EXIT
+    trap 'exit 130' INT TERM
+    rc=0
+    "$@" || rc=$?
+    exit $rc
+    ;;
+  *) die "unknown command '$1' (start, run, build, analyze, status, pause, resume, stop, hold)" ;;
 esac

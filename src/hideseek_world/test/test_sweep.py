@@ -259,3 +259,29 @@ def test_claims_are_decided_only_with_two_runs_and_by_their_interval(tmp_path):
     c = run_claims(tmp_path, rec)
     assert c["Trained features beat random-init ones on S"]["result"] == "inconclusive"
     assert c["slowerhider uses obstacles (not S, not H, O)"]["result"] == "inconclusive"
+
+
+def test_hold_runs_a_command_with_the_sweep_paused_and_resumes_it(tmp_path):
+    rec = make_records(tmp_path, {})
+    state = tmp_path / "sweep" / "state"
+    state.mkdir(parents=True)
+    queue = subprocess.Popen(["sleep", "300"])  # stands for the queue: hold acts only where one runs
+    job = subprocess.Popen(["sleep", "300"])
+    try:
+        (state / "queue.pid").write_text("%d\n" % queue.pid)
+        (state / "job.basic_seed0").write_text("%d\n" % job.pid)
+        probe = "import sys; s = open('/proc/%d/stat').read().rsplit(')', 1)[1].split()[0]; sys.exit(0 if s == 'T' else 3)"
+        r = sweep(tmp_path, rec, "hold", sys.executable, "-c", probe % job.pid)
+        assert r.returncode == 0, r.stdout + r.stderr  # the job was stopped while the command ran
+        assert proc_state(job.pid, "SR") in ("S", "R")
+        assert not (state / "paused").exists()
+        # the command's failure is passed on, and the sweep is resumed all the same
+        r = sweep(tmp_path, rec, "hold", "false")
+        assert r.returncode == 1 and proc_state(job.pid, "SR") in ("S", "R")
+    finally:
+        for p in (queue, job):
+            p.kill()
+            p.wait()
+    # without a queue, hold only runs the command, and creates no sweep folder
+    r = sweep(tmp_path, rec, "hold", "true", SWEEP_DIR=str(tmp_path / "none"))
+    assert r.returncode == 0 and not (tmp_path / "none").exists()
