@@ -86,6 +86,8 @@ def boot_runs(per_variant, stat, rng, reps):
     """A statistic of per-variant lists of per-run values, with its bootstrap interval: each variant's
     runs resampled on their own. per_variant: {variant: [value per run]}; stat: dict -> number."""
     point = stat({v: np.asarray(x, dtype=float) for v, x in per_variant.items()})
+    if min(len(x) for x in per_variant.values()) < 2:
+        return float(point), (np.nan, np.nan)  # one training seed: no interval over seeds
     boot = []
     for _ in range(reps):
         sample = {v: np.asarray(x, dtype=float)[rng.integers(0, len(x), len(x))] for v, x in per_variant.items()}
@@ -95,7 +97,7 @@ def boot_runs(per_variant, stat, rng, reps):
 
 def verdict(ci, n_min, sign=1.0):
     """supported / contradicted / inconclusive for an effect whose paper-side is sign * effect > 0."""
-    if n_min < MIN_RUNS:
+    if n_min < MIN_RUNS or not np.all(np.isfinite(ci)):
         return "inconclusive"
     lo, hi = sorted((sign * ci[0], sign * ci[1]))
     if lo > 0:
@@ -108,7 +110,8 @@ def verdict(ci, n_min, sign=1.0):
 def claim(name, paper, measure, point=None, ci=None, runs="", result="inconclusive", note="", departure=""):
     return {"claim": name, "paper": paper, "measure": measure,
             "effect": "" if point is None else round(point, 4),
-            "ci_low": "" if ci is None else round(ci[0], 4), "ci_high": "" if ci is None else round(ci[1], 4),
+            "ci_low": "" if ci is None or not np.isfinite(ci[0]) else round(ci[0], 4),
+            "ci_high": "" if ci is None or not np.isfinite(ci[1]) else round(ci[1], 4),
             "runs": runs, "result": result, "note": note,
             "departure": "" if result == "supported" else departure}
 
@@ -119,7 +122,7 @@ def runs_text(per_variant):
 
 def missing(per_variant, needed):
     short = [v for v in needed if len(per_variant.get(v, [])) < MIN_RUNS]
-    return ("needs at least %d analysed runs of: %s" % (MIN_RUNS, ", ".join(short))) if short else ""
+    return ("needs at least %d runs of: %s" % (MIN_RUNS, ", ".join(short))) if short else ""
 
 
 def state_freq(rows, predicate):
@@ -287,9 +290,8 @@ def build(root, found, rng, reps, calib):
     both = [c6a["result"], c6b["result"]]
     res = "supported" if both == ["supported"] * 2 else ("contradicted" if "contradicted" in both else "inconclusive")
     out.append(claim("basic turns away, then runs", "Figure 5 and section 5: turn away from the seeker, then run",
-                     "P(S1H1 -> S0H1 | leaving S1H1) and P(S0H1 -> S0H0 | leaving S0H1), trained minus random: "
-                     "turn away %s [%s, %s]; run %s [%s, %s]" % (c6a["effect"], c6a["ci_low"], c6a["ci_high"],
-                                                                 c6b["effect"], c6b["ci_low"], c6b["ci_high"]),
+                     "P(S1H1 -> S0H1, given it leaves S1H1) and P(S0H1 -> S0H0, given it leaves S0H1), trained minus random: "
+                     "turn away %s; run %s" % (effect_text(c6a), effect_text(c6b)),
                      runs=c6a["runs"], result=res, note=c6a["note"] or c6b["note"], departure=DEPARTURES["seeker"]))
     out.append(relative(("slowerhider",), "states", lambda rows: state_freq(rows, lambda s, h, o: s == 0 and h == 0 and o == 1),
                         "slowerhider uses obstacles (not S, not H, O)", "Figure 4: slowerhider's state S0 H0 O1 above random",
@@ -322,8 +324,15 @@ def build(root, found, rng, reps, calib):
                          note="needs basic and a faster hider analysed"))
     out.append(claim("Failures come from a lack of memory", "section 5: the hider forgets the seeker once out of view",
                      "GRU runs against the feed-forward runs of the same seeds, and the GRU's memoryless ablation",
-                     note="inconclusive: not yet trained on game v2 (the GRU runs follow the sweep)"))
+                     note="not yet trained on game v2 (the GRU runs follow the sweep)"))
     return out
+
+
+def effect_text(r):
+    """A claim's effect with its interval, where it has one: 0.123 [0.100, 0.150]."""
+    if r["effect"] == "":
+        return "-"
+    return "%.3f" % r["effect"] + ("" if r["ci_low"] == "" else " [%.3f, %.3f]" % (r["ci_low"], r["ci_high"]))
 
 
 def write(out_dir, rows, header):
@@ -333,8 +342,7 @@ def write(out_dir, rows, header):
     md = ["# The paper's claims, decided", "", header, "",
           "| claim | result | effect [95 % CI] | runs | measure | what could cause a miss |", "| --- | --- | --- | --- | --- | --- |"]
     for r in rows:
-        eff = "" if r["effect"] == "" else ("%.3f" % r["effect"] + ("" if r["ci_low"] == "" else " [%.3f, %.3f]" % (
-            r["ci_low"], r["ci_high"])))
+        eff = effect_text(r)
         md.append("| %s | **%s**%s | %s | %s | %s | %s |" % (r["claim"], r["result"],
                                                             (" (" + r["note"] + ")") if r["note"] else "", eff,
                                                             r["runs"], r["measure"], r["departure"]))
