@@ -24,6 +24,8 @@ e = r.runs(sys.argv[2])[sys.argv[1]]; print(e["variant"], e["game"])' "$name" "$
 docs="$records/docs/runs/$name"
 mkdir -p "$docs"
 port=${HIDESEEK_PORT:-11479}
+# A failed attempt must not leave an older evaluation behind that passes for this one.
+rm -f "$docs/evaluation.csv" "$docs/sampled/evaluation.csv"
 for mode in $modes; do
   out=$docs
   greedy=true
@@ -33,7 +35,6 @@ for mode in $modes; do
   start=$(date +%s)
   log="/tmp/hideseek_evaluate_run_${name}_$mode.log"
   # roslaunch exits 0 even when a required node dies: the evaluator's files are the verdict.
-  rm -f "$out/evaluation.csv"
   roslaunch -p "$port" hideseek_world evaluate.launch variant:="$variant" game:="$game" policy:="$weights" \
     greedy:="$greedy" output_dir:="$out" > "$log" 2>&1 || true
   [ -s "$out/evaluation.csv" ] || { echo "evaluate_run: $name ($mode) failed, see $log" >&2; exit 1; }

@@ -13,6 +13,10 @@ dir=$(realpath -m "${PROBE_SET:-$HOME/.cache/hideseek/probe_set}")
 docs=docs/probe_set
 fix=${1:-}
 bin=devel/lib/hideseek_analysis/probe_set
+# One maker at a time: two runs finishing together must not write or read a half-made set.
+mkdir -p "$(dirname "$dir")"
+exec 9> "$dir.lock"
+flock 9
 if [ ! -s "$dir/images.npy" ] || [ ! -s "$dir/labels.csv" ]; then
   echo "probe_set.sh: making the probe set in $dir" >&2
   "$bin" make "$dir" >&2

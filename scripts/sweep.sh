@@ -11,8 +11,9 @@
 #   build    only create and build the worktree at the pin
 #   analyze  the per-run analysis (scripts/analyze_run.sh) of every done run that lacks it and
 #            whose weights are on this machine
-#   status   the pin, and every run in queue order: done (with its evaluation), training (its
-#            steps), partial (a checkpoint), lost (recorded, weights gone) or missing
+#   status   the pin, and every run in queue order: done (with its evaluations, whether it is
+#            analysed and whether its weights are on this machine), training (its steps),
+#            partial (a checkpoint) or missing
 #   pause    SIGSTOP every training run (for make bench, timing work, make test); the paused time
 #            is recorded apart from the run's wall time
 #   resume   SIGCONT them
@@ -27,6 +28,8 @@
 # SWEEP_RECORD_ROOT (default this checkout) is the checkout that receives the records and whose
 # registry says which runs are done.
 set -euo pipefail
+# Python must not leave __pycache__ in the pinned worktree (it would look modified).
+export PYTHONDONTWRITEBYTECODE=1
 # The queue runs from a copy of this script (start makes it), so that editing the checkout's copy
 # never changes a running queue; SWEEP_CHECKOUT then names the checkout.
 cd "${SWEEP_CHECKOUT:-$(dirname "$0")/..}"
@@ -38,7 +41,7 @@ dir=$(realpath -m "${SWEEP_DIR:-$HOME/hideseek_sweep}")
 tree=$dir/tree
 runs=$dir/runs
 state=$dir/state
-case "${1:-start}" in start|run|build|analyze|pause) mkdir -p "$runs" "$state" "$dir/logs" ;; esac
+case "${1:-start}" in start|run|build|analyze|pause|stop) mkdir -p "$runs" "$state" "$dir/logs" ;; esac
 
 say() { echo "sweep $(date +%H:%M:%S): $*"; }
 die() { echo "sweep: $*" >&2; exit 2; }
@@ -70,6 +73,7 @@ for n in "$steps" "$jobs" "$threads" "$port_base" $seeds; do
   [ "$n" -ge 0 ] 2> /dev/null || die "config/sweep.yaml: '$n' is not a whole number (steps, jobs, hider_threads, port, seeds)"
 done
 [ "$jobs" -ge 1 ] || die "config/sweep.yaml: jobs must be >= 1"
+[ "$threads" -ge 1 ] || die "config/sweep.yaml: hider_threads must be >= 1"
 variants=$(setting variants)
 if [ "$variants" = all ]; then variants=$(/usr/bin/python3 scripts/hideseek_registry.py variants --paper-order | tr '\n' ' '); fi
 known=$(/usr/bin/python3 scripts/hideseek_registry.py variants | tr '\n' ' ')
@@ -84,15 +88,21 @@ queue() {
   for s in $seeds; do for v in $variants; do echo "$(run_name "$v" "$s") $v $s"; done; done
 }
 
-# A run is done when this checkout records it with all its steps and both evaluations.
+# A run is done when this checkout records it as a sweep run (its note, which the queue writes
+# last) with all its steps, both evaluations and its trajectories. A run of the same name that
+# another command trained is not a sweep run: the queue trains it again.
+SWEEP_NOTE="sweep run (config/sweep.yaml)"
 recorded_steps() {
   /usr/bin/python3 -c 'import sys; sys.path.insert(0, "scripts"); import hideseek_registry as r
-e = r.runs(sys.argv[2]).get(sys.argv[1]); print(e.get("steps", 0) if e else 0)' "$1" "$records/policies/policies.yaml"
+e = r.runs(sys.argv[2]).get(sys.argv[1])
+print(e.get("steps", 0) if e and str(e.get("note", "")).startswith(sys.argv[3]) else 0)' \
+    "$1" "$records/policies/policies.yaml" "$SWEEP_NOTE"
 }
 is_done() {
   [ "$(recorded_steps "$1")" -ge "$steps" ] && [ -s "$records/docs/runs/$1/evaluation.csv" ] \
-    && [ -s "$records/docs/runs/$1/sampled/evaluation.csv" ]
+    && [ -s "$records/docs/runs/$1/sampled/evaluation.csv" ] && [ -s "$records/docs/runs/$1/trajectories.png" ]
 }
+analysed() { [ -s "$records/docs/runs/$1/analysis/behaviour.csv" ]; }
 
 # The process tree under a PID (itself first).
 tree_pids() {
@@ -101,8 +111,16 @@ tree_pids() {
   for child in $(ps -o pid= --ppid "$pid" 2> /dev/null); do tree_pids "$child"; done
 }
 alive() { [ -n "${1:-}" ] && kill -0 "$1" 2> /dev/null; }
-queue_pid() { local p; p=$(cat "$state/queue.pid" 2> /dev/null || true); alive "$p" && echo "$p" || true; }
-job_pids() { local f p; for f in "$state"/job.*; do [ -e "$f" ] || continue; p=$(cat "$f"); alive "$p" && echo "$p"; done; true; }
+# A queue runs while its lock is held (a PID file alone could name a process that has since
+# reused the PID); its runs' PIDs count only then.
+queue_running() { [ -e "$state/queue.lock" ] && ! flock -n "$state/queue.lock" true 2> /dev/null; }
+queue_pid() { if queue_running; then cat "$state/queue.pid" 2> /dev/null || echo "?"; fi; }
+job_pids() {
+  local f p
+  queue_running || return 0
+  for f in "$state"/job.*; do [ -e "$f" ] || continue; p=$(cat "$f"); alive "$p" && echo "$p"; done
+  true
+}
 port_free() { ! (exec 3<> "/dev/tcp/127.0.0.1/$1") 2> /dev/null; }
 
 native_bf16() { grep -qwE 'avx512_bf16|amx_bf16' /proc/cpuinfo; }
@@ -146,6 +164,8 @@ job() {
   rc=$?
   set -e
   if [ $rc -eq 0 ]; then
+    /usr/bin/python3 scripts/hideseek_registry.py --registry "$records/policies/policies.yaml" record "$name" \
+      note="$SWEEP_NOTE, pinned at $(git rev-parse --short=12 "$pin")"
     analyze "$name" || true
     say "$name: done: $(grep 'evaluate_run:.*(greedy)\|evaluate_run:.*(sampled)' "$dir/logs/$name.log" | sed 's/.*(\(greedy\|sampled\)): \([^(]*\).*/\1 \2/' | paste -sd ';')"
   else
@@ -171,7 +191,7 @@ analyze() {
 analyze_all() {
   local name n=0
   while read -r name _ _; do
-    if is_done "$name" && [ ! -s "$records/docs/runs/$name/analysis/probes.csv" ]; then
+    if is_done "$name" && ! analysed "$name"; then
       analyze "$name" && n=$((n + 1))
     fi
   done < <(queue)
@@ -187,13 +207,16 @@ run_queue() {
   native_bf16 || die "this CPU has no native bf16 (avx512_bf16 or amx_bf16): sweep runs train only in bf16 on such a CPU; evaluate and analyse here instead"
   prepare_tree
   say "queue: $(queue | wc -l) runs (seeds $seeds; $steps steps; $network; $precision; $jobs at once, $threads learner threads each) at $(git rev-parse --short=12 "$pin")"
-  trap 'say "stopping"; for p in $(job_pids); do kill -INT $(tree_pids "$p") 2> /dev/null || true; done; wait; exit 143' INT TERM
+  trap 'say "stopping"; for p in $(job_pids); do kill -INT $(tree_pids "$p") 2> /dev/null || true; done; wait; rm -f "$state/queue.pid"; exit 143' INT TERM
+  # The launch lock: a pause waits while a run is being started, so no run starts unseen by it.
+  exec 8> "$state/launch.lock"
   declare -A slot_of=() failed=()
   local name variant seed slot free started
   while [ ! -e "$state/stop" ]; do
     started=0
     if [ ! -e "$state/paused" ] && [ "${#slot_of[@]}" -lt "$jobs" ]; then
-      while read -r name variant seed; do
+      flock 8
+      [ ! -e "$state/paused" ] && while read -r name variant seed; do
         [ -z "${slot_of[$name]:-}" ] && [ -z "${failed[$name]:-}" ] || continue
         is_done "$name" && continue
         for ((slot = 0; slot < jobs; slot++)); do
@@ -207,6 +230,7 @@ run_queue() {
         started=1
         break
       done < <(queue)
+      flock -u 8
     fi
     [ $started = 1 ] && continue
     if [ "${#slot_of[@]}" = 0 ]; then
@@ -241,7 +265,7 @@ status() {
       printf '%-34s done      greedy %s, sampled %s (living steps, success); %s; %s\n' "$name" \
         "$(tail -n 1 "$records/docs/runs/$name/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
         "$(tail -n 1 "$records/docs/runs/$name/sampled/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
-        "$([ -s "$records/docs/runs/$name/analysis/probes.csv" ] && echo analysed || echo "NOT analysed")" \
+        "$(analysed "$name" && echo analysed || echo "NOT analysed")" \
         "$([ -s "$runs/$name/policy.pt" ] && echo "weights in $runs/$name" || echo "weights not on this machine")"
     elif [ -e "$state/job.$name" ] && alive "$(cat "$state/job.$name")"; then
       steps_now=$(tail -n 1 "$runs/$name/training_log.csv" 2> /dev/null | cut -d, -f2,3 || true)
@@ -256,27 +280,40 @@ status() {
 
 pause() {
   [ ! -e "$state/paused" ] || { echo "sweep: already paused"; return 0; }
+  exec 7> "$state/launch.lock"
+  flock 7
   date +%s > "$state/paused"
-  local p n=0
-  for p in $(job_pids); do kill -STOP $(tree_pids "$p") 2> /dev/null || true; n=$((n + 1)); done
+  local f p n=0
+  : > "$state/paused.runs"
+  if queue_running; then
+    for f in "$state"/job.*; do
+      [ -e "$f" ] || continue
+      p=$(cat "$f")
+      alive "$p" || continue
+      kill -STOP $(tree_pids "$p") 2> /dev/null || true
+      echo "${f##*/job.} $p" >> "$state/paused.runs"
+      n=$((n + 1))
+    done
+  fi
+  flock -u 7
   echo "sweep: paused ($n runs held; the queue starts no new run until 'scripts/sweep.sh resume')"
 }
 
+# SIGCONT to the runs the pause held; `book` adds the held time to each one's paused_s (not when
+# the runs are being stopped: they restart from a checkpoint older than the pause).
 resume() {
   [ -e "$state/paused" ] || { echo "sweep: not paused"; return 0; }
-  local since p f name held
+  local book=${1:-book} since p name held
   since=$(cat "$state/paused")
   held=$(($(date +%s) - since))
-  for f in "$state"/job.*; do
-    [ -e "$f" ] || continue
-    p=$(cat "$f")
+  while read -r name p; do
     alive "$p" || continue
     kill -CONT $(tree_pids "$p") 2> /dev/null || true
-    name=${f##*/job.}
+    [ "$book" = book ] || continue
     mkdir -p "$runs/$name"
     echo $(($(cat "$runs/$name/paused_s" 2> /dev/null || echo 0) + held)) > "$runs/$name/paused_s"
-  done
-  rm -f "$state/paused"
+  done < "$state/paused.runs"
+  rm -f "$state/paused" "$state/paused.runs"
   echo "sweep: resumed after $held s"
 }
 
@@ -284,7 +321,7 @@ stop() {
   local q p
   q=$(queue_pid)
   touch "$state/stop"
-  [ -e "$state/paused" ] && resume > /dev/null
+  [ ! -e "$state/paused" ] || resume no-book > /dev/null
   for p in $(job_pids); do kill -INT $(tree_pids "$p") 2> /dev/null || true; done
   [ -z "$q" ] || kill -TERM "$q" 2> /dev/null || true
   for _ in $(seq 60); do [ -z "$(queue_pid)$(job_pids)" ] && break; sleep 1; done

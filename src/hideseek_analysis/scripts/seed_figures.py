@@ -133,10 +133,11 @@ def main(argv=None):
     # Figure 6: distance over the episode.
     fig, ax = plt.subplots(figsize=(9, 4.5))
     for k, v in enumerate(variants):
-        curves = []
-        for _, rows_ in R.analysed(v, "distance"):
-            curves.append([float(r["mean_distance"]) if r["mean_distance"] else np.nan for r in rows_])
-            bins = [int(r["step_bin_start"]) for r in rows_]
+        analysed = R.analysed(v, "distance")
+        if not analysed:
+            continue
+        curves = [[float(r["mean_distance"]) if r["mean_distance"] else np.nan for r in rows_] for _, rows_ in analysed]
+        bins = [int(r["step_bin_start"]) for r in analysed[0][1]]
         c = np.array(curves)
         with np.errstate(invalid="ignore"):
             mean = np.nanmean(c, axis=0)

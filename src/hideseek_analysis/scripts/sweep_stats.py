@@ -77,13 +77,13 @@ def _poi(x, y):
 def probability_of_improvement(runs_x, runs_y, rng, reps=BOOTSTRAP):
     """rliable's probability of improvement of X over Y, at two levels:
 
-    - runs: P(a run of X scores a higher mean than a run of Y), over run means, with an interval
-      from resampling the runs of each side (what the paper's claim is about: training X rather
-      than Y);
+    - runs: P(a run of X scores a higher mean than a run of Y), over run means (what the paper's
+      claim is about: training X rather than Y);
     - episodes: P(an episode of X lives longer than one of Y), over the pooled episodes, with the
       two-level bootstrap interval.
 
-    Returns {"runs": (p, (lo, hi)), "episodes": (p, (lo, hi))}."""
+    Both intervals come from the same two-level bootstrap (each side's runs, then episodes within
+    them). Returns {"runs": (p, (lo, hi)), "episodes": (p, (lo, hi))}."""
     mx = [float(np.mean(r)) for r in runs_x]
     my = [float(np.mean(r)) for r in runs_y]
     run_boot, ep_boot = [], []
@@ -108,7 +108,8 @@ def rank_correlation(runs_by_variant, reference, rng, reps=BOOTSTRAP):
         rho = stats.spearmanr(scores, reference)[0]
         if np.isfinite(rho):
             boot.append(rho)
-    return float(point), interval(boot)
+    # Constant scores leave rho undefined: no point and no interval rather than a made-up one.
+    return float(point), (interval(boot) if boot else (float("nan"), float("nan")))
 
 
 def add_selection_args(parser, here):

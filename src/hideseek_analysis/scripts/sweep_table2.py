@@ -4,7 +4,8 @@
 usage: sweep_table2.py [--root DIR] [--out DIR] [--steps N] [--extra RUN ...] [--reps N]
 
 Reads the run registry (ROOT/policies/policies.yaml): the sweep's runs are its feed-forward game-v2
-entries named <variant>_seed<S> whose variant is <variant>, trained for at least --steps steps
+entries named <variant>_seed<S> whose variant is <variant>, whose note says the sweep's queue
+trained them, trained for at least --steps steps
 (--extra adds other runs by name, each to its own variant). Each run's episodes come from
 ROOT/docs/runs/<run>/episodes.csv (greedy) and sampled/episodes.csv (sampled). Beside them: the
 paper's figures (config/paper_reference.yaml) and the random hider and scripted evaders
@@ -31,12 +32,13 @@ import sweep_stats as st  # noqa: E402
 
 MODES = (("greedy", ""), ("sampled", "sampled"))
 NAME = re.compile(r"^(?P<variant>.+)_seed(?P<seed>\d+)$")
+SWEEP_NOTE = "sweep run"  # scripts/sweep.sh notes each run it trained (a same-named run from elsewhere is not one)
 
 
-def paper_orderings(variants):
-    """The orderings the paper reports, among the variants present: (better, worse) pairs."""
+def paper_orderings(variants, paper):
+    """The orderings the paper reports, among its variants present: (better, worse) pairs."""
     pairs = [("basic", "stochasticseeker"), ("basic", "visibilityreward"), ("fasterhider", "visibilityreward_faster")]
-    pairs += [(v, "slowerhider") for v in variants if v != "slowerhider"]
+    pairs += [(v, "slowerhider") for v in variants if v != "slowerhider" and v in paper]
     return pairs
 
 
@@ -59,7 +61,7 @@ def sweep_runs(root, steps, extra):
         m = NAME.match(name)
         chosen = name in extra or (
             m and m.group("variant") == e.get("variant") and e.get("network") == "ff" and e.get("game") == "v2"
-            and int(e.get("steps", 0)) >= steps)
+            and int(e.get("steps", 0)) >= steps and str(e.get("note", "")).startswith(SWEEP_NOTE))
         if chosen:
             found.setdefault(e["variant"], []).append((name, e))
     for v in found:
@@ -164,7 +166,7 @@ def main(argv=None):
     # Orderings and rank correlation, greedy.
     orow = []
     present = [v for v in order if (v, "greedy") in data]
-    for better, worse in paper_orderings(present):
+    for better, worse in paper_orderings(present, paper):
         if (better, "greedy") in data and (worse, "greedy") in data:
             poi = st.probability_of_improvement(data[(better, "greedy")], data[(worse, "greedy")], rng, args.reps)
             orow.append({"better": better, "worse": worse,

@@ -45,6 +45,16 @@ def test_split_by_episode(made):
     for r in labels:
         assert split_of.setdefault(r["episode"], r["split"]) == r["split"], "episode %s on both sides" % r["episode"]
     assert set(split_of.values()) == {"train", "test"}
+    # no trajectory stands on both sides: variants that differ only in their reward (basic and
+    # visibilityreward) play their own seeds, so no (hider, seed, poses) repeats across variants
+    seen = {}
+    for r in labels:
+        key = (r["hider"], r["seed"], r["step"], r["hider_x"], r["hider_y"], r["seeker_x"], r["seeker_y"])
+        assert seen.setdefault(key, r["split"]) == r["split"], key
+    seeds = {}
+    for r in labels:
+        seeds.setdefault(r["seed"], set()).add(r["variant"])
+    assert all(len(v) == 1 for v in seeds.values()), "a seed is played on two variants"
     # the evaluation seeds 0-99 are never used
     assert min(int(r["seed"]) for r in labels) >= 30000
 

@@ -11,8 +11,11 @@
 //   probe_set make OUT_DIR [--config DIR] [--game FILE] [--first-seed N] [--episodes N]
 //                  [--every N] [--per-cell N] [--test-fraction F] [--seed N]
 //       plays every variant (config/variants) with each scripted hider (random, backpedal, flee,
-//       hide, lap) on seeds first_seed.. (default 30000, 40 episodes each: clear of the evaluation
-//       seeds 0-99 and the analysis rollouts' 10000..), keeps every `every`-th step (1), draws
+//       hide, lap) on its own seeds, first_seed + 1000 k.. for the k-th variant in name order
+//       (default 30000, 40 episodes each: clear of the evaluation seeds 0-99 and the analysis
+//       rollouts' 10000..; variants that differ only in their reward would otherwise play the very
+//       same episodes, and one trajectory could stand on both sides of the split), keeps every
+//       `every`-th step (1), draws
 //       `per-cell` steps (150, fewer where a cell holds fewer: then every cell of that variant
 //       gets as many as its smallest) of each of the four (S, H) cells per variant, renders each
 //       one's hider image from its poses, and writes OUT_DIR/images.npy ([N, H, W, 3] uint8),
@@ -170,9 +173,10 @@ int make(const MakeOptions& o) {
     const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(v.map_file));
     std::vector<Sample> candidates;
     std::vector<int> episodes_of_variant;
+    const long first_seed = o.first_seed + 1000L * static_cast<long>(vi);
     for (const hs::EvaderKind evader : hs::kAllEvaders) {
       const int first_episode = episode_id;
-      hs::playScriptedHider(v, map, evader, static_cast<uint32_t>(o.first_seed), o.episodes,
+      hs::playScriptedHider(v, map, evader, static_cast<uint32_t>(first_seed), o.episodes,
                             [&](const hs::ScriptedStep& s) {
                               if (s.step % o.every != 0) return;
                               Sample x;
@@ -183,7 +187,7 @@ int make(const MakeOptions& o) {
                               x.hider = s.hider;
                               x.seeker = s.seeker;
                               x.labels = s.labels;
-                              x.episode = first_episode + static_cast<int>(s.seed - o.first_seed);
+                              x.episode = first_episode + static_cast<int>(s.seed - first_seed);
                               candidates.push_back(x);
                             });
       for (int e = 0; e < o.episodes; ++e) episodes_of_variant.push_back(first_episode + e);
@@ -292,7 +296,8 @@ int make(const MakeOptions& o) {
   md << "# The shared probe set\n\n"
      << chosen.size() << " hider images (" << h << " x " << w << "), every " << o.every
      << "th step of the random hider's and the four scripted evaders' episodes on every variant, seeds "
-     << o.first_seed << "-" << o.first_seed + o.episodes - 1 << " (" << o.episodes
+     << o.first_seed << " + 1000 k to " << o.first_seed << " + 1000 k + " << o.episodes - 1
+     << " for the k-th variant in name order (" << o.episodes
      << " episodes per variant and hider), balanced on S x H within each variant (up to " << o.per_cell
      << " images per cell), split by episode (" << o.test_fraction * 100
      << " % of each variant's episodes held out for the test). Draw seed " << o.seed << ".\n\n"
@@ -341,7 +346,7 @@ int main(int argc, char** argv) {
         } else if (a == "--game") {
           o.game_file = v;
         } else if (a == "--first-seed") {
-          o.first_seed = parseLong(a, v, 0, 1L << 31);
+          o.first_seed = parseLong(a, v, 0, (1L << 31) - 100000);
         } else if (a == "--episodes") {
           o.episodes = static_cast<int>(parseLong(a, v, 1, 1000));
         } else if (a == "--every") {

@@ -26,7 +26,8 @@ def make_records(tmp_path, runs):
     (rec / "policies").mkdir(parents=True)
     entries = {}
     for name, (variant, seed, steps, greedy, sampled) in runs.items():
-        entries[name] = {"variant": variant, "network": "ff", "game": "v2", "training_seed": seed, "steps": steps}
+        entries[name] = {"variant": variant, "network": "ff", "game": "v2", "training_seed": seed, "steps": steps,
+                         "note": "sweep run (config/sweep.yaml), pinned at 0123456789ab"}
         for sub, living in (("", greedy), ("sampled", sampled)):
             if living is None:
                 continue
@@ -36,12 +37,21 @@ def make_records(tmp_path, runs):
                 f.write("seed,living_steps,outcome\n")
                 for i, x in enumerate(living):
                     f.write("%d,%d,%s\n" % (i, x, "survived" if x >= 1000 else "captured"))
+            if not sub:
+                (d / "trajectories.png").write_bytes(b"png")
             with open(d / "evaluation.csv", "w") as f:
                 f.write("variant,policy,episodes,avg_living_steps,success_rate\n%s,%s,%d,%.2f,%.4f\n" % (
                     variant, name, len(living), np.mean(living), np.mean(np.array(living) >= 1000)))
     with open(rec / "policies" / "policies.yaml", "w") as f:
         yaml.safe_dump(entries, f, sort_keys=False)
     return rec
+
+
+def drop_note(rec, name):
+    path = rec / "policies" / "policies.yaml"
+    entries = yaml.safe_load(path.read_text())
+    del entries[name]["note"]
+    path.write_text(yaml.safe_dump(entries, sort_keys=False))
 
 
 def sweep(tmp_path, rec, *args, **env):
@@ -56,9 +66,10 @@ def test_status_lists_runs_seed_major_with_their_state(tmp_path):
         "basic_seed0": ("basic", 0, 2048, [30, 1000], [20, 40]),
         # recorded but short of the steps: not done
         "slowerhider_seed0": ("slowerhider", 0, 1024, [30], [30]),
-        # all steps, but no sampled evaluation yet: not done
-        "basic_seed1": ("basic", 1, 2048, [30], None),
+        # all steps and both evaluations, but trained by another command (no sweep note): not done
+        "basic_seed1": ("basic", 1, 2048, [30], [30]),
     })
+    drop_note(rec, "basic_seed1")
     ck = tmp_path / "sweep" / "runs" / "slowerhider_seed1"
     ck.mkdir(parents=True)
     (ck / "checkpoint.pt").write_bytes(b"x")
@@ -102,7 +113,9 @@ def test_pause_stops_the_runs_processes_and_resume_books_the_paused_time(tmp_pat
     rec = make_records(tmp_path, {})
     state = tmp_path / "sweep" / "state"
     state.mkdir(parents=True)
-    # A running run as the queue leaves it: state/job.<run> holds the PID of its process tree.
+    # A queue holds its lock; a running run as the queue leaves it: state/job.<run> holds the PID
+    # of its process tree.
+    queue = fake_queue(state)
     job = subprocess.Popen(["bash", "-c", "sleep 300 & wait"])
     try:
         time.sleep(0.3)
@@ -125,10 +138,29 @@ def test_pause_stops_the_runs_processes_and_resume_books_the_paused_time(tmp_pat
         time.sleep(1.1)
         sweep(tmp_path, rec, "resume")
         assert int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text()) >= paused + 1
+        # a stop while paused does not book the held time: the run restarts from a checkpoint
+        # older than the pause
+        booked = int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text())
+        sweep(tmp_path, rec, "pause")
+        time.sleep(1.1)
+        sweep(tmp_path, rec, "stop")
+        assert int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text()) == booked
     finally:
         subprocess.run(["pkill", "-KILL", "-P", str(job.pid)])
-        job.kill()
-        job.wait()
+        for p in (job, queue):
+            p.kill()
+            p.wait()
+
+
+def fake_queue(state):
+    """A process that holds the queue's lock, as a running queue does."""
+    q = subprocess.Popen(["flock", str(state / "queue.lock"), "sleep", "300"])
+    (state / "queue.pid").write_text("%d\n" % q.pid)
+    end = time.time() + 10
+    while subprocess.run(["flock", "-n", str(state / "queue.lock"), "true"]).returncode == 0:
+        assert time.time() < end, "the fake queue did not take its lock"
+        time.sleep(0.05)
+    return q
 
 
 # ---- statistics -------------------------------------------------------------------------------
@@ -179,7 +211,10 @@ def test_sweep_table2_reads_the_sweep_runs_and_writes_the_tables(tmp_path):
         # not a sweep run (another name) and a short one: both left out
         "basic_pilot_seed0": ("basic", 0, 2048, [5] * 20, None),
         "slowerhider_seed1": ("slowerhider", 1, 1024, [5] * 20, [5] * 20),
+        # not trained by the sweep's queue (no sweep note): left out
+        "stochasticmaps_seed0": ("stochasticmaps", 0, 2048, [5] * 20, [5] * 20),
     })
+    drop_note(rec, "stochasticmaps_seed0")
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
     out = tmp_path / "t2"
     r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "sweep_table2.py"), "--root", str(rec), "--out", str(out),
@@ -193,6 +228,7 @@ def test_sweep_table2_reads_the_sweep_runs_and_writes_the_tables(tmp_path):
     assert float(b["success_mean"]) == pytest.approx(0.25)
     assert float(b["living_mean_lo"]) <= float(b["living_mean"]) <= float(b["living_mean_hi"])
     assert rows[("slowerhider", "greedy")]["runs"] == "1"
+    assert ("stochasticmaps", "greedy") not in rows
     assert rows[("basic", "sampled")]["per_run_living"] == "50.0 60.0"
     with open(out / "orderings.csv") as f:
         order = [x for x in csv.DictReader(f) if not x["better"].startswith("#")]
@@ -227,6 +263,7 @@ def write_states(path, name, s0h0o1):
 
 def run_claims(tmp_path, rec):
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config", dirs_exist_ok=True)
+    shutil.copy(os.path.join(ROOT, "docs", "calibration_table.csv"), rec / "docs" / "calibration_table.csv")
     out = tmp_path / "report"
     r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "claims.py"), "--root", str(rec), "--out", str(out),
                         "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
@@ -235,11 +272,17 @@ def run_claims(tmp_path, rec):
         return {x["claim"]: x for x in csv.DictReader(f)}
 
 
+PAPER_VARIANTS = ("basic", "fasterhider", "visibilityreward_faster", "stochasticseeker", "stochasticmaps",
+                  "visibilityreward", "slowerhider")
+
+
 def test_claims_are_decided_only_with_two_runs_and_by_their_interval(tmp_path):
-    runs = {"slowerhider_seed%d" % s: ("slowerhider", s, 2048, [40] * 20, [40] * 20) for s in range(3)}
+    runs = {"%s_seed%d" % (v, s): (v, s, 2048, [100 + 50 * k + 10 * s] * 20, [40] * 20)
+            for k, v in enumerate(PAPER_VARIANTS) for s in range(3)}
     rec = make_records(tmp_path, runs)
-    for s, g in enumerate((0.10, 0.12, 0.08)):
-        add_analysis(rec, "slowerhider_seed%d" % s, gain_s=g, gain_h=-g, s0h0o1=0.3)
+    for v in PAPER_VARIANTS:
+        for s, g in enumerate((0.10, 0.12, 0.08)):
+            add_analysis(rec, "%s_seed%d" % (v, s), gain_s=g, gain_h=-g, s0h0o1=0.3)
     base = rec / "docs" / "analysis" / "baselines" / "slowerhider" / "random"
     base.mkdir(parents=True)
     write_states(base / "states.csv", "random", 0.1)
@@ -250,26 +293,29 @@ def test_claims_are_decided_only_with_two_runs_and_by_their_interval(tmp_path):
     assert c["Trained features beat random-init ones on H"]["departure"] != ""
     assert c["slowerhider uses obstacles (not S, not H, O)"]["result"] == "supported"
     assert float(c["slowerhider uses obstacles (not S, not H, O)"]["effect"]) == pytest.approx(0.2, abs=1e-3)
-    # the claims that need other variants stay undecided, saying what they need
-    assert c["Table 2's ordering of the variants"]["result"] == "inconclusive"
+    # living steps that rise along the paper's falling order (basic lowest here, highest there)
+    assert c["Table 2's ordering of the variants"]["result"] == "contradicted"
+    assert float(c["Table 2's ordering of the variants"]["effect"]) < -0.9
+    assert c["Every variant's hider outlives the random hider"]["result"] == "supported"
     assert "not yet trained on game v2" in c["Failures come from a lack of memory"]["note"]
     assert c["Failures come from a lack of memory"]["result"] == "inconclusive"
-    # one run is no interval over training seeds
+    # one run of one variant is no interval over its training seeds: undecided, saying which
     for s in (1, 2):
         shutil.rmtree(rec / "docs" / "runs" / ("slowerhider_seed%d" % s) / "analysis")
     c = run_claims(tmp_path, rec)
     assert c["Trained features beat random-init ones on S"]["result"] == "inconclusive"
+    assert "slowerhider" in c["Trained features beat random-init ones on S"]["note"]
     assert c["slowerhider uses obstacles (not S, not H, O)"]["result"] == "inconclusive"
+    assert c["slowerhider uses obstacles (not S, not H, O)"]["ci_low"] == ""
 
 
 def test_hold_runs_a_command_with_the_sweep_paused_and_resumes_it(tmp_path):
     rec = make_records(tmp_path, {})
     state = tmp_path / "sweep" / "state"
     state.mkdir(parents=True)
-    queue = subprocess.Popen(["sleep", "300"])  # stands for the queue: hold acts only where one runs
+    queue = fake_queue(state)  # hold acts only where a queue runs
     job = subprocess.Popen(["sleep", "300"])
     try:
-        (state / "queue.pid").write_text("%d\n" % queue.pid)
         (state / "job.basic_seed0").write_text("%d\n" % job.pid)
         probe = "import sys; s = open('/proc/%d/stat').read().rsplit(')', 1)[1].split()[0]; sys.exit(0 if s == 'T' else 3)"
         r = sweep(tmp_path, rec, "hold", sys.executable, "-c", probe % job.pid)
