@@ -294,8 +294,8 @@ int make(const MakeOptions& o) {
   if (!labels) throw std::runtime_error("cannot write " + o.out_dir + "/labels.csv");
   std::ofstream md(o.out_dir + "/composition.md");
   md << "# The shared probe set\n\n"
-     << chosen.size() << " hider images (" << h << " x " << w << "), every " << o.every
-     << "th step of the random hider's and the four scripted evaders' episodes on every variant, seeds "
+     << chosen.size() << " hider images (" << h << " x " << w << "), "
+     << (o.every == 1 ? std::string("every") : "every " + std::to_string(o.every) + "th") << " step of the random hider's and the four scripted evaders' episodes on every variant, seeds "
      << o.first_seed << " + 1000 k to " << o.first_seed << " + 1000 k + " << o.episodes - 1
      << " for the k-th variant in name order (" << o.episodes
      << " episodes per variant and hider), balanced on S x H within each variant (up to " << o.per_cell
