@@ -19,6 +19,7 @@ An interval over one run is no interval: variants with one run are drawn without
 import argparse
 import os
 import sys
+import warnings
 
 import numpy as np
 
@@ -139,11 +140,13 @@ def main(argv=None):
         curves = [[float(r["mean_distance"]) if r["mean_distance"] else np.nan for r in rows_] for _, rows_ in analysed]
         bins = [int(r["step_bin_start"]) for r in analysed[0][1]]
         c = np.array(curves)
-        with np.errstate(invalid="ignore"):
+        with warnings.catch_warnings():  # bins no episode reached are empty: NaN, not drawn
+            warnings.simplefilter("ignore", RuntimeWarning)
             mean = np.nanmean(c, axis=0)
+            lo, hi = np.nanmin(c, axis=0), np.nanmax(c, axis=0)
         line, = ax.plot(bins, mean, label="%s (%d runs)" % (v, len(curves)))
         if len(curves) > 1:
-            ax.fill_between(bins, np.nanmin(c, axis=0), np.nanmax(c, axis=0), color=line.get_color(), alpha=0.15)
+            ax.fill_between(bins, lo, hi, color=line.get_color(), alpha=0.15)
     ax.set_xlabel("step of the episode")
     ax.set_ylabel("mean distance between the agents (m)")
     ax.set_title("Distance over the episode (seeds 10000-10099, greedy); band: the runs' range")
