@@ -97,8 +97,8 @@ long parseLong(const std::string& flag, const std::string& text, long lo, long h
     used = 0;
   }
   if (used != text.size() || v < lo || v > hi) {
-    throw std::invalid_argument(flag + " must be a whole number in [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + "], got '" + text + "'");
+    throw std::invalid_argument(flag + " must be a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                                "], got '" + text + "'");
   }
   return v;
 }
@@ -236,9 +236,8 @@ int make(const MakeOptions& o) {
   }
 
   // The images, rendered from the recorded poses in each episode's own layout.
-  std::sort(chosen.begin(), chosen.end(), [](const Sample& a, const Sample& b) {
-    return std::tie(a.episode, a.step) < std::tie(b.episode, b.step);
-  });
+  std::sort(chosen.begin(), chosen.end(),
+            [](const Sample& a, const Sample& b) { return std::tie(a.episode, a.step) < std::tie(b.episode, b.step); });
   int h = 0, w = 0;
   std::vector<uint8_t> images;
   std::unique_ptr<hw::Renderer> renderer;
@@ -281,24 +280,25 @@ int make(const MakeOptions& o) {
   std::filesystem::create_directories(o.out_dir);
   writeImagesNpy(o.out_dir + "/images.npy", images, static_cast<int64_t>(chosen.size()), h, w);
   std::ofstream labels(o.out_dir + "/labels.csv");
-  labels << "image,variant,hider,seed,step,S,H,O,episode,split,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw\n";
+  labels
+      << "image,variant,hider,seed,step,S,H,O,episode,split,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw\n";
   labels.precision(6);
   for (size_t k = 0; k < chosen.size(); ++k) {
     const Sample& x = chosen[k];
     labels << k << ',' << x.variant << ',' << hs::evaderName(x.evader) << ',' << x.seed << ',' << x.step << ','
-           << x.labels.hider_sees_seeker << ',' << x.labels.seeker_sees_hider << ',' << x.labels.obstacle_in_view
-           << ',' << x.episode << ',' << (x.test ? "test" : "train") << ',' << x.hider.position.x << ','
-           << x.hider.position.y << ',' << x.hider.yaw << ',' << x.seeker.position.x << ',' << x.seeker.position.y
-           << ',' << x.seeker.yaw << '\n';
+           << x.labels.hider_sees_seeker << ',' << x.labels.seeker_sees_hider << ',' << x.labels.obstacle_in_view << ','
+           << x.episode << ',' << (x.test ? "test" : "train") << ',' << x.hider.position.x << ',' << x.hider.position.y
+           << ',' << x.hider.yaw << ',' << x.seeker.position.x << ',' << x.seeker.position.y << ',' << x.seeker.yaw
+           << '\n';
   }
   if (!labels) throw std::runtime_error("cannot write " + o.out_dir + "/labels.csv");
   std::ofstream md(o.out_dir + "/composition.md");
   md << "# The shared probe set\n\n"
      << chosen.size() << " hider images (" << h << " x " << w << "), "
-     << (o.every == 1 ? std::string("every") : "every " + std::to_string(o.every) + "th") << " step of the random hider's and the four scripted evaders' episodes on every variant, seeds "
-     << o.first_seed << " + 1000 k to " << o.first_seed << " + 1000 k + " << o.episodes - 1
-     << " for the k-th variant in name order (" << o.episodes
-     << " episodes per variant and hider), balanced on S x H within each variant (up to " << o.per_cell
+     << (o.every == 1 ? std::string("every") : "every " + std::to_string(o.every) + "th")
+     << " step of the random hider's and the four scripted evaders' episodes on every variant, seeds " << o.first_seed
+     << " + 1000 k to " << o.first_seed << " + 1000 k + " << o.episodes - 1 << " for the k-th variant in name order ("
+     << o.episodes << " episodes per variant and hider), balanced on S x H within each variant (up to " << o.per_cell
      << " images per cell), split by episode (" << o.test_fraction * 100
      << " % of each variant's episodes held out for the test). Draw seed " << o.seed << ".\n\n"
      << composition.str() << "\nS: the hider sees the seeker; H: the seeker sees the hider. "
@@ -390,6 +390,8 @@ int main(int argc, char** argv) {
       return features(argv[2], argv[3], policy, seed, network);
     }
     return usage("unknown command '" + command + "'");
+  } catch (const std::invalid_argument& e) {  // a malformed option value
+    return usage(e.what());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "probe_set: %s\n", e.what());
     return 1;

@@ -513,8 +513,8 @@ void WorldNode::printStatus(const ros::WallTimerEvent&) {
   const Arena& a = game_.world().arena(0);
   const Labels& l = a.labels();
   ROS_INFO("arena 0: episode seed %u, step %d, distance %.1f m; hider %s the seeker, seeker %s the hider", a.seed(),
-           a.stepCount(), distance(a.hider().position, a.seeker().position), l.hider_sees_seeker ? "sees" : "does not see",
-           l.seeker_sees_hider ? "sees" : "does not see");
+           a.stepCount(), distance(a.hider().position, a.seeker().position),
+           l.hider_sees_seeker ? "sees" : "does not see", l.seeker_sees_hider ? "sees" : "does not see");
 }
 
 void WorldNode::publishDiagnostics(const ros::WallTimerEvent&) {

@@ -29,7 +29,7 @@ struct WorldNodeOptions {
   // s of wall time between two status lines of arena 0 on the console (its step, the distance,
   // who sees whom; 0: none): a headless game that is not silent between episodes.
   double status_period = 0.0;
-  int render_threads = 2;             // llvmpipe rasteriser threads
+  int render_threads = 2;  // llvmpipe rasteriser threads
   // The game starts once world/episodes has this many subscribers (an evaluator, a recorder for
   // analysis): whoever must see the first episodes, however late it connects.
   int episode_listeners = 0;
