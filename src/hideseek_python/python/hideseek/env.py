@@ -1,0 +1,215 @@
+"""The game as Python environments with Gymnasium's interface, over the C++ game loop (hideseek._core).
+
+make_vec(variant, num_envs, seed) gives a batched environment with Gymnasium's vector API; make(variant)
+a single environment with Gymnasium's Env API. Only numpy is needed: where gymnasium can be imported, the
+classes subclass gymnasium.vector.VectorEnv and gymnasium.Env and use gymnasium.spaces.
+
+Autoreset: the C++ game starts an arena's next episode within the step that ends the previous one and
+never renders the terminal frame, so the vector environment resets in the same step
+(AutoresetMode.SAME_STEP): where terminations[i] or truncations[i] is set, rewards[i] closes the episode
+that ended, and obs[i] and everything in infos already belong to the first state of the next episode.
+infos["final_info"] (masked by infos["_final_info"]) holds the ended episode's length, return, outcome
+and terminal state (poses and labels). There is no infos["final_obs"]: no image of the terminal state
+exists. A capture is a termination; surviving max_steps is a truncation (a time limit the image does
+not show).
+"""
+
+import numpy as np
+
+from . import _core
+
+try:  # gymnasium is optional: Debian 12 does not package it
+    import gymnasium
+    from gymnasium import spaces as _spaces
+    from gymnasium.vector import AutoresetMode
+
+    _EnvBase = gymnasium.Env
+    _VectorBase = gymnasium.vector.VectorEnv
+    HAVE_GYMNASIUM = True
+except ImportError:  # pragma: no cover - exercised where gymnasium is absent
+    from . import spaces as _spaces
+    from .spaces import AutoresetMode
+
+    _EnvBase = object
+    _VectorBase = object
+    HAVE_GYMNASIUM = False
+
+# The hider's actions, ActionBatch's values.
+ACTIONS = ("stay", "forward", "backward", "turn_left", "turn_right")
+# Scripted hiders for baselines and opponents (scripted_actions): the paper's random hider and evaders
+# that read the true state.
+SCRIPTED_HIDERS = ("random", "backpedal", "flee", "hide", "lap")
+OUTCOME_CAPTURED, OUTCOME_SURVIVED = 1, 2
+
+
+def _config_dir(config_dir):
+    if config_dir is not None:
+        return str(config_dir)
+    try:
+        return _core.config_directory()
+    except RuntimeError as e:
+        raise RuntimeError(
+            "%s (or pass config_dir=, the folder holding game.yaml and variants/)" % e
+        ) from None
+
+
+def _seed_list(seed, num_envs):
+    """reset's seed argument as the C++ side takes it: [] (the next seeds), [seed] or one per env."""
+    if seed is None:
+        return []
+    if isinstance(seed, (int, np.integer)):
+        return [int(seed)]
+    seeds = [int(s) for s in seed]
+    if len(seeds) != num_envs:
+        raise ValueError("%d seeds for %d environments" % (len(seeds), num_envs))
+    return seeds
+
+
+def _actions(actions, num_envs):
+    a = np.asarray(actions)
+    if a.shape != (num_envs,):
+        raise ValueError("actions must have shape (%d,), got %s" % (num_envs, a.shape))
+    if not np.issubdtype(a.dtype, np.integer):
+        if not np.all(np.equal(np.mod(a, 1), 0)):
+            raise ValueError("actions must be integers in [0, 5), got %s" % a)
+    if np.any(a < 0) or np.any(a >= _core.num_actions):
+        bad = int(np.flatnonzero((a < 0) | (a >= _core.num_actions))[0])
+        raise ValueError("action %s of environment %d is not in [0, 5)" % (a[bad], bad))
+    return a.astype(np.uint8)
+
+
+def _with_masks(d, mask):
+    """Gymnasium's vector info layout: every key k beside a boolean mask _k of the envs it holds for."""
+    out = {}
+    for k, v in d.items():
+        out[k] = v
+        out["_" + k] = mask
+    return out
+
+
+class HideSeekVecEnv(_VectorBase):
+    """num_envs arenas of a variant played together; arena i's first episode has seed seed + i, its
+    later ones seed + i + k * num_envs (the world node's num_arenas and seed)."""
+
+    metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": ["rgb_array"]}
+
+    def __init__(self, variant="basic", num_envs=16, seed=0, game="v2", config_dir=None,
+                 render_threads=2, render_mode=None):
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError("render_mode must be None or 'rgb_array', got %r" % (render_mode,))
+        self._game = _core.VecGame(_config_dir(config_dir), game, variant, int(num_envs), int(seed),
+                                   int(render_threads))
+        self.variant, self.game = variant, game
+        self.num_envs = self._game.num_envs
+        self.render_mode = render_mode
+        h, w = self._game.height, self._game.width
+        self.single_observation_space = _spaces.Box(0, 255, (h, w, 3), np.uint8)
+        self.single_action_space = _spaces.Discrete(_core.num_actions)
+        self.observation_space = _spaces.Box(0, 255, (self.num_envs, h, w, 3), np.uint8)
+        self.action_space = _spaces.MultiDiscrete(np.full(self.num_envs, _core.num_actions))
+        self.closed = False
+        self._everyone = np.ones(self.num_envs, dtype=bool)
+
+    def reset(self, *, seed=None, options=None):
+        """New episodes in every arena: seed (int) gives arena i seed + i, a list one seed per arena,
+        None the next seed of each arena's sequence."""
+        if options:
+            raise ValueError("hideseek environments take no reset options, got %r" % (options,))
+        seeds = _seed_list(seed, self.num_envs)
+        self._game.reset(seeds)  # first: it refuses a bad seed, changing nothing
+        if HAVE_GYMNASIUM and seed is not None:
+            super().reset(seed=seeds[0])  # seeds the vector env's own np_random, as Gymnasium's do
+        return self._game.observations(), self._infos()
+
+    def step(self, actions):
+        self._game.step(_actions(actions, self.num_envs))
+        outcomes = self._game.outcomes()
+        infos = self._infos()
+        done = self._game.done()
+        if done.any():
+            final = self._game.finished()
+            del final["_mask"]  # the same as done
+            infos["final_info"] = _with_masks(final, done)
+            infos["_final_info"] = done
+        return (self._game.observations(), self._game.rewards().astype(np.float64),
+                outcomes == OUTCOME_CAPTURED, outcomes == OUTCOME_SURVIVED, infos)
+
+    def scripted_actions(self, name):
+        """A scripted hider's actions for every arena's current state: random (the paper's random
+        hider) or an evader reading the true state (backpedal, flee, hide, lap)."""
+        return self._game.scripted_actions(name).astype(np.int64)
+
+    def render(self):
+        """The hider images, uint8 [num_envs, H, W, 3] (render_mode 'rgb_array')."""
+        return self._game.observations() if self.render_mode == "rgb_array" else None
+
+    def close(self, **kwargs):
+        self.closed = True
+
+    def _infos(self):
+        return _with_masks(self._game.infos(), self._everyone)
+
+    def __repr__(self):
+        return "HideSeekVecEnv(%s, num_envs=%d, game=%s)" % (self.variant, self.num_envs, self.game)
+
+
+class HideSeekEnv(_EnvBase):
+    """One arena, with Gymnasium's Env API. After a step that ends an episode, the observation is
+    already the next episode's first image (the game never renders the terminal state); reset()
+    then keeps that episode instead of skipping a seed, so episodes have seeds seed, seed + 1, ..."""
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 5}
+
+    def __init__(self, variant="basic", seed=0, game="v2", config_dir=None, render_threads=2,
+                 render_mode=None):
+        self._vec = HideSeekVecEnv(variant, 1, seed, game, config_dir, render_threads)
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError("render_mode must be None or 'rgb_array', got %r" % (render_mode,))
+        self.render_mode = render_mode
+        self.observation_space = self._vec.single_observation_space
+        self.action_space = self._vec.single_action_space
+        self._fresh = True  # an episode has just started and taken no step
+
+    def reset(self, *, seed=None, options=None):
+        if options:
+            raise ValueError("hideseek environments take no reset options, got %r" % (options,))
+        if seed is not None or not self._fresh:
+            self._vec._game.reset(_seed_list(seed, 1))
+        if HAVE_GYMNASIUM:
+            super().reset(seed=seed)
+        self._fresh = True
+        return self._vec._game.observations()[0], self._info()
+
+    def step(self, action):
+        obs, rewards, terminations, truncations, infos = self._vec.step([action])
+        self._fresh = bool(terminations[0] or truncations[0])
+        info = self._info()
+        if self._fresh:
+            info["final_info"] = {k: v[0] for k, v in infos["final_info"].items() if not k.startswith("_")}
+        return obs[0], float(rewards[0]), bool(terminations[0]), bool(truncations[0]), info
+
+    def scripted_action(self, name):
+        return int(self._vec.scripted_actions(name)[0])
+
+    def render(self):
+        return self._vec._game.observations()[0] if self.render_mode == "rgb_array" else None
+
+    def close(self):
+        self._vec.close()
+
+    def _info(self):
+        # The arena's episode counter is left out: it counts resets, so that a reset with the same
+        # seed gives the same info (check_env's determinism).
+        return {k: v[0] for k, v in self._vec._game.infos().items() if k != "episode_index"}
+
+
+def make_vec(variant="basic", num_envs=16, seed=0, **kwargs):
+    """A batched environment of `variant` (config/variants/VARIANT.yaml) with num_envs arenas; keyword
+    arguments: game ('v2' or 'v1'), config_dir (default: the hideseek_game package's config/),
+    render_threads, render_mode."""
+    return HideSeekVecEnv(variant, num_envs, seed, **kwargs)
+
+
+def make(variant="basic", seed=0, **kwargs):
+    """One arena of `variant` with Gymnasium's Env API (what gymnasium's check_env takes)."""
+    return HideSeekEnv(variant, seed, **kwargs)

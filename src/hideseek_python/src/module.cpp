@@ -1,0 +1,190 @@
+// The hideseek module's C++ layer (hideseek._core): VecGame's arrays as numpy arrays. The Gymnasium
+// interface itself is Python (python/hideseek/env.py). Stepping and resetting release the GIL.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "hideseek_game/config_error.h"
+#include "hideseek_game/package_paths.h"
+#include "hideseek_python/vec_game.h"
+
+namespace py = pybind11;
+using hideseek_python::VecGame;
+
+namespace {
+
+template <typename T>
+py::array_t<T> toArray(const std::vector<T>& v) {
+  py::array_t<T> out(static_cast<py::ssize_t>(v.size()));
+  if (!v.empty()) std::memcpy(out.mutable_data(), v.data(), v.size() * sizeof(T));
+  return out;
+}
+
+py::array_t<uint8_t> observations(const VecGame& g) {
+  py::array_t<uint8_t> out({g.numEnvs(), g.height(), g.width(), 3});
+  std::memcpy(out.mutable_data(), g.observations().data(), g.observations().size());
+  return out;
+}
+
+py::array_t<bool> flags(const std::vector<uint8_t>& v) {
+  py::array_t<bool> out(static_cast<py::ssize_t>(v.size()));
+  for (size_t i = 0; i < v.size(); ++i) out.mutable_data()[i] = v[i] != 0;
+  return out;
+}
+
+// The state of every arena (ObservationBatch's labels, poses, seed, step, episode).
+py::dict infos(const VecGame& g) {
+  const int n = g.numEnvs();
+  py::array_t<bool> s(n), h(n), o(n);
+  py::array_t<double> hider({n, 3}), seeker({n, 3});
+  py::array_t<uint32_t> seed(n), step(n), episode(n);
+  for (int i = 0; i < n; ++i) {
+    const hideseek_python::ArenaInfo a = g.info(i);
+    s.mutable_data()[i] = a.hider_sees_seeker;
+    h.mutable_data()[i] = a.seeker_sees_hider;
+    o.mutable_data()[i] = a.obstacle_in_view;
+    for (int k = 0; k < 3; ++k) {
+      hider.mutable_data()[3 * i + k] = a.hider_pose[k];
+      seeker.mutable_data()[3 * i + k] = a.seeker_pose[k];
+    }
+    seed.mutable_data()[i] = a.seed;
+    step.mutable_data()[i] = a.step;
+    episode.mutable_data()[i] = a.episode;
+  }
+  py::dict d;
+  d["S"] = s;
+  d["H"] = h;
+  d["O"] = o;
+  d["hider_pose"] = hider;
+  d["seeker_pose"] = seeker;
+  d["seed"] = seed;
+  d["step"] = step;
+  d["episode_index"] = episode;
+  return d;
+}
+
+// The episodes the last step ended: their length, return, outcome and terminal state (zeros where
+// none ended; "_mask" says where one did).
+py::dict finished(const VecGame& g) {
+  const int n = g.numEnvs();
+  py::array_t<bool> mask(n), s(n), h(n), o(n);
+  py::array_t<int32_t> length(n);
+  py::array_t<double> ret(n), hider({n, 3}), seeker({n, 3});
+  py::array_t<uint8_t> outcome(n);
+  py::array_t<uint32_t> seed(n), episode(n);
+  for (int i = 0; i < n; ++i) {
+    const auto& f = g.finished(i);
+    const hideseek_game::EpisodeSummary e = f ? *f : hideseek_game::EpisodeSummary{};
+    mask.mutable_data()[i] = f.has_value();
+    s.mutable_data()[i] = e.labels.hider_sees_seeker;
+    h.mutable_data()[i] = e.labels.seeker_sees_hider;
+    o.mutable_data()[i] = e.labels.obstacle_in_view;
+    length.mutable_data()[i] = e.steps;
+    ret.mutable_data()[i] = e.episode_return;
+    outcome.mutable_data()[i] = static_cast<uint8_t>(e.outcome);
+    const double hp[3] = {e.hider.position.x, e.hider.position.y, e.hider.yaw};
+    const double sp[3] = {e.seeker.position.x, e.seeker.position.y, e.seeker.yaw};
+    for (int k = 0; k < 3; ++k) {
+      hider.mutable_data()[3 * i + k] = hp[k];
+      seeker.mutable_data()[3 * i + k] = sp[k];
+    }
+    seed.mutable_data()[i] = e.seed;
+    episode.mutable_data()[i] = e.episode;
+  }
+  py::dict d;
+  d["_mask"] = mask;
+  d["length"] = length;
+  d["return"] = ret;
+  d["outcome"] = outcome;
+  d["S"] = s;
+  d["H"] = h;
+  d["O"] = o;
+  d["hider_pose"] = hider;
+  d["seeker_pose"] = seeker;
+  d["seed"] = seed;
+  d["episode_index"] = episode;
+  return d;
+}
+
+hideseek_seeker::EvaderKind evader(const std::string& name) {
+  const auto kind = hideseek_seeker::evaderKind(name);
+  if (!kind)
+    throw std::invalid_argument("'" + name + "' names no scripted hider: random, backpedal, flee, hide or lap");
+  return *kind;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "Visual Hide and Seek's game in process (C++ core of the hideseek module)";
+  py::register_exception<hideseek_game::ConfigError>(m, "ConfigError", PyExc_ValueError);
+  m.def("config_directory", &hideseek_game::configDirectory,
+        "the installed config folder of the hideseek_game package (needs the workspace's setup.bash sourced)");
+  m.attr("num_actions") = hideseek_game::kNumActions;
+
+  py::class_<VecGame>(m, "VecGame")
+      .def(py::init([](const std::string& config_dir, const std::string& game, const std::string& variant, int num_envs,
+                       uint32_t seed, int render_threads) {
+             return new VecGame(hideseek_python::loadVariant(config_dir, game, variant), num_envs, seed,
+                                render_threads);
+           }),
+           py::arg("config_dir"), py::arg("game"), py::arg("variant"), py::arg("num_envs"), py::arg("seed"),
+           py::arg("render_threads") = 2)
+      .def_property_readonly("num_envs", &VecGame::numEnvs)
+      .def_property_readonly("height", &VecGame::height)
+      .def_property_readonly("width", &VecGame::width)
+      .def_property_readonly("max_steps", &VecGame::maxSteps)
+      .def_property_readonly("seeker_policy", [](const VecGame& g) { return g.variant().seeker_policy; })
+      .def_property_readonly("map_file", [](const VecGame& g) { return g.variant().map_file; })
+      .def_property_readonly("decisions", &VecGame::decisions)
+      .def(
+          "reset",
+          [](VecGame& g, const std::vector<int64_t>& seeds) {
+            py::gil_scoped_release release;
+            g.reset(seeds);
+          },
+          py::arg("seeds"), "new episodes: seeds per environment, one seed (seed + i), or [] (the next ones)")
+      .def(
+          "reset_env",
+          [](VecGame& g, int env, int64_t seed) {
+            py::gil_scoped_release release;
+            g.resetEnv(env, seed);
+          },
+          py::arg("env"), py::arg("seed") = -1)
+      .def(
+          "step",
+          [](VecGame& g, py::array_t<uint8_t, py::array::c_style | py::array::forcecast> actions) {
+            if (actions.ndim() != 1)
+              throw std::invalid_argument("actions must be one-dimensional, one per environment");
+            std::vector<uint8_t> a(actions.data(), actions.data() + actions.size());
+            {
+              py::gil_scoped_release release;
+              g.step(a);
+            }
+          },
+          py::arg("actions"))
+      .def("observations", &observations, "uint8 [num_envs, height, width, 3], rgb, rows top down")
+      .def("rewards", [](const VecGame& g) { return toArray(g.rewards()); })
+      .def("done", [](const VecGame& g) { return flags(g.done()); })
+      .def(
+          "outcomes", [](const VecGame& g) { return toArray(g.outcomes()); }, "0 running, 1 captured, 2 survived")
+      .def("infos", &infos)
+      .def("finished", &finished)
+      .def(
+          "scripted_actions",
+          [](VecGame& g, const std::string& name) {
+            const hideseek_seeker::EvaderKind kind = evader(name);
+            std::vector<uint8_t> a;
+            {
+              py::gil_scoped_release release;
+              a = g.scriptedActions(kind);
+            }
+            return toArray(a);
+          },
+          py::arg("name"));
+}

@@ -1,0 +1,245 @@
+"""The hideseek module's Python interface: Gymnasium's vector and single-environment APIs, same-step
+autoreset, seeding, refusals, the GIL released while stepping; with the vendored Gymnasium 1.4.0
+(put on the path here, never copied) its VectorEnv, check_env and its vector wrappers."""
+
+import os
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+VENDOR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "..", "shared", "vendor",
+                      "gymnasium")
+if os.path.isdir(os.path.join(VENDOR, "gymnasium")):
+    sys.path.insert(0, VENDOR)
+
+import hideseek  # noqa: E402
+
+needs_gymnasium = pytest.mark.skipif(not hideseek.HAVE_GYMNASIUM,
+                                     reason="gymnasium not importable: %s holds no gymnasium/" % VENDOR)
+
+
+@pytest.fixture(scope="module")
+def envs():
+    e = hideseek.make_vec("basic", num_envs=4, seed=0)
+    yield e
+    e.close()
+
+
+def test_spaces_shapes_and_metadata(envs):
+    assert envs.num_envs == 4
+    assert envs.single_observation_space.shape == (84, 84, 3)
+    assert envs.single_observation_space.dtype == np.uint8
+    assert envs.single_action_space.n == 5
+    assert envs.observation_space.shape == (4, 84, 84, 3)
+    assert envs.action_space.shape == (4,)
+    assert envs.metadata["autoreset_mode"] == hideseek.AutoresetMode.SAME_STEP
+    obs, infos = envs.reset(seed=0)
+    assert obs.dtype == np.uint8 and obs.shape == (4, 84, 84, 3)
+    assert envs.observation_space.contains(obs)
+    assert obs.std() > 10  # a rendered arena, not a blank image
+    assert list(infos["seed"]) == [0, 1, 2, 3] and list(infos["step"]) == [0, 0, 0, 0]
+    for key in ("S", "H", "O", "hider_pose", "seeker_pose", "seed", "step", "episode_index"):
+        assert infos["_" + key].all(), key
+    assert infos["hider_pose"].shape == (4, 3) and infos["S"].dtype == bool
+
+
+def test_step_returns_gymnasium_tuple_and_resets_in_the_same_step(envs):
+    envs.reset(seed=100)
+    ended = 0
+    seeds_seen = set()
+    for _ in range(400):
+        before = envs._game.infos()
+        obs, rewards, terminations, truncations, infos = envs.step(envs.action_space.sample())
+        assert rewards.dtype == np.float64 and terminations.dtype == bool and truncations.dtype == bool
+        assert envs.observation_space.contains(obs)
+        done = terminations | truncations
+        assert not (terminations & truncations).any()
+        if done.any():
+            assert (infos["_final_info"] == done).all()
+            final = infos["final_info"]
+            for i in np.flatnonzero(done):
+                ended += 1
+                # The next episode started in this very step: its first state, its next seed.
+                assert infos["step"][i] == 0
+                assert infos["seed"][i] == before["seed"][i] + 4
+                assert infos["episode_index"][i] == before["episode_index"][i] + 1
+                assert final["length"][i] == before["step"][i] + 1
+                assert final["seed"][i] == before["seed"][i]
+                assert final["outcome"][i] == (1 if terminations[i] else 2)
+                seeds_seen.add(int(infos["seed"][i]))
+            assert "final_obs" not in infos  # the game never renders a terminal state
+        not_done = ~done
+        assert (infos["step"][not_done] == before["step"][not_done] + 1).all()
+    assert ended >= 4  # the random actions' basic episodes are short
+
+
+def test_reset_seeds_one_per_env_and_next(envs):
+    a, _ = envs.reset(seed=7)
+    _, infos = envs.reset(seed=[3, 1, 4, 1])
+    assert list(infos["seed"]) == [3, 1, 4, 1]
+    b, infos = envs.reset(seed=7)
+    assert list(infos["seed"]) == [7, 8, 9, 10]
+    assert np.array_equal(a, b)
+    _, infos = envs.reset()
+    assert list(infos["seed"]) == [11, 12, 13, 14]
+
+
+def test_bad_input_is_refused_with_a_clear_error(envs):
+    envs.reset(seed=0)
+    with pytest.raises(ValueError, match="shape"):
+        envs.step([0, 1])
+    with pytest.raises(ValueError, match="action 5 of environment 2"):
+        envs.step([0, 1, 5, 0])
+    with pytest.raises(ValueError, match="integers"):
+        envs.step([0.5, 1, 1, 0])
+    with pytest.raises(ValueError, match="3 seeds for 4"):
+        envs.reset(seed=[1, 2, 3])
+    with pytest.raises(ValueError, match="seed"):
+        envs.reset(seed=-2)
+    with pytest.raises(ValueError, match="no reset options"):
+        envs.reset(options={"x": 1})
+    _, infos = envs.reset(seed=0)
+    assert list(infos["step"]) == [0, 0, 0, 0]
+    with pytest.raises(ValueError, match="nosuch"):
+        hideseek.make_vec("nosuch", num_envs=1)
+    with pytest.raises(ValueError, match="num_envs"):
+        hideseek.make_vec("basic", num_envs=0)
+    with pytest.raises(ValueError, match="neither v2"):
+        hideseek.make_vec("basic", num_envs=1, game="v3")
+
+
+def test_bad_variant_file_names_file_and_field(tmp_path):
+    config = tmp_path / "config"
+    real = hideseek._core.config_directory()
+    os.makedirs(config / "variants")
+    for f in ("game.yaml",):
+        (config / f).write_text(open(os.path.join(real, f)).read())
+    os.symlink(os.path.join(real, "maps"), config / "maps")
+    (config / "variants" / "broken.yaml").write_text("variant: broken\nmap: deterministic.yaml\nepisode:\n  max_steps: -5\n")
+    with pytest.raises(hideseek.ConfigError, match="broken.yaml.*max_steps"):
+        hideseek.make_vec("broken", num_envs=1, config_dir=str(config))
+
+
+def test_scripted_hiders_and_single_env_sequence():
+    env = hideseek.make("basic", seed=10)
+    obs, info = env.reset()
+    assert obs.shape == (84, 84, 3) and info["seed"] == 10
+    seeds = []
+    for _ in range(3):  # the random hider: three episodes, seeds 10, 11, 12 (reset keeps the started one)
+        while True:
+            obs, reward, terminated, truncated, info = env.step(env.scripted_action("random"))
+            if terminated or truncated:
+                seeds.append(int(info["final_info"]["seed"]))
+                break
+        _, info = env.reset()
+    assert seeds == [10, 11, 12] and info["seed"] == 13
+    vec = hideseek.make_vec("basic", num_envs=2, seed=0)
+    for name in hideseek.SCRIPTED_HIDERS:
+        a = vec.scripted_actions(name)
+        assert a.shape == (2,) and ((a >= 0) & (a < 5)).all(), name
+    with pytest.raises(ValueError, match="names no scripted hider"):
+        vec.scripted_actions("teleport")
+
+
+def test_step_releases_the_gil():
+    """While one thread is inside a step of 64 arenas, another runs Python: with the GIL held it could
+    not run at all inside the C++ call."""
+    env = hideseek.make_vec("stochasticmaps", num_envs=64, seed=0, render_threads=1)
+    env.reset(seed=0)
+    actions = np.ones(64, dtype=np.int64)
+    window = []
+
+    def stepper():
+        for _ in range(5):
+            env._game.step(actions.astype(np.uint8))  # the C++ call alone, no Python inside the window
+        window.append(time.perf_counter())
+
+    ticks = []
+    start = time.perf_counter()
+    t = threading.Thread(target=stepper)
+    t.start()
+    while t.is_alive():
+        ticks.append(time.perf_counter())
+    t.join()
+    inside = [x for x in ticks if start < x < window[0]]
+    assert len(inside) > 1000, "the main thread ran %d times in %.3f s of stepping" % (
+        len(inside), window[0] - start)
+
+
+@needs_gymnasium
+def test_gymnasium_check_env_passes_on_the_single_environment():
+    from gymnasium.utils.env_checker import check_env
+    import warnings
+
+    env = hideseek.make("basic", seed=0)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_env(env, skip_render_check=True)
+    env_warnings = [str(w.message) for w in caught]
+    assert not env_warnings, env_warnings
+    assert isinstance(env, __import__("gymnasium").Env)
+
+
+@needs_gymnasium
+def test_is_a_gymnasium_vector_env_and_record_episode_statistics_counts_episodes():
+    import gymnasium
+    from gymnasium.wrappers.vector import RecordEpisodeStatistics
+
+    envs = RecordEpisodeStatistics(hideseek.make_vec("basic", num_envs=4, seed=0))
+    assert isinstance(envs.unwrapped, gymnasium.vector.VectorEnv)
+    envs.reset(seed=0)
+    checked = 0
+    for _ in range(200):
+        _, _, term, trunc, infos = envs.step(envs.action_space.sample())
+        if "episode" in infos:
+            done = infos["_episode"]
+            assert (infos["episode"]["l"][done] == infos["final_info"]["length"][done]).all()
+            assert np.allclose(infos["episode"]["r"][done], infos["final_info"]["return"][done])
+            checked += done.sum()
+    assert checked >= 4
+
+
+# Gymnasium 1.4.0's vector wrappers under same-step autoreset: observation wrappers
+# (VectorObservationWrapper) refuse it; the others take it. docs/python.md lists the same.
+ACCEPTED = ["RecordEpisodeStatistics", "DictInfoToList", "NormalizeReward", "ClipReward", "TransformReward",
+            "TransformAction"]
+REFUSED = ["NormalizeObservation", "TransformObservation", "GrayscaleObservation", "ResizeObservation",
+           "FlattenObservation", "DtypeObservation"]
+
+
+def _wrap(name, envs):
+    import gymnasium.wrappers.vector as w
+    import gymnasium
+
+    if name == "TransformReward":
+        return w.TransformReward(envs, lambda r: 0.5 * r)
+    if name == "TransformAction":
+        return w.TransformAction(envs, lambda a: a, action_space=envs.action_space)
+    if name == "TransformObservation":
+        return w.TransformObservation(envs, lambda o: o, observation_space=envs.observation_space)
+    if name == "ResizeObservation":
+        return w.ResizeObservation(envs, (42, 42))
+    if name == "ClipReward":
+        return w.ClipReward(envs, -1.0, 1.0)
+    if name == "DtypeObservation":
+        return w.DtypeObservation(envs, np.float32)
+    return getattr(w, name)(envs)
+
+
+@needs_gymnasium
+@pytest.mark.parametrize("name", ACCEPTED)
+def test_vector_wrappers_that_accept_same_step_autoreset(name):
+    envs = _wrap(name, hideseek.make_vec("basic", num_envs=2, seed=0))
+    envs.reset(seed=0)
+    for _ in range(3):
+        envs.step(envs.action_space.sample())
+
+
+@needs_gymnasium
+@pytest.mark.parametrize("name", REFUSED)
+def test_vector_observation_wrappers_refuse_same_step_autoreset(name):
+    with pytest.raises(ValueError, match="NEXT_STEP or DISABLED"):
+        _wrap(name, hideseek.make_vec("basic", num_envs=2, seed=0))

@@ -1,0 +1,101 @@
+// The Python environment's C++ core: it plays the game's episodes (the calibration's, for scripted
+// hiders), is reproducible from seeds and actions, and refuses bad input without changing anything.
+#include "hideseek_python/vec_game.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "hideseek_game/map.h"
+#include "hideseek_seeker/scripted_game.h"
+
+using hideseek_python::VecGame;
+
+namespace {
+
+hideseek_game::VariantConfig variant(const std::string& name) {
+  return hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v2", name);
+}
+
+// Plays `kind` in every arena until `episodes` episodes of arena 0 ended; their living steps.
+std::vector<int> playArena0(VecGame& game, hideseek_seeker::EvaderKind kind, int episodes) {
+  std::vector<int> steps;
+  while (static_cast<int>(steps.size()) < episodes) {
+    game.step(game.scriptedActions(kind));
+    if (game.finished(0)) steps.push_back(game.finished(0)->steps);
+  }
+  return steps;
+}
+
+}  // namespace
+
+// A scripted hider played through the environment lives exactly as long as in the calibration
+// table's in-process game (playScriptedHider), episode by episode: the same game, seeker and evader.
+TEST(VecGame, ScriptedHidersPlayTheCalibrationsEpisodes) {
+  for (const auto& [name, kind] : {std::pair{"stochasticseeker", hideseek_seeker::EvaderKind::kFlee},
+                                   std::pair{"basic", hideseek_seeker::EvaderKind::kRandom}}) {
+    const hideseek_game::VariantConfig v = variant(name);
+    VecGame game(v, 1, 0, 1);
+    const std::vector<int> got = playArena0(game, kind, 3);
+    const auto expected = hideseek_seeker::playScriptedHider(
+        v, std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(v.map_file)), kind, 0, 3);
+    ASSERT_EQ(expected.size(), 3u);
+    for (int e = 0; e < 3; ++e) EXPECT_EQ(got[e], expected[e].living_steps) << name << " episode " << e;
+  }
+}
+
+// The same seeds and actions give the same images, rewards and states; reset(seed) starts over.
+TEST(VecGame, SameSeedsAndActionsGiveTheSameSteps) {
+  const hideseek_game::VariantConfig v = variant("basic");
+  VecGame a(v, 3, 40, 1), b(v, 3, 40, 1);
+  const std::vector<uint8_t> first = a.observations();
+  for (int t = 0; t < 30; ++t) {
+    const std::vector<uint8_t> actions = {uint8_t(t % 5), uint8_t((t / 2) % 5), 1};
+    a.step(actions);
+    b.step(actions);
+    ASSERT_EQ(a.observations(), b.observations()) << "step " << t;
+    ASSERT_EQ(a.rewards(), b.rewards());
+    ASSERT_EQ(a.info(2).hider_pose[0], b.info(2).hider_pose[0]);
+  }
+  EXPECT_NE(a.observations(), first);
+  a.reset({40});
+  EXPECT_EQ(a.observations(), first);
+  EXPECT_EQ(a.info(1).seed, 41u);
+  EXPECT_EQ(a.info(1).step, 0u);
+}
+
+TEST(VecGame, SeedsPerEnvironmentOneSeedOrTheNextOnes) {
+  VecGame game(variant("basic"), 2, 0, 1);
+  EXPECT_EQ(game.info(0).seed, 0u);
+  EXPECT_EQ(game.info(1).seed, 1u);
+  game.reset({5, 9});
+  EXPECT_EQ(game.info(0).seed, 5u);
+  EXPECT_EQ(game.info(1).seed, 9u);
+  game.reset({7});
+  EXPECT_EQ(game.info(0).seed, 7u);
+  EXPECT_EQ(game.info(1).seed, 8u);
+  game.reset({});  // each arena's next seed: 7 + 2 and 8 + 2
+  EXPECT_EQ(game.info(0).seed, 9u);
+  EXPECT_EQ(game.info(1).seed, 10u);
+}
+
+TEST(VecGame, BadInputIsRefusedAndChangesNothing) {
+  VecGame game(variant("basic"), 2, 0, 1);
+  const std::vector<uint8_t> before = game.observations();
+  EXPECT_THROW(game.step({1}), std::invalid_argument);
+  EXPECT_THROW(game.step({1, 5}), std::invalid_argument);
+  EXPECT_THROW(game.reset({1, 2, 3}), std::invalid_argument);
+  EXPECT_THROW(game.reset({-1}), std::invalid_argument);
+  EXPECT_THROW(game.reset({int64_t{UINT32_MAX}}), std::invalid_argument);  // the second arena's seed overflows
+  EXPECT_THROW(game.resetEnv(2, 0), std::invalid_argument);
+  EXPECT_EQ(game.decisions(), 0u);
+  EXPECT_EQ(game.observations(), before);
+  EXPECT_EQ(game.info(1).seed, 1u);
+  EXPECT_THROW(VecGame(variant("basic"), 0, 0, 1), std::invalid_argument);
+  EXPECT_THROW(VecGame(variant("basic"), 65, 0, 1), std::invalid_argument);
+  EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v3", "basic"), std::invalid_argument);
+  EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v2", "../game"), std::invalid_argument);
+  EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v2", "nosuchvariant"), std::exception);
+}
