@@ -13,6 +13,8 @@ ROLLOUT=$(awk '/^rollout_steps:/ { print $2 }' config/ppo.yaml)  # config/ppo.ya
 [ -n "$ROLLOUT" ] || { echo "bench: config/ppo.yaml has no rollout_steps" >&2; exit 2; }
 echo "# world core: physics, labels and rendering of $ARENAS arenas at 84x84 in one process"
 devel/lib/hideseek_game/world_core_bench config/game.yaml config/variants/basic.yaml "$ARENAS" "$SECONDS_PER_RUN"
+echo "# the same from Python (hideseek.make_vec, random hider actions, the scripted seeker planning), $ARENAS environments"
+/usr/bin/python3 src/hideseek_python/bench/python_env_bench.py "$ARENAS" "$SECONDS_PER_RUN"
 echo "# world node in lockstep with two minimal agents as separate processes, $ARENAS arenas"
 export ROS_MASTER_URI=http://localhost:11433
 roslaunch -p 11433 hideseek_world bench_world.launch num_arenas:="$ARENAS" duration:="$SECONDS_PER_RUN" 2>/dev/null | \
