@@ -5,7 +5,7 @@ CATKIN := source scripts/env.sh && catkin_make -DCMAKE_BUILD_TYPE=Release \
 	-DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=ON
 JOBS ?= $(shell nproc)
 
-.PHONY: deps build run test bench reproduce sweep clean
+.PHONY: deps build run test bench reproduce sweep clean test-sanitize fuzz
 
 deps:
 	scripts/install_deps.sh
@@ -33,5 +33,13 @@ reproduce: build
 sweep: deps
 	scripts/sweep.sh start
 
+# The cores and their gtests under AddressSanitizer and UndefinedBehaviorSanitizer (clang, its own
+# build_sanitize/), and the fuzz targets for FUZZ_SECONDS each (docs/testing.md).
+test-sanitize: deps
+	scripts/test_sanitize.sh
+
+fuzz: deps
+	scripts/fuzz.sh
+
 clean:
-	rm -rf build devel install
+	rm -rf build devel install build_sanitize devel_sanitize

@@ -19,6 +19,7 @@ PACKAGES=(
   catkin-lint   # checks the packages' CMake and package.xml files (issue #34)
   strace        # the install-space test lists every file the installed graph opens
   clang-format  # the one C++ formatter (.clang-format), checked by make test
+  clang libclang-rt-14-dev  # make test-sanitize and make fuzz: ASan, UBSan and libFuzzer (issue #49)
   pybind11-dev python3-numpy  # the Python environment (hideseek_gym, issue #50)
   python3-torch  # its example PPO (examples/ppo_python.py)
 )

@@ -20,7 +20,7 @@ import rospy
 from diagnostic_msgs.msg import DiagnosticArray
 
 WARM_UP_S = 600.0
-COUNTERS = ["decision_steps", "stale_decisions", "rejected_wrong_arena_count", "rejected_invalid_action",
+COUNTERS = ["decision_steps", "stale_decisions", "rejected_malformed", "rejected_wrong_arena_count", "rejected_invalid_action",
             "rejected_wrong_step", "rejected_second_publisher", "rejected_late", "real_time_factor"]
 
 

@@ -98,14 +98,16 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
   // The callback must take the MessageEvent itself: a lambda would be wrapped as a ConstPtr
   // callback (MessageEvent converts from a pointer) and lose the publisher's caller id.
-  using ActionEvent = const ros::MessageEvent<const hideseek_msgs::ActionBatch>&;
+  // Actions are read through hideseek_game::CheckedActionBatch: ActionBatch on the wire, its
+  // lengths checked before anything is allocated.
+  using ActionEvent = const ros::MessageEvent<const hideseek_game::CheckedActionBatch>&;
   const auto hints = ros::TransportHints().tcpNoDelay();
   const boost::function<void(ActionEvent)> on_hider = [this](ActionEvent e) { onActions(e, hider_); };
   const boost::function<void(ActionEvent)> on_seeker = [this](ActionEvent e) { onActions(e, seeker_); };
-  hider_sub_ = nh_.subscribe<hideseek_msgs::ActionBatch, ActionEvent>(kHiderActionsTopic, 2 * n, on_hider,
-                                                                      ros::VoidConstPtr(), hints);
-  seeker_sub_ = nh_.subscribe<hideseek_msgs::ActionBatch, ActionEvent>(kSeekerActionsTopic, 2 * n, on_seeker,
-                                                                       ros::VoidConstPtr(), hints);
+  hider_sub_ = nh_.subscribe<hideseek_game::CheckedActionBatch, ActionEvent>(kHiderActionsTopic, 2 * n, on_hider,
+                                                                             ros::VoidConstPtr(), hints);
+  seeker_sub_ = nh_.subscribe<hideseek_game::CheckedActionBatch, ActionEvent>(kSeekerActionsTopic, 2 * n, on_seeker,
+                                                                              ros::VoidConstPtr(), hints);
   reset_srv_ = nh_.advertiseService(kResetService, &WorldNode::onReset, this);
 
   // REP 103/105 camera frames: camera_link looks along the agent's x; the optical frame has
@@ -158,8 +160,20 @@ bool WorldNode::acceptPublisher(const std::string& caller, AgentChannel& channel
   return false;
 }
 
-void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBatch>& event, AgentChannel& channel) {
+void WorldNode::onActions(const ros::MessageEvent<const hideseek_game::CheckedActionBatch>& event,
+                          AgentChannel& channel) {
   const std::string caller = event.getPublisherName();
+  const hideseek_game::CheckedActionBatch& checked = *event.getConstMessage();
+  if (!checked.problem.empty()) {
+    ++rejected_.malformed;
+    WallThrottle& throttle = throttles_.malformed;
+    if (throttle.ready()) {
+      ROS_WARN("world: rejected a malformed %s action message from %s: %s (%lu more like it since the last)",
+               channel.name.c_str(), caller.c_str(), checked.problem.c_str(),
+               static_cast<unsigned long>(throttle.suppressed()));
+    }
+    return;
+  }
   if (!acceptPublisher(caller, channel)) {
     ++rejected_.second_publisher;
     WallThrottle& throttle = throttles_.second_publisher;
@@ -170,17 +184,14 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_msgs::ActionBat
     }
     return;
   }
-  const hideseek_msgs::ActionBatch& msg = *event.getConstMessage();
+  const hideseek_msgs::ActionBatch& msg = checked.msg;
   const size_t n = static_cast<size_t>(options_.num_arenas);
-  if (msg.actions.size() != n || msg.step.size() != n) {
+  if (const std::string wrong = hideseek_game::checkActionBatchSize(msg, n); !wrong.empty()) {
     ++rejected_.wrong_arena_count;
     WallThrottle& throttle = throttles_.wrong_arena_count;
     if (throttle.ready()) {
-      ROS_WARN(
-          "world: rejected %s action batch: %zu actions and %zu step ids for %zu arenas (%lu more like it since the "
-          "last)",
-          channel.name.c_str(), msg.actions.size(), msg.step.size(), n,
-          static_cast<unsigned long>(throttle.suppressed()));
+      ROS_WARN("world: rejected %s action batch: %s (%lu more like it since the last)", channel.name.c_str(),
+               wrong.c_str(), static_cast<unsigned long>(throttle.suppressed()));
     }
     return;
   }
@@ -520,8 +531,8 @@ void WorldNode::printStatus(const ros::WallTimerEvent&) {
 void WorldNode::publishDiagnostics(const ros::WallTimerEvent&) {
   const ros::WallTime now = ros::WallTime::now();
   const double period = reported_at_.isZero() ? 0.0 : (now - reported_at_).toSec();
-  const uint64_t rejections = rejected_.wrong_arena_count + rejected_.invalid_action + rejected_.wrong_step +
-                              rejected_.second_publisher + rejected_.late;
+  const uint64_t rejections = rejected_.malformed + rejected_.wrong_arena_count + rejected_.invalid_action +
+                              rejected_.wrong_step + rejected_.second_publisher + rejected_.late;
   const uint64_t decisions = game_.decisions();
   const double steps_per_s = period > 0.0 ? static_cast<double>(decisions - reported_steps_) / period : 0.0;
   diagnostic_msgs::DiagnosticArray array;
@@ -552,6 +563,7 @@ void WorldNode::publishDiagnostics(const ros::WallTimerEvent&) {
   add("decision_steps_per_s", fixed(steps_per_s));
   // Game seconds per wall second: 1 when realtime keeps up; in lockstep, how much faster than real time.
   add("real_time_factor", fixed(steps_per_s * options_.variant.game.stepDuration()));
+  add("rejected_malformed", std::to_string(rejected_.malformed));
   add("rejected_wrong_arena_count", std::to_string(rejected_.wrong_arena_count));
   add("rejected_invalid_action", std::to_string(rejected_.invalid_action));
   add("rejected_wrong_step", std::to_string(rejected_.wrong_step));

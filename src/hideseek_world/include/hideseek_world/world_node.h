@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_game/checked_action_batch.h"
 #include "hideseek_game/decision_scheduler.h"
 #include "hideseek_game/game_loop.h"
 #include "hideseek_game/msg_conversion.h"
@@ -43,6 +44,7 @@ using hideseek_game::WorldNodeOptions;
 
 // Counts of rejected input, published on /diagnostics.
 struct RejectionCounts {
+  uint64_t malformed = 0;  // bytes that are no ActionBatch (hideseek_game::parseActionBatch)
   uint64_t wrong_arena_count = 0;
   uint64_t invalid_action = 0;
   uint64_t wrong_step = 0;
@@ -60,8 +62,8 @@ struct AgentChannel {
 
 // The warnings the node repeats at most once per period each, with how many it held back.
 struct WarningThrottles {
-  WallThrottle second_publisher{2.0}, wrong_arena_count{2.0}, invalid_action{2.0}, late{2.0}, wrong_step{2.0},
-      stale{2.0}, resend{10.0};
+  WallThrottle malformed{2.0}, second_publisher{2.0}, wrong_arena_count{2.0}, invalid_action{2.0}, late{2.0},
+      wrong_step{2.0}, stale{2.0}, resend{10.0};
 };
 
 // The game loop (hideseek_game::GameLoop) served over ROS: the node turns action messages into
@@ -74,7 +76,7 @@ class WorldNode {
   WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
 
  private:
-  void onActions(const ros::MessageEvent<const hideseek_msgs::ActionBatch>& event, AgentChannel& channel);
+  void onActions(const ros::MessageEvent<const hideseek_game::CheckedActionBatch>& event, AgentChannel& channel);
   bool acceptPublisher(const std::string& caller, AgentChannel& channel);
   void tryAdvanceLockstep();
   void onRealtimeTick(const ros::WallTimerEvent&);
