@@ -115,13 +115,15 @@ std::string applyGameFile(const std::string& path, GameOptions& g, int depth) {
   const YAML::Node root = loadYamlFile(path);
   std::string maps_dir = "maps";
   if (root.IsMap() && root["extends"]) {
-    std::string base = root["extends"].as<std::string>();
+    if (!root["extends"].IsScalar()) throw ConfigError(path, "extends", "must be a file name");
+    std::string base = root["extends"].Scalar();
     if (base.empty() || base.front() != '/') base = directoryOf(path) + "/" + base;
     maps_dir = applyGameFile(base, g, depth + 1);
     // The base's maps_dir is relative to the base; re-anchor it for this file.
     if (maps_dir.front() != '/') maps_dir = directoryOf(base) + "/" + maps_dir;
   }
   applyGameFields(root, path, g, nullptr, &maps_dir);
+  if (maps_dir.empty()) throw ConfigError(path, "maps_dir", "must not be empty");
   return maps_dir;
 }
 
@@ -129,9 +131,18 @@ std::string applyGameFile(const std::string& path, GameOptions& g, int depth) {
 
 VariantConfig loadVariantConfig(const std::string& game_file, const std::string& variant_file) {
   VariantConfig v;
-  std::string maps_dir = applyGameFile(game_file, v.game, 0);
+  std::string maps_dir;
+  try {
+    maps_dir = applyGameFile(game_file, v.game, 0);
+  } catch (const YAML::Exception& e) {  // what the fields' checks did not foresee still names the file
+    throw ConfigError(game_file, "<file>", e.what());
+  }
   if (maps_dir.front() != '/') maps_dir = directoryOf(game_file) + "/" + maps_dir;
-  applyGameFields(loadYamlFile(variant_file), variant_file, v.game, &v);
+  try {
+    applyGameFields(loadYamlFile(variant_file), variant_file, v.game, &v);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(variant_file, "<file>", e.what());
+  }
   v.source = variant_file;
   v.game_file = game_file;
   if (v.map_file.front() != '/') v.map_file = maps_dir + "/" + v.map_file;

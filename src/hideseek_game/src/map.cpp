@@ -4,7 +4,9 @@
 
 namespace hideseek_game {
 
-MapSpec loadMapFile(const std::string& path) {
+namespace {
+
+MapSpec readMapFile(const std::string& path) {
   const YAML::Node root = loadYamlFile(path);
   YamlFields f(root, path, "");
   MapSpec spec;
@@ -84,6 +86,16 @@ MapSpec loadMapFile(const std::string& path) {
   c.rejectUnknown();
   f.rejectUnknown();
   return spec;
+}
+
+}  // namespace
+
+MapSpec loadMapFile(const std::string& path) {
+  try {
+    return readMapFile(path);
+  } catch (const YAML::Exception& e) {  // what the fields' checks did not foresee still names the file
+    throw ConfigError(path, "<file>", e.what());
+  }
 }
 
 Layout makeLayout(const MapSpec& spec, std::mt19937& rng) {

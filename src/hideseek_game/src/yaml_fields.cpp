@@ -1,6 +1,7 @@
 #include "hideseek_game/yaml_fields.h"
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 namespace hideseek_game {
@@ -125,6 +126,13 @@ void YamlFields::rejectUnknown() const {
 }
 
 YAML::Node loadYamlFile(const std::string& path) {
+  // A configuration file is a small regular file: a device, a pipe or a huge file is refused before
+  // it is read (reading /dev/zero would never end).
+  std::error_code error;
+  if (std::filesystem::exists(path, error) && !std::filesystem::is_regular_file(path, error))
+    throw ConfigError(path, "<file>", "is not a regular file");
+  if (std::filesystem::is_regular_file(path, error) && std::filesystem::file_size(path, error) > kMaxConfigFileBytes)
+    throw ConfigError(path, "<file>", "is larger than " + std::to_string(kMaxConfigFileBytes) + " bytes");
   try {
     return YAML::LoadFile(path);
   } catch (const YAML::BadFile&) {

@@ -3,6 +3,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <set>
 #include <string>
 
@@ -37,7 +38,10 @@ class YamlFields {
   std::set<std::string> used_;
 };
 
-// Parses a file, turning syntax errors into ConfigError.
+// The largest configuration file read (a game, variant or map file is a few kB).
+constexpr uintmax_t kMaxConfigFileBytes = 1 << 20;
+// Parses a file, turning syntax errors into ConfigError; refuses what is not a regular file of at
+// most kMaxConfigFileBytes.
 YAML::Node loadYamlFile(const std::string& path);
 
 }  // namespace hideseek_game
