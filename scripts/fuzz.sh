@@ -7,9 +7,10 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_EACH=${FUZZ_SECONDS:-120}
-TARGETS=(${FUZZ_TARGETS:-config_fuzz action_batch_fuzz})
+TARGETS=(${FUZZ_TARGETS:-config_fuzz action_batch_fuzz checkpoint_fuzz})
 declare -A CORPUS=([config_fuzz]=src/hideseek_game/fuzz/corpus/config
-  [action_batch_fuzz]=src/hideseek_game/fuzz/corpus/action_batch)
+  [action_batch_fuzz]=src/hideseek_game/fuzz/corpus/action_batch
+  [checkpoint_fuzz]=src/hideseek_hider/fuzz/corpus/checkpoint)
 scripts/sanitize_build.sh "${TARGETS[@]}" > build_sanitize.log 2>&1 || {
   tail -n 30 build_sanitize.log; echo "fuzz: the build failed (build_sanitize.log)"; exit 1; }
 export ASAN_OPTIONS="detect_leaks=0"  # libFuzzer's -rss_limit_mb bounds memory; leaks are make test-sanitize's
@@ -20,7 +21,7 @@ for t in "${TARGETS[@]}"; do
   work="fuzz_runs/$t"
   mkdir -p "$work/corpus" "$work/findings"
   "$bin" "$work/corpus" "${CORPUS[$t]}" -max_total_time="$SECONDS_EACH" -timeout="${FUZZ_TIMEOUT:-10}" \
-    -rss_limit_mb="${FUZZ_RSS_MB:-2048}" -max_len=65536 -artifact_prefix="$work/findings/" -print_final_stats=1 \
+    -rss_limit_mb="${FUZZ_RSS_MB:-2048}" -max_len="${FUZZ_MAX_LEN:-65536}" -artifact_prefix="$work/findings/" -print_final_stats=1 \
     > "$work/log.txt" 2>&1
   rc=$?
   runs=$(grep -oE "stat::number_of_executed_units: *[0-9]+" "$work/log.txt" | grep -oE "[0-9]+$")

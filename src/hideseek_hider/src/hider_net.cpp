@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hideseek_hider/checkpoint_archive.h"
 #include "hideseek_hider/gru_sequence.h"
 
 namespace hideseek_hider {
@@ -179,6 +180,7 @@ void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo
 namespace {
 
 torch::serialize::InputArchive openArchive(const std::string& path) {
+  checkCheckpointArchive(path);  // the zip layout, before libtorch reads a byte of it
   torch::serialize::InputArchive archive;
   try {
     archive.load_from(path);
