@@ -73,9 +73,32 @@ malformed() {  # name, what, message, diagnostics key
 malformed wrong_arena_count "ActionBatch with 3 actions for 2 arenas" "{actions: [1, 1, 1], step: [0, 0, 0]}" rejected_wrong_arena_count
 malformed invalid_action "action 9" "{actions: [9, 9], step: [0, 0]}" rejected_invalid_action
 malformed stale_step_ids "step ids that are not the current step" "{actions: [1, 1], step: [999999, 999999]}" rejected_wrong_step
+# Bytes no ActionBatch is: a length prefix claiming 4 billion actions (roscpp's own reader would
+# allocate them before any check), sent as ActionBatch by a publisher that writes raw bytes.
+before_n=$(count rejected_malformed)
+timeout 10 /usr/bin/python3 - > /dev/null 2>&1 <<'PY'
+import struct, time
+import rospy
+from hideseek_msgs.msg import ActionBatch
+
+class Hostile(ActionBatch):
+    def serialize(self, buff):
+        buff.write(struct.pack("<IIII", 0, 0, 0, 0) + struct.pack("<I", 0xFFFFFFF0) + b"\x01\x01")
+
+rospy.init_node("hostile_publisher", anonymous=True)
+pub = rospy.Publisher("/hider/actions", ActionBatch, queue_size=10)
+time.sleep(1.5)
+for _ in range(100):
+    pub.publish(Hostile())
+    time.sleep(0.02)
+PY
+after_n=$(count rejected_malformed)
+alive=$(rosnode list 2>/dev/null | grep -c "^/world$")
+[ "${after_n:-0}" -gt "${before_n:-0}" ] && [ "$alive" -eq 1 ]
+row hostile_length "ActionBatch bytes whose actions length claims 4,294,967,280 entries (100 at 50 Hz)" "rejected before any allocation, counted; the world stays up" "$(pass $? "rejected_malformed: ${before_n:-?} -> ${after_n:-?}; world up: $alive")"
 lines=$(grep -c "rejected" "$dir/game.log")
-[ "$lines" -le 30 ]
-row warning_flood "the three floods above: 15 s of bad input at 50 Hz" "warnings throttled on the wall clock" "$(pass $? "$lines warning lines for about 750 bad batches")"
+[ "$lines" -le 40 ]
+row warning_flood "the four floods above: 17 s of bad input at 50 Hz" "warnings throttled on the wall clock" "$(pass $? "$lines warning lines for about 850 bad messages")"
 kill -INT "$game"; wait "$game" 2>/dev/null
 roslaunch -p "$port" hideseek_world basic.launch mode:=lockstep num_arenas:=2 policy:=random > "$dir/game2.log" 2>&1 &
 game=$!
