@@ -74,7 +74,10 @@ std::vector<Vec2> GridPlanner::plan(Vec2 from, Vec2 to) const {
   cost[s] = 0.0;
   open.push({heuristic(start), s});
   while (!open.empty()) {
-    const auto [f, i] = open.top();
+    // Plain copies, not a structured binding: the lambda below captures them (clang 14 refuses a
+    // captured binding).
+    const double f = open.top().first;
+    const int i = open.top().second;
     open.pop();
     if (i == g) break;
     const GridCell c{i % grid_.width(), i / grid_.width()};
@@ -117,7 +120,8 @@ std::vector<float> GridPlanner::distancesFrom(Vec2 from) const {
   out[grid_.index(start)] = 0.f;
   open.push({0.f, grid_.index(start)});
   while (!open.empty()) {
-    const auto [d, i] = open.top();
+    const float d = open.top().first;
+    const int i = open.top().second;
     open.pop();
     if (d > out[i]) continue;
     forEachNeighbour({i % grid_.width(), i / grid_.width()}, [&](GridCell nb, double step) {
