@@ -56,6 +56,15 @@ launch() {
 where=$(env -i HOME="$HOME" PATH=/usr/bin:/bin bash -c "source '$prefix/setup.bash' && rospack find hideseek_world" 2>&1)
 [ "$where" = "$prefix/share/hideseek_world" ] || failures+=("rospack finds hideseek_world at '$where', not in the prefix")
 
+say "the Python module from the prefix: hideseek.make_vec steps a game"
+py=$(cd "$tmp" && env -i HOME="$HOME" PATH=/usr/bin:/bin LANG=C.UTF-8 bash -c "source '$prefix/setup.bash' && \
+  /usr/bin/python3 -c 'import hideseek; e = hideseek.make_vec(\"basic\", num_envs=2); o, _ = e.reset(seed=0); \
+o, *_ = e.step([1, 1]); print(hideseek.__file__, o.shape)'" 2>&1)
+case "$(echo "$py" | tail -n 1)" in
+  "$prefix"/*"(2, 84, 84, 3)") ;;
+  *) failures+=("the installed hideseek module did not step a game: $(echo "$py" | tail -n 2 | tr '\n' ' ')") ;;
+esac
+
 say "basic.launch (lockstep, shipped policy, recording a bag)"
 launch basic 60 basic.launch mode:=lockstep num_arenas:=2 record:=true bag_dir:="$tmp/bags"
 episodes=$(grep -c "episode [0-9]* (seed [0-9]*): " "$tmp/basic.log")
