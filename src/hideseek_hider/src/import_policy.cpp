@@ -32,8 +32,19 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const int64_t steps = argc > 4 ? std::atoll(argv[4]) : 0;
-    const int height = argc > 6 ? std::atoi(argv[5]) : 84, width = argc > 6 ? std::atoi(argv[6]) : 84;
+    const auto number = [](const char* text, const char* what) {
+      char* end = nullptr;
+      const long long v = std::strtoll(text, &end, 10);
+      if (end == text || *end != '\0')
+        throw std::invalid_argument(std::string(what) + " '" + text + "' is not a number");
+      return static_cast<int64_t>(v);
+    };
+    const int64_t steps = argc > 4 ? number(argv[4], "STEPS") : 0;
+    const int height = argc > 6 ? static_cast<int>(number(argv[5], "HEIGHT")) : 84;
+    const int width = argc > 6 ? static_cast<int>(number(argv[6], "WIDTH")) : 84;
+    const std::string variant = argv[3];
+    if (variant.empty() || variant.find_first_of("/ ") != std::string::npos)
+      throw std::invalid_argument("VARIANT '" + variant + "' is not a variant name (config/variants/NAME.yaml)");
     if (steps < 0 || height < 36 || width < 36)
       throw std::invalid_argument("STEPS must be >= 0, HEIGHT and WIDTH >= 36");
     torch::jit::Module source;
@@ -65,7 +76,7 @@ int main(int argc, char** argv) {
     info.architecture = hideseek_hider::kArchitecture;
     info.image_height = height;
     info.image_width = width;
-    info.variant = argv[3];
+    info.variant = variant;
     info.steps = steps;
     hideseek_hider::saveCheckpoint(argv[2], net, info);
     std::printf("%s: %s policy imported from %s, %dx%d images, %ld training steps\n", argv[2], argv[3], argv[1], height,

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <cstring>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,7 +43,7 @@ py::dict infos(const VecGame& g) {
   const int n = g.numEnvs();
   py::array_t<bool> s(n), h(n), o(n);
   py::array_t<double> hider({n, 3}), seeker({n, 3});
-  py::array_t<uint32_t> seed(n), step(n), episode(n);
+  py::array_t<int64_t> seed(n), step(n), episode(n);  // int64: differences of them do not wrap
   for (int i = 0; i < n; ++i) {
     const hideseek_python::ArenaInfo a = g.info(i);
     s.mutable_data()[i] = a.hider_sees_seeker;
@@ -76,7 +77,7 @@ py::dict finished(const VecGame& g) {
   py::array_t<int32_t> length(n);
   py::array_t<double> ret(n), hider({n, 3}), seeker({n, 3});
   py::array_t<uint8_t> outcome(n);
-  py::array_t<uint32_t> seed(n), episode(n);
+  py::array_t<int64_t> seed(n), episode(n);
   for (int i = 0; i < n; ++i) {
     const auto& f = g.finished(i);
     const hideseek_game::EpisodeSummary e = f ? *f : hideseek_game::EpisodeSummary{};
@@ -109,6 +110,16 @@ py::dict finished(const VecGame& g) {
   d["seed"] = seed;
   d["episode_index"] = episode;
   return d;
+}
+
+// A reader of the game's state, run under its lock (the GIL is held: a thread stepping the same
+// game holds the lock without the GIL and never waits for it, so this cannot deadlock).
+template <typename F>
+auto locked(F f) {
+  return [f](const VecGame& g) {
+    std::lock_guard<std::mutex> lock(g.mutex());
+    return f(g);
+  };
 }
 
 hideseek_seeker::EvaderKind evader(const std::string& name) {
@@ -146,6 +157,7 @@ PYBIND11_MODULE(_core, m) {
           "reset",
           [](VecGame& g, const std::vector<int64_t>& seeds) {
             py::gil_scoped_release release;
+            std::lock_guard<std::mutex> lock(g.mutex());
             g.reset(seeds);
           },
           py::arg("seeds"), "new episodes: seeds per environment, one seed (seed + i), or [] (the next ones)")
@@ -153,6 +165,7 @@ PYBIND11_MODULE(_core, m) {
           "reset_env",
           [](VecGame& g, int env, int64_t seed) {
             py::gil_scoped_release release;
+            std::lock_guard<std::mutex> lock(g.mutex());
             g.resetEnv(env, seed);
           },
           py::arg("env"), py::arg("seed") = -1)
@@ -164,17 +177,18 @@ PYBIND11_MODULE(_core, m) {
             std::vector<uint8_t> a(actions.data(), actions.data() + actions.size());
             {
               py::gil_scoped_release release;
+              std::lock_guard<std::mutex> lock(g.mutex());
               g.step(a);
             }
           },
           py::arg("actions"))
-      .def("observations", &observations, "uint8 [num_envs, height, width, 3], rgb, rows top down")
-      .def("rewards", [](const VecGame& g) { return toArray(g.rewards()); })
-      .def("done", [](const VecGame& g) { return flags(g.done()); })
-      .def(
-          "outcomes", [](const VecGame& g) { return toArray(g.outcomes()); }, "0 running, 1 captured, 2 survived")
-      .def("infos", &infos)
-      .def("finished", &finished)
+      .def("observations", locked(&observations), "uint8 [num_envs, height, width, 3], rgb, rows top down")
+      .def("rewards", locked([](const VecGame& g) { return toArray(g.rewards()); }))
+      .def("done", locked([](const VecGame& g) { return flags(g.done()); }))
+      .def("outcomes", locked([](const VecGame& g) { return toArray(g.outcomes()); }),
+           "0 running, 1 captured, 2 survived")
+      .def("infos", locked(&infos))
+      .def("finished", locked(&finished))
       .def(
           "scripted_actions",
           [](VecGame& g, const std::string& name) {
@@ -182,6 +196,7 @@ PYBIND11_MODULE(_core, m) {
             std::vector<uint8_t> a;
             {
               py::gil_scoped_release release;
+              std::lock_guard<std::mutex> lock(g.mutex());
               a = g.scriptedActions(kind);
             }
             return toArray(a);

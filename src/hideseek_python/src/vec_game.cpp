@@ -69,10 +69,13 @@ void VecGame::reset(const std::vector<int64_t>& seeds) {
   // Episodes just started with these seeds, not yet stepped, are already what a reset would start:
   // kept, so that the episode counters stay the world node's (reset(seed) after construction with
   // that seed starts nothing new, as the node starts nothing before its first decision).
-  bool same = untouched_ && !seeds.empty();
-  for (int i = 0; same && i < n; ++i)
+  bool same = untouched_;
+  for (int i = 0; same && !seeds.empty() && i < n; ++i)
     same = game_.world().arena(i).seed() == static_cast<uint32_t>(seeds.size() == 1 ? seeds[0] + i : seeds[i]);
-  if (same) return;
+  if (same) {
+    for (int i = 0; i < n; ++i) ++starts_[i];  // the evaders start the episode afresh
+    return;
+  }
   untouched_ = true;
   if (seeds.size() <= 1) {
     game_.reset(-1, seeds.empty() ? -1 : seeds[0]);

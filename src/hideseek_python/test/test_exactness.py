@@ -110,6 +110,7 @@ def test_same_decisions_as_the_ros_graph():
         ["roslaunch", "-p", str(port), "hideseek_world", "game.launch.xml", "variant:=" + variant, "mode:=lockstep",
          "start_hider:=false", "num_arenas:=%d" % num_envs, "seed:=%d" % seed, "world_output:=log",
          "resend_period:=0.5"], env=env, stdout=log, stderr=subprocess.STDOUT)
+    saved_master = os.environ.get("ROS_MASTER_URI")
     try:
         os.environ["ROS_MASTER_URI"] = env["ROS_MASTER_URI"]
         import rospy
@@ -122,6 +123,10 @@ def test_same_decisions_as_the_ros_graph():
         rospy.init_node("exactness_hider", anonymous=True, disable_signals=True)
         batches = _record_graph(variant, num_envs, seed, actions, port)
     finally:
+        if saved_master is None:
+            os.environ.pop("ROS_MASTER_URI", None)
+        else:
+            os.environ["ROS_MASTER_URI"] = saved_master
         subprocess.run(["pkill", "-INT", "-P", str(launch.pid)])
         launch.terminate()
         launch.wait(timeout=30)

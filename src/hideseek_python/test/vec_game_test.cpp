@@ -76,6 +76,9 @@ TEST(VecGame, SeedsPerEnvironmentOneSeedOrTheNextOnes) {
   game.reset({7});
   EXPECT_EQ(game.info(0).seed, 7u);
   EXPECT_EQ(game.info(1).seed, 8u);
+  game.reset({});  // episodes not yet stepped are kept: no seed of the sequence is skipped
+  EXPECT_EQ(game.info(0).seed, 7u);
+  game.step({0, 0});
   game.reset({});  // each arena's next seed: 7 + 2 and 8 + 2
   EXPECT_EQ(game.info(0).seed, 9u);
   EXPECT_EQ(game.info(1).seed, 10u);

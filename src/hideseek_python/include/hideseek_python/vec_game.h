@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,7 +51,8 @@ class VecGame {
 
   // Starts a new episode in every arena: with seeds (one per arena), with seed + i in arena i
   // (one seed), or with the next seed of each arena's sequence (none). Where every arena's episode
-  // has just started (construction or reset, no step since) with the seeds asked, nothing changes.
+  // has just started (construction or reset, no step since) with the seeds asked, or with none
+  // asked, nothing changes but the evaders' state, so no seed of the sequence is skipped.
   // Throws
   // std::invalid_argument for a wrong count or a seed outside [0, 2^32).
   void reset(const std::vector<int64_t>& seeds);
@@ -73,10 +75,14 @@ class VecGame {
   const std::optional<hideseek_game::EpisodeSummary>& finished(int env) const { return finished_[env]; }
   // Decision steps taken since construction.
   uint64_t decisions() const { return game_.decisions(); }
+  // VecGame is not thread-safe: the Python layer holds this around every call, so that two threads
+  // sharing one environment take turns instead of racing.
+  std::mutex& mutex() const { return mutex_; }
 
   // A scripted hider's actions for the current state of every arena (random: the paper's random
   // hider, drawn from seed and step; backpedal, flee, hide, lap: evaders that read the true state),
-  // as policy:=scripted/NAME plays them in process.
+  // as policy:=scripted/NAME plays them in process. The evaders keep state within an episode
+  // (their goal and path): ask once per step, as the graph does.
   std::vector<uint8_t> scriptedActions(hideseek_seeker::EvaderKind kind);
 
  private:
@@ -86,6 +92,7 @@ class VecGame {
   hideseek_game::GameLoop game_;
   std::vector<hideseek_seeker::SeekerPolicy> seekers_;
   std::vector<std::optional<hideseek_game::EpisodeSummary>> finished_;
+  mutable std::mutex mutex_;
   bool untouched_ = true;         // no step or single-arena reset since construction or reset()
   std::vector<uint64_t> starts_;  // episodes started per arena, so that evaders reset once per episode
   struct Evaders {

@@ -53,13 +53,24 @@ def _config_dir(config_dir):
         ) from None
 
 
+def _seed(value, what="seed"):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise ValueError("%s must be an integer in [0, 2^32), got %r" % (what, value))
+    if not 0 <= int(value) < 2 ** 32:
+        raise ValueError("%s must be in [0, 2^32), got %d" % (what, value))
+    return int(value)
+
+
 def _seed_list(seed, num_envs):
     """reset's seed argument as the C++ side takes it: [] (the next seeds), [seed] or one per env."""
     if seed is None:
         return []
-    if isinstance(seed, (int, np.integer)):
-        return [int(seed)]
-    seeds = [int(s) for s in seed]
+    if isinstance(seed, (int, np.integer)) and not isinstance(seed, (bool, np.bool_)):
+        return [_seed(seed)]
+    try:
+        seeds = [_seed(s, "every seed") for s in seed]
+    except TypeError:
+        raise ValueError("seed must be None, an integer or one integer per environment, got %r" % (seed,)) from None
     if len(seeds) != num_envs:
         raise ValueError("%d seeds for %d environments" % (len(seeds), num_envs))
     return seeds
@@ -79,11 +90,12 @@ def _actions(actions, num_envs):
 
 
 def _with_masks(d, mask):
-    """Gymnasium's vector info layout: every key k beside a boolean mask _k of the envs it holds for."""
+    """Gymnasium's vector info layout: every key k beside a boolean mask _k of the envs it holds for
+    (each its own array, so that a wrapper changing one changes no other)."""
     out = {}
     for k, v in d.items():
         out[k] = v
-        out["_" + k] = mask
+        out["_" + k] = mask.copy()
     return out
 
 
@@ -91,13 +103,18 @@ class HideSeekVecEnv(_VectorBase):
     """num_envs arenas of a variant played together; arena i's first episode has seed seed + i, its
     later ones seed + i + k * num_envs (the world node's num_arenas and seed)."""
 
-    metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": ["rgb_array"]}
+    metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": ["rgb_array"], "render_fps": 5}
 
     def __init__(self, variant="basic", num_envs=16, seed=0, game="v2", config_dir=None,
                  render_threads=2, render_mode=None):
         if render_mode not in (None, "rgb_array"):
             raise ValueError("render_mode must be None or 'rgb_array', got %r" % (render_mode,))
-        self._game = _core.VecGame(_config_dir(config_dir), game, variant, int(num_envs), int(seed),
+        if isinstance(num_envs, bool) or not isinstance(num_envs, (int, np.integer)):
+            raise ValueError("num_envs must be an integer in [1, 64], got %r" % (num_envs,))
+        seed = _seed(seed)
+        if seed + int(num_envs) - 1 >= 2 ** 32:
+            raise ValueError("seed + num_envs - 1 must be below 2^32")
+        self._game = _core.VecGame(_config_dir(config_dir), game, variant, int(num_envs), seed,
                                    int(render_threads))
         self.variant, self.game = variant, game
         self.num_envs = self._game.num_envs
@@ -136,14 +153,17 @@ class HideSeekVecEnv(_VectorBase):
 
     def scripted_actions(self, name):
         """A scripted hider's actions for every arena's current state: random (the paper's random
-        hider) or an evader reading the true state (backpedal, flee, hide, lap)."""
+        hider) or an evader reading the true state (backpedal, flee, hide, lap). The evaders keep a
+        goal and a path within an episode: ask once per step, as the graph asks them."""
         return self._game.scripted_actions(name).astype(np.int64)
 
     def render(self):
-        """The hider images, uint8 [num_envs, H, W, 3] (render_mode 'rgb_array')."""
-        return self._game.observations() if self.render_mode == "rgb_array" else None
+        """The hider images, a tuple of num_envs uint8 [H, W, 3] frames (render_mode 'rgb_array')."""
+        return tuple(self._game.observations()) if self.render_mode == "rgb_array" else None
 
     def close(self, **kwargs):
+        """Frees the game (its renderer and images); the environment cannot be used after."""
+        self._game = None
         self.closed = True
 
     def _infos(self):
