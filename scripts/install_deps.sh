@@ -12,6 +12,7 @@ PACKAGES=(
   python3-diagnostic-msgs python3-tf2-msgs python3-rosgraph-msgs
   libosmesa6-dev libeigen3-dev libyaml-cpp-dev
   libtorch-dev libopenblas0-pthread
+  zlib1g-dev  # the checkpoint check inflates TorchScript entries (issue #49)
   libopenblas0-openmp  # the BLAS the training programs link: it shares libtorch's OpenMP threads (#27)
   libgtest-dev googletest
   xvfb xauth imagemagick xterm

@@ -1,9 +1,12 @@
 #include "hideseek_hider/checkpoint_archive.h"
 
+#include <zlib.h>
+
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <regex>
 #include <stdexcept>
 #include <vector>
 
@@ -244,6 +247,47 @@ std::string scanPickle(const uint8_t* p, uint64_t size, std::vector<StorageRef>*
   return "a pickle without its end";
 }
 
+// A deflated entry (method 8) inflated to exactly `plain` bytes (at most max_pickle_bytes, checked).
+bool inflateRaw(const uint8_t* in, uint32_t packed, uint32_t plain, std::vector<uint8_t>* out) {
+  out->assign(plain, 0);
+  z_stream z{};
+  if (inflateInit2(&z, -MAX_WBITS) != Z_OK) return false;
+  z.next_in = const_cast<Bytef*>(in);
+  z.avail_in = packed;
+  z.next_out = out->data();
+  z.avail_out = plain;
+  const int status = inflate(&z, Z_FINISH);
+  const bool whole = status == Z_STREAM_END && z.total_out == plain;
+  inflateEnd(&z);
+  return whole;
+}
+
+// The TorchScript that libtorch's OutputArchive writes beside a checkpoint's records: class
+// declarations only (a module's attributes, parameters and types), never code. libtorch compiles
+// these files when it loads the archive, and its parser crashes on crafted ones (found by
+// checkpoint_fuzz), so every line must be one of the forms our checkpoints hold.
+std::string checkTorchScriptDeclarations(const uint8_t* p, uint64_t size) {
+  static const std::string type =
+      R"((int|float|bool|str|Tensor|Tuple\[float, float\]|__torch__\.___torch_mangle_[0-9]{1,6}\.Module))";
+  static const std::regex line(
+      "|class Module\\(Module\\):"
+      "|  __parameters__ = \\[(\"[A-Za-z0-9_/]{1,64}\", ){0,64}\\]"
+      "|  __buffers__ = \\[\\]"
+      "|  __annotations__ = \\[\\]"
+      "|  __annotations__\\[\"[A-Za-z0-9_/]{1,64}\"\\] = " +
+      type + "|  [A-Za-z_][A-Za-z0-9_]{0,63} : " + type);
+  uint64_t start = 0;
+  for (uint64_t i = 0; i <= size; ++i) {
+    if (i < size && p[i] != '\n') continue;
+    if (i - start > 512) return "a TorchScript line longer than 512 bytes";
+    const std::string text(reinterpret_cast<const char*>(p + start), i - start);
+    if (!std::regex_match(text, line))
+      return "TorchScript that is no checkpoint's declaration: '" + text.substr(0, 80) + "'";
+    start = i + 1;
+  }
+  return "";
+}
+
 }  // namespace
 
 void checkCheckpointBytes(const uint8_t* data, uint64_t size, const std::string& name, const CheckpointLimits& limits) {
@@ -312,7 +356,17 @@ void checkCheckpointBytes(const uint8_t* data, uint64_t size, const std::string&
     if (u16(l + 26) != name_len || body > dir_offset || std::memcmp(l + 30, entry.data(), name_len) != 0)
       fail("entry '" + entry + "': its local header disagrees with the directory");
     if (body + packed > dir_offset) fail("entry '" + entry + "' runs past the file's data");
-    if (rest == "data.pkl" || rest == "constants.pkl") pickles.emplace_back(entry, body);
+    const bool pickle = rest == "data.pkl" || rest == "constants.pkl" ||
+                        (rest.size() > 10 && rest.compare(rest.size() - 10, 10, ".debug_pkl") == 0);
+    if (pickle) pickles.emplace_back(entry, body);
+    if (code && !pickle) {
+      std::vector<uint8_t> text;
+      if (method == 8 && !inflateRaw(data + body, packed, plain, &text))
+        fail("entry '" + entry + "' does not inflate to its " + std::to_string(plain) + " bytes");
+      const std::string problem = method == 8 ? checkTorchScriptDeclarations(text.data(), text.size())
+                                              : checkTorchScriptDeclarations(data + body, plain);
+      if (!problem.empty()) fail("entry '" + entry + "' holds " + problem);
+    }
     total += plain;
     at = next;
   }

@@ -131,3 +131,11 @@ TEST(CheckpointArchive, ARecordShorterThanItsTensorIsRefused) {
   EXPECT_NE(refusal(readFile(HIDESEEK_CHECKPOINT_CORPUS "/policy_no_records")).find("data/0 is missing"),
             std::string::npos);
 }
+
+// checkpoint_fuzz's second finding: libtorch 1.13's TorchScript parser (ScriptTypeParser) crashes
+// on crafted source in an archive's code/ entries, which it compiles on load. Our checkpoints hold
+// only class declarations there, so every line must be one of their forms.
+TEST(CheckpointArchive, TorchScriptOtherThanDeclarationsIsRefused) {
+  const std::string why = refusal(readFile(HIDESEEK_CHECKPOINT_CORPUS "/finding_torchscript_parser_crash"));
+  EXPECT_NE(why.find("holds TorchScript that is no checkpoint's declaration"), std::string::npos) << why;
+}
