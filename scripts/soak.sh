@@ -2,8 +2,10 @@
 # A soak (issue #49; not in CI): a game left running for hours while every node's memory is sampled.
 # usage: scripts/soak.sh realtime SECONDS OUT      basic.launch in realtime with the shipped policy, on
 #                                                  its own master, rviz's topics subscribed all along
-#        scripts/soak.sh attach PORT SECONDS OUT   a graph already running on master port PORT (a sweep
-#                                                  run: 12100 + 10 x its slot), subscribing to nothing
+#        scripts/soak.sh attach PORT SECONDS OUT [--continue]
+#                                                  a graph already running on master port PORT (a sweep
+#                                                  run: 12100 + 10 x its slot), subscribing to nothing;
+#                                                  --continue goes on with a watch cut short
 # OUT gets rss.csv, world.csv and summary.md (scripts/soak_monitor.py).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,7 +18,7 @@ kill_tree() {  # roslaunch starts each node in its own session: kill the tree by
 }
 case "$mode" in
   realtime)
-    [ $# -eq 3 ] || { sed -n 3,8p "$0"; exit 2; }
+    [ $# -eq 3 ] || { sed -n 3,10p "$0"; exit 2; }
     seconds=$2 out=$3 port=11950
     mkdir -p "$out"
     export ROS_MASTER_URI=http://localhost:$port
@@ -27,10 +29,10 @@ case "$mode" in
     /usr/bin/python3 scripts/soak_monitor.py --duration "$seconds" --out "$out" --rviz
     ;;
   attach)
-    [ $# -eq 4 ] || { sed -n 3,8p "$0"; exit 2; }
+    [ $# -eq 4 ] || [ $# -eq 5 ] || { sed -n 3,10p "$0"; exit 2; }
     export ROS_MASTER_URI=http://localhost:$2
     mkdir -p "$4"
-    /usr/bin/python3 scripts/soak_monitor.py --duration "$3" --out "$4" --interval 60
+    /usr/bin/python3 scripts/soak_monitor.py --duration "$3" --out "$4" --interval 60 ${5:+"$5"}
     ;;
-  *) sed -n 3,8p "$0"; exit 2 ;;
+  *) sed -n 3,10p "$0"; exit 2 ;;
 esac

@@ -3,15 +3,18 @@
 world's input counters (missed decisions, rejected action messages) from /diagnostics and, with
 --rviz, everything rviz subscribes to, so that the graph serves a viewer all along.
 
-usage: soak_monitor.py --duration S --out DIR [--interval S] [--rviz] [--ns NS]
+usage: soak_monitor.py --duration S --out DIR [--interval S] [--rviz] [--ns NS] [--continue]
 Writes DIR/rss.csv (elapsed_s,node,pid,rss_kb), DIR/world.csv (elapsed_s and the world's counters)
 and DIR/summary.md: per node the RSS at the start, after one hour and at the end, its growth per hour
 (least-squares slope after the first 10 minutes, when caches and allocators have settled), and the
-totals of missed decisions and rejected messages. The master is ROS_MASTER_URI's.
+totals of missed decisions and rejected messages. The master is ROS_MASTER_URI's. A master or node
+that does not answer (a sweep run paused by `scripts/sweep.sh hold`) is skipped for that sample.
+--continue appends to DIR's files, timing from the first run's start: a watch cut short goes on.
 """
 import argparse
 import csv
 import os
+import socket
 import time
 import xmlrpc.client
 
@@ -26,7 +29,10 @@ COUNTERS = ["decision_steps", "stale_decisions", "rejected_malformed", "rejected
 
 def node_pids(master, me):
     pids = {}
-    state = master.getSystemState()
+    try:
+        state = master.getSystemState()
+    except Exception:  # a master that does not answer now (paused, restarting)
+        return pids
     names = {n for group in state for _, nodes in group for n in nodes}
     for name in sorted(names - {me}):
         try:
@@ -70,7 +76,10 @@ def main():
     p.add_argument("--out", required=True)
     p.add_argument("--rviz", action="store_true", help="subscribe to what rviz shows (config/hideseek.rviz)")
     p.add_argument("--ns", default="", help="the game's namespace")
+    p.add_argument("--continue", dest="resume", action="store_true",
+                   help="append to DIR's rss.csv and world.csv, timing from their start")
     args = p.parse_args()
+    socket.setdefaulttimeout(10.0)  # a stopped node never answers: give up on it for this sample
     os.makedirs(args.out, exist_ok=True)
     rospy.init_node("soak_monitor", anonymous=True, disable_signals=True)
     me = rospy.get_name()
@@ -102,14 +111,26 @@ def main():
 
             rospy.Subscriber(topic, cls, count, queue_size=5)
 
-    rss_file = open(os.path.join(args.out, "rss.csv"), "w", newline="")
-    rss_csv = csv.writer(rss_file)
-    rss_csv.writerow(["elapsed_s", "node", "pid", "rss_kb"])
-    world_file = open(os.path.join(args.out, "world.csv"), "w", newline="")
-    world_csv = csv.writer(world_file)
-    world_csv.writerow(["elapsed_s"] + COUNTERS)
+    rss_path, world_path = os.path.join(args.out, "rss.csv"), os.path.join(args.out, "world.csv")
     samples = {}
     start = time.time()
+    if args.resume and os.path.exists(rss_path):
+        with open(rss_path) as f:
+            rows = list(csv.DictReader(f))
+        for r in rows:
+            samples.setdefault(r["node"], []).append((float(r["elapsed_s"]), int(r["rss_kb"])))
+        start = os.path.getmtime(os.path.join(args.out, "started"))
+    else:
+        open(os.path.join(args.out, "started"), "w").close()  # its time is the watch's start
+        start = os.path.getmtime(os.path.join(args.out, "started"))
+        with open(rss_path, "w", newline="") as f:
+            csv.writer(f).writerow(["elapsed_s", "node", "pid", "rss_kb"])
+        with open(world_path, "w", newline="") as f:
+            csv.writer(f).writerow(["elapsed_s"] + COUNTERS)
+    rss_file = open(rss_path, "a", newline="")
+    rss_csv = csv.writer(rss_file)
+    world_file = open(world_path, "a", newline="")
+    world_csv = csv.writer(world_file)
     pids = {}
     while True:
         elapsed = time.time() - start
