@@ -36,6 +36,10 @@ fatal_case bad_mode "mode" game.launch.xml variant:=basic mode:=fast
 fatal_case bad_num_arenas "num_arenas" basic.launch num_arenas:=0
 printf 'variant: basic\nmap: %s/maps/deterministic.yaml\nhider:\n  sped: 3.0\n' "$PWD/config" > "$dir/typo.yaml"
 fatal_case misspelt_field "sped" game.launch.xml variant:=basic variant_config:="$dir/typo.yaml"
+head -c 60 config/variants/stochasticmaps.yaml > "$dir/trunc_variant.yaml"  # cut inside its first comment
+fatal_case truncated_variant "trunc_variant.yaml: field 'variant'" game.launch.xml variant:=basic variant_config:="$dir/trunc_variant.yaml"
+head -c 140 config/variants/stochasticmaps.yaml > "$dir/trunc_variant2.yaml"  # cut inside a value: "policy: stoch"
+fatal_case truncated_variant_mid_value "trunc_variant2.yaml" game.launch.xml variant:=basic variant_config:="$dir/trunc_variant2.yaml"
 # Either the hider or the analysis node may stop first; both name the file.
 fatal_case analysis_missing_checkpoint "/nonexistent.pt" analyze.launch policy:=/nonexistent.pt steps:=160 num_arenas:=1 output_dir:="$dir/an"
 
