@@ -25,11 +25,17 @@ usage:
   hideseek_registry.py record RUN key=value ...       adds or updates a run's entry
   hideseek_registry.py ship RUN WEIGHTS               copies WEIGHTS to policies/<variant>[_gru].pt
                                                       and makes RUN the shipped run of its key
+  hideseek_registry.py ship-median VARIANT --weights-dir DIR [--note PREFIX]
+                                                      ships the sweep run whose greedy evaluation is its
+                                                      variant's median (the lower of the middle two for an
+                                                      even count) from DIR/<run>/policy.pt; exit 1 where its
+                                                      weights are not in DIR (the shipped run stays)
   hideseek_registry.py check                          exit 1, naming the problem, where the
                                                       registries disagree with each other or the tree
 """
 import argparse
 import contextlib
+import csv
 import fcntl
 import glob
 import os
@@ -51,6 +57,10 @@ REQUIRED = ("variant", "network", "game")
 
 class RegistryError(Exception):
     pass
+
+
+class WeightsMissing(RegistryError):
+    """The run to ship has no weights on this machine."""
 
 
 def variants(variants_dir=VARIANTS_DIR):
@@ -208,6 +218,60 @@ def ship(name, weights, registry=REGISTRY):
     _write(entries, registry)
 
 
+SWEEP_NOTE = "sweep run"
+
+
+def greedy_living_steps(name, root=ROOT):
+    """The mean living steps of a run's greedy evaluation (docs/runs/<run>/evaluation.csv), or None."""
+    path = os.path.join(root, "docs", "runs", name, "evaluation.csv")
+    if not os.path.isfile(path):
+        return None
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    if len(rows) != 1 or "avg_living_steps" not in rows[0]:
+        raise RegistryError("%s: expected one row with avg_living_steps" % path)
+    return float(rows[0]["avg_living_steps"])
+
+
+def median_run(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE):
+    """The run to ship for a variant: among its runs whose note starts with `note` and that have a
+    greedy evaluation, the one whose mean living steps is the median (the lower of the middle two
+    for an even count; ties broken by name). None when there is no such run."""
+    scored = []
+    for name, e in runs(registry).items():
+        if (e["variant"], e["network"], e["game"]) != (variant, network, game):
+            continue
+        if not str(e.get("note", "")).startswith(note):
+            continue
+        steps = greedy_living_steps(name, root)
+        if steps is not None:
+            scored.append((steps, name))
+    if not scored:
+        return None
+    scored.sort()
+    return scored[(len(scored) - 1) // 2][1]
+
+
+def ship_median(variant, weights_dir, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE):
+    """Ships the median run of a variant (median_run) from weights_dir/<run>/policy.pt. Returns a
+    sentence saying what it did; raises RegistryError when the median run's weights are not there."""
+    name = median_run(variant, network, game, registry, root, note)
+    if name is None:
+        return "variant %s has no evaluated run whose note starts with %r; nothing shipped" % (variant, note)
+    current, _ = shipped(variant, network, game, registry)
+    if current == name:
+        return "%s, the median run of %s, is already shipped" % (name, variant)
+    weights = os.path.join(weights_dir, name, "policy.pt")
+    if not os.path.isfile(weights):
+        raise WeightsMissing("the median run of %s is %s, but its weights %s are not on this machine; %s "
+                            "(retrain %s to ship it)" % (variant, name, weights,
+                                                         "%s stays shipped" % current if current else "no run is shipped",
+                                                         name))
+    with _locked(registry):
+        ship(name, weights, registry)
+    return "shipped %s as the median run of %s (was %s)" % (name, variant, current or "nothing")
+
+
 def problems(registry=REGISTRY, variants_dir=VARIANTS_DIR):
     """Where the registries disagree with each other or with the tree."""
     found = []
@@ -263,6 +327,12 @@ def main(argv=None):
     p = sub.add_parser("ship")
     p.add_argument("run")
     p.add_argument("weights")
+    p = sub.add_parser("ship-median")
+    p.add_argument("variant")
+    p.add_argument("--weights-dir", required=True, help="the folder of the runs' folders (<run>/policy.pt)")
+    p.add_argument("--network", default="ff", choices=NETWORKS)
+    p.add_argument("--game", default="v2")
+    p.add_argument("--note", default=SWEEP_NOTE, help="the runs considered: those whose note starts with this")
     sub.add_parser("check")
     args = parser.parse_args(argv)
     try:
@@ -296,11 +366,18 @@ def main(argv=None):
             record(args.run, fields, args.registry)
         elif args.command == "ship":
             ship(args.run, args.weights, args.registry)
+        elif args.command == "ship-median":
+            root = os.path.dirname(os.path.dirname(os.path.abspath(args.registry)))
+            print("hideseek_registry: " + ship_median(args.variant, args.weights_dir, args.network, args.game,
+                                                      args.registry, root, args.note))
         elif args.command == "check":
             found = problems(args.registry, args.variants_dir)
             for problem in found:
                 print("hideseek_registry: " + problem, file=sys.stderr)
             return 1 if found else 0
+    except WeightsMissing as e:
+        print("hideseek_registry: %s" % e, file=sys.stderr)
+        return 1
     except RegistryError as e:
         print("hideseek_registry: %s" % e, file=sys.stderr)
         return 2

@@ -11,6 +11,8 @@
 #   build    only create and build the worktree at the pin
 #   analyze  the per-run analysis (scripts/analyze_run.sh) of every done run that lacks it and
 #            whose weights are on this machine
+#   ship     ship every variant's median sweep run into policies/ (the queue does it as each run
+#            ends), where its weights are on this machine
 #   status   the pin, and every run in queue order: done (with its evaluations, whether it is
 #            analysed and whether its weights are on this machine), training (its steps),
 #            partial (a checkpoint) or missing
@@ -167,6 +169,7 @@ job() {
     /usr/bin/python3 scripts/hideseek_registry.py --registry "$records/policies/policies.yaml" record "$name" \
       note="$SWEEP_NOTE, pinned at $(git rev-parse --short=12 "$pin")"
     analyze "$name" || true
+    ship "$variant"
     say "$name: done: $(grep 'evaluate_run:.*(greedy)\|evaluate_run:.*(sampled)' "$dir/logs/$name.log" | sed 's/.*(\(greedy\|sampled\)): \([^(]*\).*/\1 \2/' | paste -sd ';')"
   else
     say "$name: failed (exit $rc); see $dir/logs/$name.log"
@@ -185,6 +188,18 @@ analyze() {
   else
     say "$name: the analysis failed; see $dir/logs/$name.analysis.log"
     return 1
+  fi
+}
+
+# Ships the variant's median sweep run (hideseek_registry.py ship-median) into the records'
+# policies/, from its weights in $runs; where the median run's weights are not on this machine the
+# shipped run stays, and the message names the run to retrain.
+ship() {
+  local out
+  if out=$(/usr/bin/python3 "$records/scripts/hideseek_registry.py" --registry "$records/policies/policies.yaml"       ship-median "$1" --weights-dir "$runs" --network "$network" 2>&1); then
+    say "${out#hideseek_registry: }"
+  else
+    say "${out#hideseek_registry: }"
   fi
 }
 
@@ -340,6 +355,7 @@ case "${1:-start}" in
   run) run_queue ;;
   build) prepare_tree ;;
   analyze) analyze_all ;;
+  ship) for v in $variants; do ship "$v"; done ;;
   status) status ;;
   pause) pause ;;
   resume) resume ;;

@@ -93,3 +93,40 @@ def test_shipped_exits_1_where_nothing_is_shipped(tree):
     result = cli("--registry", registry, "--variants-dir", variants, "shipped", "slowerhider")
     assert result.returncode == 1
     assert "no ff policy is shipped for variant slowerhider on game v2" in result.stderr
+
+
+def test_ship_median_ships_the_median_sweep_run_and_keeps_the_shipped_one_without_its_weights(tree, tmp_path):
+    """The sweep ships the run whose greedy evaluation is its variant's median; a pilot run (no sweep
+    note) does not count; where the median run's weights are gone, the shipped run stays and the
+    command says which run to retrain (exit 1)."""
+    registry, _ = tree
+    root = str(tmp_path)
+    weights_dir = tmp_path / "runs"
+    scores = {"basic_seed0": 400.0, "basic_seed1": 100.0, "basic_seed2": 250.0, "basic_pilot": 300.0}
+    for name, steps in scores.items():
+        note = "exploration" if name == "basic_pilot" else "sweep run (config/sweep.yaml), pinned at abc"
+        reg.record(name, {"variant": "basic", "network": "ff", "game": "v2", "note": note}, registry)
+        folder = tmp_path / "docs" / "runs" / name
+        folder.mkdir(parents=True)
+        (folder / "evaluation.csv").write_text("variant,policy,episodes,avg_living_steps,success_rate\n"
+                                               "basic,%s (greedy),100,%.2f,0.1\n" % (name, steps))
+    (weights_dir / "basic_pilot").mkdir(parents=True)
+    (weights_dir / "basic_pilot" / "policy.pt").write_bytes(b"pilot")
+    reg.ship("basic_pilot", str(weights_dir / "basic_pilot" / "policy.pt"), registry)
+    assert reg.median_run("basic", registry=registry, root=root) == "basic_seed2"
+    # seed 2's weights are gone: the pilot stays shipped, and the CLI says so with exit 1
+    result = cli("--registry", registry, "--variants-dir", str(tmp_path / "variants"), "ship-median", "basic",
+                 "--weights-dir", str(weights_dir))
+    assert result.returncode == 1 and "basic_seed2" in result.stderr and "basic_pilot stays shipped" in result.stderr
+    assert reg.shipped("basic", registry=registry)[0] == "basic_pilot"
+    (weights_dir / "basic_seed2").mkdir()
+    (weights_dir / "basic_seed2" / "policy.pt").write_bytes(b"seed2")
+    result = cli("--registry", registry, "--variants-dir", str(tmp_path / "variants"), "ship-median", "basic",
+                 "--weights-dir", str(weights_dir))
+    assert result.returncode == 0, result.stderr
+    name, path = reg.shipped("basic", registry=registry)
+    assert name == "basic_seed2" and open(path, "rb").read() == b"seed2"
+    assert "already shipped" in reg.ship_median("basic", str(weights_dir), registry=registry, root=root)
+    # an even count ships the lower of the middle two
+    (tmp_path / "docs" / "runs" / "basic_seed2" / "evaluation.csv").unlink()
+    assert reg.median_run("basic", registry=registry, root=root) == "basic_seed1"
