@@ -92,3 +92,26 @@ echo "train_gru_ros_samples_per_s $gru_ros"
 gru_after=$(floor_bench auto gru | field '_samples_per_s$')
 echo "train_gru_efficiency $(ratio_to_mean "$gru_ros" "$gru" "$gru_after")"
 echo "train_gru_ros_wait_share $wait"
+# Training across machines (DD-PPO), both ranks on this machine: 2 ranks of 1 learner thread, each
+# its own graph on its own master with ARENAS arenas, against 1 rank of 2 threads (train_ros above);
+# rank 0's log counts both ranks' samples. Then one gradient all-reduce of the feed-forward network
+# between 2 ranks over loopback (docs/distributed.md models other networks from it).
+dd_train() {  # "samples_per_s"
+  local run0 run1 port
+  run0=$(mktemp -d) run1=$(mktemp -d)
+  port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+  for r in 0 1; do
+    roslaunch -p $((11435 + r)) hideseek_world train.launch num_arenas:="$ARENAS" hider_threads:=1 \
+      world_size:=2 rank:=$r rendezvous:=127.0.0.1:"$port" steps:=$((2 * ARENAS * ROLLOUT * (ROS_UPDATES + 2))) \
+      output_dir:="$([ $r = 0 ] && echo "$run0" || echo "$run1")" checkpoint_interval:=100000 >/dev/null 2>&1 &
+  done
+  wait
+  awk -F, 'NR == 3 { s0 = $2; t0 = $3 } END { printf "%.0f\n", ($2 - s0) / ($3 - t0) }' "$run0/training_log.csv"
+  rm -rf "$run0" "$run1"
+}
+echo "# training across machines, both ranks here: 2 ranks x 1 learner thread, $ARENAS arenas each, against"
+echo "# train_ros_samples_per_s (1 rank x 2 threads); one gradient all-reduce between 2 ranks on loopback"
+dd=$(dd_train)
+echo "train_ddppo_2ranks_samples_per_s $dd"
+echo "train_ddppo_2ranks_ratio $(ratio "$dd" "$ros")"
+devel/lib/hideseek_hider/allreduce_bench 20 | sed 's/^/ddppo_/'

@@ -23,6 +23,7 @@ PACKAGES=(
   clang libclang-rt-14-dev  # make test-sanitize and make fuzz: ASan, UBSan and libFuzzer (issue #49)
   pybind11-dev python3-numpy  # the Python environment (hideseek_gym, issue #50)
   python3-torch  # its example PPO (examples/ppo_python.py)
+  libgloo-dev iproute2  # training across machines (c10d over Gloo; the test's network namespaces, issue #51)
 )
 
 missing=()

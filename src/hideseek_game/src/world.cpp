@@ -1,14 +1,16 @@
 #include "hideseek_game/world.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace hideseek_game {
 
 World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int num_arenas, uint32_t seed, bool render,
-             int render_threads)
+             int render_threads, uint32_t seed_stride)
     : options_(options),
       episodes_(num_arenas, 0),
       next_seeds_(num_arenas),
+      seed_stride_(seed_stride == 0 ? static_cast<uint32_t>(std::max(num_arenas, 1)) : seed_stride),
       uploaded_layouts_(num_arenas, ~uint64_t{0}),
       results_(num_arenas) {
   if (num_arenas < 1) throw std::invalid_argument("World: num_arenas must be at least 1");
@@ -29,7 +31,7 @@ World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int
 
 void World::startEpisode(int i, uint32_t seed) {
   arenas_[i].reset(seed);
-  next_seeds_[i] = seed + static_cast<uint32_t>(arenas_.size());
+  next_seeds_[i] = seed + seed_stride_;
 }
 
 void World::resetArena(int i, std::optional<uint32_t> seed) {

@@ -22,6 +22,7 @@ WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& nh) {
                                                                                       : ClockMode::kRealtime;
   o.num_arenas = readInt(nh, "num_arenas", 1, 1, kMaxArenas);
   o.seed = static_cast<uint32_t>(readInt(nh, "seed", 0, 0, kMaxSeed));
+  o.seed_stride = static_cast<uint32_t>(readInt(nh, "seed_stride", 0, 0, kMaxSeed));
   o.status_period = readDouble(nh, "status_period", 0.0, 0.0, 3600.0);
   o.frame_id = readString(nh, "frame_id", "map");
   if (o.frame_id.empty()) throw std::runtime_error("parameter " + nh.resolveName("frame_id") + " must not be empty");

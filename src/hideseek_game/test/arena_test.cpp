@@ -187,4 +187,28 @@ TEST(World, ArenaSeedsInterleaveSoFirstEpisodesCoverConsecutiveSeeds) {
   EXPECT_EQ(w.arena(1).seed(), 100u);
 }
 
+// Two ranks of a data-parallel training, each a world of 2 arenas with seed stride 4 (rank r
+// starting at seed + 2r), play exactly the seeds one world of 4 arenas plays, and never the same.
+TEST(World, RanksWithASeedStrideShareOutTheSeedsOfOneLargerWorld) {
+  VariantConfig v = loadVariant("basic");
+  v.game.max_steps = 1;
+  auto seedsOf = [&](int arenas, uint32_t seed, uint32_t stride, int rounds) {
+    World w(v.game, loadMap("deterministic"), arenas, seed, false, 2, stride);
+    std::multiset<uint32_t> seeds;
+    for (int round = 0; round < rounds; ++round) {
+      for (int i = 0; i < arenas; ++i) {
+        seeds.insert(w.arena(i).seed());
+        EXPECT_TRUE(w.stepArena(i, Action::kStay, Action::kStay).finished.has_value());
+      }
+    }
+    return seeds;
+  };
+  const std::multiset<uint32_t> rank0 = seedsOf(2, 10, 4, 3), rank1 = seedsOf(2, 12, 4, 3);
+  std::multiset<uint32_t> both = rank0;
+  both.insert(rank1.begin(), rank1.end());
+  EXPECT_EQ(both, seedsOf(4, 10, 0, 3));
+  EXPECT_EQ(both.size(), std::set<uint32_t>(both.begin(), both.end()).size()) << "a seed was played twice";
+  EXPECT_EQ(rank0, (std::multiset<uint32_t>{10, 11, 14, 15, 18, 19}));
+}
+
 }  // namespace hideseek_game

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "hideseek_game/params.h"
@@ -11,6 +12,7 @@
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/wall_throttle.h"
 #include "hideseek_game/world_node_options.h"
+#include "hideseek_hider/code_version.h"
 
 namespace hideseek_hider {
 
@@ -75,8 +77,51 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   o.ppo = loadPpoOptions(hideseek_game::requireString(pnh, "ppo_config", "a file path, in train mode"));
   o.num_arenas = hideseek_game::readInt(pnh, "num_arenas", 16, 1, 64);
   o.seed = hideseek_game::readInt(pnh, "seed", 0, 0, hideseek_game::kMaxSeed);
+  RendezvousOptions& r = o.rendezvous;
+  r.world_size = hideseek_game::readInt(pnh, "world_size", 1, 1, 4096);
+  r.rank = hideseek_game::readInt(pnh, "rank", 0, 0, 4095);
+  if (r.rank >= r.world_size) {
+    throw std::invalid_argument("parameter " + pnh.resolveName("rank") + " is " + std::to_string(r.rank) +
+                                ", not below " + pnh.resolveName("world_size") + " (" + std::to_string(r.world_size) +
+                                ")");
+  }
+  r.address = readString(pnh, "rendezvous", r.address);
+  if (r.world_size > 1) parseHostPort(r.address, "parameter " + pnh.resolveName("rendezvous"));
+  r.timeout_s = hideseek_game::readDouble(pnh, "rendezvous_timeout", r.timeout_s, 1.0, 86400.0);
+  r.interface_host = readString(pnh, "rendezvous_interface", "");
   return o;
 }
+
+namespace {
+
+// What every rank of a training across machines must share, compared at the rendezvous.
+Fingerprint trainingFingerprint(const TrainingOptions& t, const PpoOptions& p, int num_arenas,
+                                const hideseek_game::VariantConfig& variant) {
+  auto text = [](double v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << v;
+    return s.str();
+  };
+  return {{"variant", t.variant},
+          {"game", variant.game.name},
+          {"network", networkName(t.network)},
+          {"precision", precisionName(t.precision)},
+          {"code_version", codeVersion()},
+          {"image", std::to_string(t.image_width) + "x" + std::to_string(t.image_height)},
+          {"num_arenas", std::to_string(num_arenas)},
+          {"total_steps", std::to_string(t.total_steps)},
+          {"ppo", "rollout_steps=" + std::to_string(p.rollout_steps) + " epochs=" + std::to_string(p.epochs) +
+                      " minibatches=" + std::to_string(p.minibatches) + " learning_rate=" + text(p.learning_rate) +
+                      " anneal=" + std::to_string(p.anneal_learning_rate) + " adam_epsilon=" + text(p.adam_epsilon) +
+                      " gamma=" + text(p.gamma) + " gae_lambda=" + text(p.gae_lambda) + " clip=" + text(p.clip) +
+                      " clip_value_loss=" + std::to_string(p.clip_value_loss) + " value_coef=" + text(p.value_coef) +
+                      " entropy_coef=" + text(p.entropy_coef) + " max_grad_norm=" + text(p.max_grad_norm) +
+                      " normalize_advantages=" + std::to_string(p.normalize_advantages) +
+                      " sequence_length=" + std::to_string(p.sequence_length)}};
+}
+
+}  // namespace
 
 HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
   const HiderNodeOptions o = loadHiderNodeOptions(pnh);
@@ -134,7 +179,15 @@ void HiderNode::startTraining(const HiderNodeOptions& options) {
   if (!options.network && std::ifstream(resume_from).good()) o.network = readCheckpointInfo(resume_from).network;
   // A resumed run restores its own generator state.
   torch::manual_seed(static_cast<uint64_t>(options.seed));
-  training_ = std::make_unique<TrainingRun>(o, options.ppo, options.num_arenas, options.device);
+  if (options.rendezvous.world_size > 1) {
+    RendezvousOptions r = options.rendezvous;
+    r.fingerprint = trainingFingerprint(o, options.ppo, options.num_arenas, options.variant);
+    ROS_INFO("hider: rank %d of %d: joining the rendezvous at %s (waits up to %.0f s for the other ranks)", r.rank,
+             r.world_size, r.address.c_str(), r.timeout_s);
+    collective_ = joinRanks(r);
+    ROS_INFO("hider: rank %d of %d: every rank joined; gradients are averaged over Gloo", r.rank, r.world_size);
+  }
+  training_ = std::make_unique<TrainingRun>(o, options.ppo, options.num_arenas, options.device, collective_.get());
   ROS_INFO("hider: training %s PPO, network %s, on %s in %s; BLAS: %s", o.variant.c_str(), networkName(o.network),
            options.device.str().c_str(), precision.reason.c_str(), blasDescription().c_str());
   if (training_->totalSteps() != o.total_steps) {
@@ -192,7 +245,17 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
   out.step = msg->step;
   if (training_) {
     std::optional<UpdateReport> report;
-    out.actions = training_->step(msg->images.data(), msg->rewards, msg->done, &report);
+    try {
+      out.actions = training_->step(msg->images.data(), msg->rewards, msg->done, &report);
+    } catch (const std::exception& e) {
+      // A rank that stopped (CollectiveError names it), or this rank's own failure, which the
+      // others are told of so that they stop at once, naming this rank.
+      if (collective_ && !dynamic_cast<const CollectiveError*>(&e)) collective_->abort(e.what());
+      ROS_FATAL("hider: training stopped: %s", e.what());
+      exit_code_ = 1;
+      ros::shutdown();
+      return;
+    }
     if (report) {
       const LoopTimes& loop = report->loop;
       const double total = std::max(loop.total(), 1e-9);
@@ -206,6 +269,12 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
     }
     if (training_->finished()) {
       training_->saveCheckpoint();
+      if (training_->rank() != 0) {
+        ROS_INFO("train: done, %ld steps (rank %d: rank 0 writes the checkpoint and the log)",
+                 static_cast<long>(training_->steps()), training_->rank());
+        ros::shutdown();
+        return;
+      }
       ROS_INFO("train: done, %ld steps; checkpoint %s, log %s", static_cast<long>(training_->steps()),
                training_->checkpointPath().c_str(), training_->logPath().c_str());
       ros::shutdown();

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   try {
     hideseek_hider::HiderNode node{nh, pnh};
     ros::spin();
+    return node.exitCode();
   } catch (const std::exception& e) {
     ROS_FATAL("hider: %s", e.what());
     return 1;

@@ -1,6 +1,7 @@
 #include "hideseek_hider/ppo.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "hideseek_game/yaml_fields.h"
@@ -51,6 +52,38 @@ torch::Tensor clippedPolicyLoss(const torch::Tensor& new_log_prob, const torch::
   const torch::Tensor unclipped = -advantages * ratio;
   const torch::Tensor clipped = -advantages * ratio.clamp(1.0 - clip, 1.0 + clip);
   return torch::max(unclipped, clipped).mean();
+}
+
+torch::Tensor normalizeAdvantages(const torch::Tensor& advantages, Collective* collective) {
+  if (!collective || collective->worldSize() == 1) return (advantages - advantages.mean()) / (advantages.std() + 1e-8);
+  // Sum, sum of squares and count over every rank's minibatch: the union's mean and unbiased std.
+  const torch::Tensor a = advantages.to(torch::kFloat64);
+  std::vector<torch::Tensor> moments{
+      torch::stack({a.sum(), a.pow(2).sum(), torch::tensor(static_cast<double>(a.numel()), torch::kFloat64)})};
+  collective->allReduceSum(moments);
+  const double sum = moments[0][0].item<double>(), squares = moments[0][1].item<double>(),
+               n = moments[0][2].item<double>();
+  const double mean = sum / n;
+  const double variance = n > 1 ? std::max(0.0, (squares - n * mean * mean) / (n - 1)) : 0.0;
+  return (advantages - mean) / (std::sqrt(variance) + 1e-8);
+}
+
+PpoLoss ppoLoss(const torch::Tensor& logits, const torch::Tensor& values, const torch::Tensor& actions,
+                const torch::Tensor& old_log_prob, const torch::Tensor& old_values, const torch::Tensor& advantages,
+                const torch::Tensor& returns, const PpoOptions& options) {
+  PpoLoss l;
+  const torch::Tensor log_probs_all = torch::log_softmax(logits, 1);
+  l.new_log_prob = log_probs_all.gather(1, actions.unsqueeze(1)).squeeze(1);
+  l.entropy = -(log_probs_all.exp() * log_probs_all).sum(1).mean();
+  l.policy = clippedPolicyLoss(l.new_log_prob, old_log_prob, advantages, options.clip);
+  if (options.clip_value_loss) {
+    const torch::Tensor clipped = old_values + (values - old_values).clamp(-options.clip, options.clip);
+    l.value = 0.5 * torch::max((values - returns).pow(2), (clipped - returns).pow(2)).mean();
+  } else {
+    l.value = 0.5 * (values - returns).pow(2).mean();
+  }
+  l.total = l.policy - options.entropy_coef * l.entropy + options.value_coef * l.value;
+  return l;
 }
 
 double trainingFlopsPerSample(const HiderNetImpl& net, const PpoOptions& options) {
@@ -162,6 +195,8 @@ UpdateStats PpoTrainer::update(const torch::Tensor& next_observations) {
                      : net_->forward(next).value;
   }
   const Gae gae = computeGae(rewards_, values_, dones_, next_value, options_.gamma, options_.gae_lambda);
+  last_gae_ = gae;
+  last_minibatches_.clear();
   return net_->recurrent() ? updateRecurrent(gae, learning_rate) : updateFeedForward(gae, learning_rate);
 }
 
@@ -180,12 +215,25 @@ void accumulate(UpdateStats& stats, const torch::Tensor& policy_loss, const torc
   stats.clip_fraction += ((log_ratio.exp() - 1.0).abs() > clip).to(torch::kFloat32).mean().item<double>();
 }
 
-void average(UpdateStats& stats, int count, double learning_rate) {
-  stats.policy_loss /= count;
-  stats.value_loss /= count;
-  stats.entropy /= count;
-  stats.approx_kl /= count;
-  stats.clip_fraction /= count;
+// The update's means over its minibatches and, with several ranks, over the ranks.
+void average(UpdateStats& stats, int count, double learning_rate, Collective* collective) {
+  double divisor = count;
+  if (collective && collective->worldSize() > 1) {
+    std::vector<torch::Tensor> sums{torch::tensor(
+        {stats.policy_loss, stats.value_loss, stats.entropy, stats.approx_kl, stats.clip_fraction}, torch::kFloat64)};
+    collective->allReduceSum(sums);
+    stats.policy_loss = sums[0][0].item<double>();
+    stats.value_loss = sums[0][1].item<double>();
+    stats.entropy = sums[0][2].item<double>();
+    stats.approx_kl = sums[0][3].item<double>();
+    stats.clip_fraction = sums[0][4].item<double>();
+    divisor *= collective->worldSize();
+  }
+  stats.policy_loss /= divisor;
+  stats.value_loss /= divisor;
+  stats.entropy /= divisor;
+  stats.approx_kl /= divisor;
+  stats.clip_fraction /= divisor;
   stats.learning_rate = learning_rate;
 }
 
@@ -197,24 +245,16 @@ void PpoTrainer::optimiseMinibatch(const torch::Tensor& logits, const torch::Ten
                                    const torch::Tensor& actions, const torch::Tensor& old_lp,
                                    const torch::Tensor& old_v, torch::Tensor adv, const torch::Tensor& target,
                                    UpdateStats& stats) {
-  const torch::Tensor log_probs_all = torch::log_softmax(logits, 1);
-  const torch::Tensor new_log_prob = log_probs_all.gather(1, actions.unsqueeze(1)).squeeze(1);
-  const torch::Tensor entropy = -(log_probs_all.exp() * log_probs_all).sum(1).mean();
-  if (options_.normalize_advantages) adv = (adv - adv.mean()) / (adv.std() + 1e-8);
-  const torch::Tensor policy_loss = clippedPolicyLoss(new_log_prob, old_lp, adv, options_.clip);
-  torch::Tensor value_loss;
-  if (options_.clip_value_loss) {
-    const torch::Tensor clipped = old_v + (values - old_v).clamp(-options_.clip, options_.clip);
-    value_loss = 0.5 * torch::max((values - target).pow(2), (clipped - target).pow(2)).mean();
-  } else {
-    value_loss = 0.5 * (values - target).pow(2).mean();
-  }
-  const torch::Tensor loss = policy_loss - options_.entropy_coef * entropy + options_.value_coef * value_loss;
+  if (options_.normalize_advantages) adv = normalizeAdvantages(adv, collective_);
+  const PpoLoss loss = ppoLoss(logits, values, actions, old_lp, old_v, adv, target, options_);
   optimizer_.zero_grad();
-  loss.backward();
+  loss.total.backward();
+  // DD-PPO: the ranks' minibatches are of one size, so the mean of their gradients is the
+  // gradient of the loss over their union; every rank then clips and steps identically.
+  if (collective_ && collective_->worldSize() > 1) averageGradients(*collective_, net_->parameters());
   torch::nn::utils::clip_grad_norm_(net_->parameters(), options_.max_grad_norm);
   optimizer_.step();
-  accumulate(stats, policy_loss, value_loss, entropy, new_log_prob, old_lp, options_.clip);
+  accumulate(stats, loss.policy, loss.value, loss.entropy, loss.new_log_prob, old_lp, options_.clip);
 }
 
 UpdateStats PpoTrainer::updateRecurrent(const Gae& gae, double learning_rate) {
@@ -242,6 +282,7 @@ UpdateStats PpoTrainer::updateRecurrent(const Gae& gae, double learning_rate) {
     const torch::Tensor order = torch::randperm(sequences, torch::TensorOptions().device(device_).dtype(torch::kInt64));
     for (int64_t start = 0; start < sequences; start += per_minibatch) {
       const torch::Tensor idx = order.slice(0, start, start + per_minibatch);
+      last_minibatches_.push_back(idx);
       auto pick = [&](const torch::Tensor& x) { return x.index_select(1, idx).flatten(0, 1); };
       const HiderOutput out =
           net_->forwardSequence(obs.index_select(1, idx), h0.index_select(0, idx), starts.index_select(1, idx));
@@ -250,7 +291,7 @@ UpdateStats PpoTrainer::updateRecurrent(const Gae& gae, double learning_rate) {
       ++count;
     }
   }
-  average(stats, count, learning_rate);
+  average(stats, count, learning_rate, collective_);
   return stats;
 }
 
@@ -271,6 +312,7 @@ UpdateStats PpoTrainer::updateFeedForward(const Gae& gae, double learning_rate) 
     const torch::Tensor order = torch::randperm(batch, torch::TensorOptions().device(device_).dtype(torch::kInt64));
     for (int64_t start = 0; start < batch; start += minibatch) {
       const torch::Tensor idx = order.slice(0, start, start + minibatch);
+      last_minibatches_.push_back(idx);
       const HiderOutput out = net_->forward(obs.index_select(0, idx));
       optimiseMinibatch(out.logits, out.value, actions.index_select(0, idx), old_log_probs.index_select(0, idx),
                         old_values.index_select(0, idx), advantages.index_select(0, idx), returns.index_select(0, idx),
@@ -278,7 +320,7 @@ UpdateStats PpoTrainer::updateFeedForward(const Gae& gae, double learning_rate) 
       ++count;
     }
   }
-  average(stats, count, learning_rate);
+  average(stats, count, learning_rate, collective_);
   return stats;
 }
 

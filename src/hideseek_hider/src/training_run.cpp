@@ -1,6 +1,7 @@
 #include "hideseek_hider/training_run.h"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -8,6 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 namespace hideseek_hider {
@@ -21,19 +24,45 @@ bool exists(const std::string& path) {
   return stat(path.c_str(), &s) == 0;
 }
 
-HiderNet startingNet(const TrainingOptions& o, bool* resumed) {
-  const std::string path = o.output_dir + "/checkpoint.pt";
-  *resumed = exists(path);
+HiderNet startingNet(const TrainingOptions& o, const std::string& resume_from) {
   // A resumed run must be the network it was: a GRU checkpoint is not resumed as feed-forward.
-  HiderNet net = *resumed ? loadCheckpoint(path, o.image_height, o.image_width, nullptr, o.network)
-                          : HiderNet(o.image_height, o.image_width, o.network);
+  HiderNet net = !resume_from.empty() ? loadCheckpoint(resume_from, o.image_height, o.image_width, nullptr, o.network)
+                                      : HiderNet(o.image_height, o.image_width, o.network);
   net->setPrecision(o.precision);
   return net;
 }
 
-TrainingOptions roundedToRollouts(TrainingOptions o, const PpoOptions& ppo, int num_arenas) {
-  o.total_steps = wholeRollouts(o.total_steps, static_cast<int64_t>(ppo.rollout_steps) * num_arenas);
+int worldOf(const Collective* c) { return c ? c->worldSize() : 1; }
+
+TrainingOptions roundedToRollouts(TrainingOptions o, const PpoOptions& ppo, int num_arenas, int world) {
+  o.total_steps = wholeRollouts(o.total_steps, static_cast<int64_t>(ppo.rollout_steps) * num_arenas * world);
   return o;
+}
+
+// The checkpoint a rank starts from: its own output_dir's, or with several ranks rank 0's, which
+// rank 0 sends to the others; they keep it in a temporary file until it is loaded.
+std::string resumeSource(const TrainingOptions& o, Collective* c) {
+  const std::string own = o.output_dir + "/checkpoint.pt";
+  if (worldOf(c) == 1) return exists(own) ? own : "";
+  std::string bytes;
+  if (c->rank() == 0 && exists(own)) {
+    std::ifstream in(own, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (!in && !in.eof()) throw std::runtime_error("cannot read " + own);
+  }
+  bytes = broadcastBytes(*c, bytes);
+  if (bytes.empty()) return "";
+  if (c->rank() == 0) return own;
+  const char* tmpdir = std::getenv("TMPDIR");
+  std::string path = std::string(tmpdir && *tmpdir ? tmpdir : "/tmp") + "/hideseek_rank0_checkpoint_XXXXXX";
+  const int fd = mkstemp(path.data());
+  if (fd < 0)
+    throw std::runtime_error("cannot create a temporary file for rank 0's checkpoint: " +
+                             std::string(std::strerror(errno)));
+  const bool written = write(fd, bytes.data(), bytes.size()) == static_cast<ssize_t>(bytes.size());
+  close(fd);
+  if (!written) throw std::runtime_error("cannot write rank 0's checkpoint to " + path + " (disk full?)");
+  return path;
 }
 
 }  // namespace
@@ -90,38 +119,58 @@ int truncateLogAfter(const std::string& path, int64_t steps) {
   return dropped;
 }
 
-TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, int num_arenas, torch::Device device)
-    : options_(roundedToRollouts(options, ppo, num_arenas)),
+TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, int num_arenas, torch::Device device,
+                         Collective* collective)
+    : options_(roundedToRollouts(options, ppo, num_arenas, worldOf(collective))),
       num_arenas_(num_arenas),
-      trainer_(startingNet(options_, &resumed_), ppo, num_arenas, device),
+      collective_(worldOf(collective) > 1 ? collective : nullptr),
+      rank_(collective ? collective->rank() : 0),
+      world_(worldOf(collective)),
+      resume_from_(resumeSource(options_, collective_)),
+      resumed_(!resume_from_.empty()),
+      trainer_(startingNet(options_, resume_from_), ppo, num_arenas, device),
       start_(std::chrono::steady_clock::now()),
       last_checkpoint_(start_),
       running_return_(num_arenas, 0.0),
       running_length_(num_arenas, 0) {
-  if (mkdir(options_.output_dir.c_str(), 0755) != 0 && errno != EEXIST) {
+  trainer_.setCollective(collective_);
+  if (rank_ == 0 && mkdir(options_.output_dir.c_str(), 0755) != 0 && errno != EEXIST) {
     throw std::runtime_error("cannot create output folder " + options_.output_dir + ": " + std::strerror(errno));
   }
   if (resumed_) {
-    loadTrainingState(checkpointPath(), trainer_.optimizer());
-    const CheckpointInfo info = readCheckpointInfo(checkpointPath());
-    trainer_.setSamplesSeen(info.steps);
+    loadTrainingState(resume_from_, trainer_.optimizer());
+    const CheckpointInfo info = readCheckpointInfo(resume_from_);
+    // The checkpoint counts the steps of all ranks; the trainer counts this rank's.
+    trainer_.setSamplesSeen(info.steps / world_);
     start_wall_s_ = info.wall_s;
     episodes_ = info.episodes;
-    for (size_t i = 0; i < info.recent_lengths.size(); ++i) {
-      recent_.emplace_back(info.recent_lengths[i], info.recent_returns[i]);
+    if (rank_ == 0) {
+      for (size_t i = 0; i < info.recent_lengths.size(); ++i) {
+        recent_.emplace_back(info.recent_lengths[i], info.recent_returns[i]);
+      }
+      while (recent_.size() > kRecentEpisodes) recent_.pop_front();
+    } else {
+      // Rank 0's generator state came with its checkpoint: the other ranks sample on their own.
+      std::remove(resume_from_.c_str());
+      torch::manual_seed(static_cast<uint64_t>(info.steps) * 1000003u + static_cast<uint64_t>(rank_));
     }
-    while (recent_.size() > kRecentEpisodes) recent_.pop_front();
-    dropped_log_rows_ = truncateLogAfter(logPath(), info.steps);
-    truncateLogAfter(loopProfilePath(), info.steps);
+  } else if (collective_) {
+    broadcastModule(*collective_, *trainer_.net());  // every rank starts from rank 0's weights
+  }
+  trainer_.setTotalSamples(options_.total_steps / world_);
+  start_steps_ = steps();
+  // the log continues across resumes
+  updates_ = start_steps_ / (static_cast<int64_t>(ppo.rollout_steps) * num_arenas * world_);
+  if (rank_ != 0) return;  // rank 0 alone writes the logs
+  if (resumed_) {
+    dropped_log_rows_ = truncateLogAfter(logPath(), start_steps_);
+    truncateLogAfter(loopProfilePath(), start_steps_);
   } else {
     // A log without a checkpoint belongs to a run killed before its first checkpoint: none of
     // its updates survive, so neither do its rows.
     dropped_log_rows_ = truncateLogAfter(logPath(), 0);
     truncateLogAfter(loopProfilePath(), 0);
   }
-  trainer_.setTotalSamples(options_.total_steps);
-  start_steps_ = trainer_.samplesSeen();
-  updates_ = start_steps_ / (static_cast<int64_t>(ppo.rollout_steps) * num_arenas);  // the log continues across resumes
   const bool new_log = !exists(logPath());
   log_.open(logPath(), std::ios::app);
   if (!log_) throw std::runtime_error("cannot write " + logPath());
@@ -154,7 +203,7 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
       if (dones[i]) {
         recent_.emplace_back(running_length_[i], running_return_[i]);
         if (recent_.size() > kRecentEpisodes) recent_.pop_front();
-        ++episodes_;
+        ++new_episodes_;
         running_return_[i] = 0.0;
         running_length_[i] = 0;
       }
@@ -168,7 +217,7 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
       loop_.other_s += seconds(update_start - mark);
       rep.ppo = trainer_.update(obs);
       rep.update = ++updates_;
-      rep.steps = trainer_.samplesSeen();
+      rep.steps = steps();
       const auto now = std::chrono::steady_clock::now();
       loop_.update_s += seconds(now - update_start);
       mark = now;
@@ -176,28 +225,52 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
       rep.wall_s = start_wall_s_ + process_s;
       rep.steps_per_s = (rep.steps - start_steps_) / std::max(process_s, 1e-9);
       rep.eta_s = std::max<int64_t>(0, options_.total_steps - rep.steps) / std::max(rep.steps_per_s, 1e-9);
-      rep.episodes = episodes_;
+      // The episodes of every rank: their count, and the means over each rank's recent window.
+      double totals[4] = {static_cast<double>(new_episodes_), 0.0, 0.0, static_cast<double>(recent_.size())};
       for (const auto& [length, ret] : recent_) {
-        rep.mean_length += static_cast<double>(length) / recent_.size();
-        rep.mean_return += ret / recent_.size();
+        totals[1] += static_cast<double>(length);
+        totals[2] += ret;
       }
-      log_ << rep.update << ',' << rep.steps << ',' << rep.wall_s << ',' << rep.steps_per_s << ',' << rep.episodes
-           << ',' << rep.mean_length << ',' << rep.mean_return << ',' << rep.ppo.policy_loss << ','
-           << rep.ppo.value_loss << ',' << rep.ppo.entropy << ',' << rep.ppo.approx_kl << ',' << rep.ppo.clip_fraction
-           << ',' << rep.ppo.learning_rate << '\n';
-      log_.flush();
-      // The final checkpoint is the node's to write once finished().
-      if (std::chrono::duration<double>(now - last_checkpoint_).count() >= options_.checkpoint_interval_s) {
-        saveCheckpoint();
+      if (collective_) {
+        std::vector<torch::Tensor> t{torch::tensor({totals[0], totals[1], totals[2], totals[3]}, torch::kFloat64)};
+        collective_->allReduceSum(t);
+        for (int k = 0; k < 4; ++k) totals[k] = t[0][k].item<double>();
+        episodes_ += static_cast<int64_t>(std::llround(totals[0]));
+        if (totals[3] > 0) {
+          rep.mean_length = totals[1] / totals[3];
+          rep.mean_return = totals[2] / totals[3];
+        }
+      } else {
+        episodes_ += new_episodes_;
+        // Summed as before, term by term, so that one process logs exactly what it always has.
+        for (const auto& [length, ret] : recent_) {
+          rep.mean_length += static_cast<double>(length) / recent_.size();
+          rep.mean_return += ret / recent_.size();
+        }
+      }
+      new_episodes_ = 0;
+      rep.episodes = episodes_;
+      if (rank_ == 0) {
+        log_ << rep.update << ',' << rep.steps << ',' << rep.wall_s << ',' << rep.steps_per_s << ',' << rep.episodes
+             << ',' << rep.mean_length << ',' << rep.mean_return << ',' << rep.ppo.policy_loss << ','
+             << rep.ppo.value_loss << ',' << rep.ppo.entropy << ',' << rep.ppo.approx_kl << ',' << rep.ppo.clip_fraction
+             << ',' << rep.ppo.learning_rate << '\n';
+        log_.flush();
+        // The final checkpoint is the node's to write once finished().
+        if (std::chrono::duration<double>(now - last_checkpoint_).count() >= options_.checkpoint_interval_s) {
+          saveCheckpoint();
+        }
       }
       const Clock::time_point logged = Clock::now();
       loop_.other_s += seconds(logged - mark);
       mark = logged;
       rep.loop = loop_;
       loop_ = LoopTimes{};
-      loop_log_ << rep.update << ',' << rep.steps << ',' << rep.loop.wait_s << ',' << rep.loop.inference_s << ','
-                << rep.loop.update_s << ',' << rep.loop.other_s << '\n';
-      loop_log_.flush();
+      if (rank_ == 0) {
+        loop_log_ << rep.update << ',' << rep.steps << ',' << rep.loop.wait_s << ',' << rep.loop.inference_s << ','
+                  << rep.loop.update_s << ',' << rep.loop.other_s << '\n';
+        loop_log_.flush();
+      }
       *report = rep;
     }
   }
@@ -214,9 +287,10 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
 }
 
 void TrainingRun::saveCheckpoint() {
+  if (rank_ != 0) return;
   const auto now = std::chrono::steady_clock::now();
   CheckpointInfo info{trainer_.net()->architecture(), options_.image_height, options_.image_width, options_.variant,
-                      trainer_.samplesSeen()};
+                      steps()};
   info.wall_s = start_wall_s_ + std::chrono::duration<double>(now - start_).count();
   info.episodes = episodes_;
   for (const auto& [length, ret] : recent_) {

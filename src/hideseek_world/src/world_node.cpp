@@ -26,6 +26,7 @@ hideseek_game::GameLoopOptions gameLoopOptions(const WorldNodeOptions& o) {
   g.mode = o.mode;
   g.num_arenas = o.num_arenas;
   g.seed = o.seed;
+  g.seed_stride = o.seed_stride;
   g.render = true;
   g.render_threads = o.render_threads;
   g.stale_action_timeout = o.stale_action_timeout;

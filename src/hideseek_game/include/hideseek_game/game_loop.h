@@ -21,6 +21,7 @@ struct GameLoopOptions {
   ClockMode mode = ClockMode::kLockstep;
   int num_arenas = 1;
   uint32_t seed = 0;                  // arena i's first episode has seed seed + i
+  uint32_t seed_stride = 0;           // an arena's next episode: its seed + this (0: num_arenas)
   bool render = true;                 // render the hider views after each decision
   int render_threads = 2;             // llvmpipe rasteriser threads
   double stale_action_timeout = 0.5;  // s; realtime: a silent agent stands still after this

@@ -30,10 +30,13 @@ struct ArenaStep {
 
 // Arena i plays episodes with seeds seed + i, seed + i + n, seed + i + 2n, ... (n arenas), so
 // the first episodes of all arenas together cover seeds seed .. seed + k n - 1 whatever the timing.
+// A seed_stride other than n replaces n in that sequence: the ranks of a data-parallel training,
+// rank r with seed + r n and stride (ranks x n), together play the seeds one world of ranks x n
+// arenas would.
 class World {
  public:
   World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int num_arenas, uint32_t seed, bool render,
-        int render_threads = 2);
+        int render_threads = 2, uint32_t seed_stride = 0);  // seed_stride 0: num_arenas
 
   int numArenas() const { return static_cast<int>(arenas_.size()); }
   const GameOptions& options() const { return options_; }
@@ -77,6 +80,7 @@ class World {
   std::vector<Arena> arenas_;
   std::vector<uint32_t> episodes_;
   std::vector<uint32_t> next_seeds_;
+  uint32_t seed_stride_;
   std::vector<uint64_t> uploaded_layouts_;
   int frame_ = 0;                                   // frames played of the current step
   std::vector<std::optional<StepResult>> results_;  // each arena's step result once it is over

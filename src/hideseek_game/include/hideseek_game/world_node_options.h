@@ -17,6 +17,7 @@ struct WorldNodeOptions {
   ClockMode mode = ClockMode::kRealtime;
   int num_arenas = 1;
   uint32_t seed = 0;
+  uint32_t seed_stride = 0;  // an arena's next episode seed: its last + this (0: num_arenas)
   std::string frame_id = "map";
   // Prefix of every TF frame the world names (the fixed frame, agents, cameras), so that two
   // worlds keep their frames apart on one tf tree: "game1" gives game1/map, game1/hider/base_link, ...

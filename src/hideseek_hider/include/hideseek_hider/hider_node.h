@@ -36,12 +36,17 @@ struct HiderNodeOptions {
   PpoOptions ppo;
   int num_arenas = 16;
   int seed = 0;
+  // Training across machines (DD-PPO): this rank of world_size, the rendezvous (host:port of the
+  // store rank 0 hosts) and how long a rank waits for the others.
+  RendezvousOptions rendezvous;
 };
 HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh);
 
 class HiderNode {
  public:
   HiderNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  // The process's exit status once spinning ends: non-zero when training stopped on an error.
+  int exitCode() const { return exit_code_; }
 
  private:
   void onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& msg);
@@ -49,9 +54,11 @@ class HiderNode {
   void startTraining(const HiderNodeOptions& o);
 
   ros::NodeHandle nh_;
-  std::unique_ptr<HiderPolicy> policy_;    // random and policy modes
-  std::unique_ptr<TrainingRun> training_;  // train mode
-  ros::Time last_stamp_;                   // a batch the world re-sent gets the same answer again
+  std::unique_ptr<HiderPolicy> policy_;     // random and policy modes
+  std::unique_ptr<Collective> collective_;  // train mode across machines; outlives training_
+  std::unique_ptr<TrainingRun> training_;   // train mode
+  int exit_code_ = 0;
+  ros::Time last_stamp_;  // a batch the world re-sent gets the same answer again
   hideseek_msgs::ActionBatch last_answer_;
   std::vector<uint32_t> last_seeds_;  // seeds of the batch last_answer_ answers
   int image_height_ = 0;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_hider/collective.h"
 #include "hideseek_hider/hider_net.h"
 
 namespace hideseek_hider {
@@ -52,6 +53,20 @@ Gae computeGae(const torch::Tensor& rewards, const torch::Tensor& values, const 
 // The clipped surrogate objective, as a loss to minimise (mean over the batch).
 torch::Tensor clippedPolicyLoss(const torch::Tensor& new_log_prob, const torch::Tensor& old_log_prob,
                                 const torch::Tensor& advantages, double clip);
+
+// Advantages normalised to zero mean and unit standard deviation, over this minibatch or, with
+// a collective, over the union of every rank's minibatch (the same sample statistics).
+torch::Tensor normalizeAdvantages(const torch::Tensor& advantages, Collective* collective = nullptr);
+
+// One minibatch's PPO loss: the clipped policy objective, the (clipped) value loss and the
+// entropy bonus, for the logits and values the network gives now and what the rollout stored.
+// `advantages` are already normalised where the options ask for it.
+struct PpoLoss {
+  torch::Tensor total, policy, value, entropy, new_log_prob;
+};
+PpoLoss ppoLoss(const torch::Tensor& logits, const torch::Tensor& values, const torch::Tensor& actions,
+                const torch::Tensor& old_log_prob, const torch::Tensor& old_values, const torch::Tensor& advantages,
+                const torch::Tensor& returns, const PpoOptions& options);
 
 // Floating-point operations of training per sample collected, counted from the network's layers
 // (HiderNetImpl::forwardFlops) and the passes PPO makes: one forward pass in the rollout, a share
@@ -98,6 +113,22 @@ class PpoTrainer {
   void setTotalSamples(int64_t total) { total_samples_ = total; }
   // The rate the next update uses: learning_rate x the share of the run left when its rollout began.
   double currentLearningRate() const;
+  // Data-parallel training (DD-PPO): every minibatch's gradients are averaged across the ranks
+  // before the optimiser step, advantages are normalised over all ranks' minibatch, and the
+  // update's statistics are the ranks' mean. The collective must outlive the trainer; null: one
+  // process, exactly as without it.
+  void setCollective(Collective* collective) { collective_ = collective; }
+  Collective* collective() const { return collective_; }
+
+  // What the last update trained on, for checks: the buffer (time x arenas), its advantages and
+  // returns, and each minibatch's sample indices (feed-forward: into the buffer flattened to
+  // [T * N]; GRU: sequences), in the order they were trained.
+  const torch::Tensor& bufferObservations() const { return observations_; }
+  const torch::Tensor& bufferActions() const { return actions_; }
+  const torch::Tensor& bufferLogProbs() const { return log_probs_; }
+  const torch::Tensor& bufferValues() const { return values_; }
+  const Gae& lastGae() const { return last_gae_; }
+  const std::vector<torch::Tensor>& lastMinibatches() const { return last_minibatches_; }
 
  private:
   UpdateStats updateFeedForward(const Gae& gae, double learning_rate);
@@ -119,6 +150,9 @@ class PpoTrainer {
   torch::Tensor hiddens_, starts_;
   torch::Tensor hidden_;      // [N, 512] each arena's state before its next step
   torch::Tensor last_dones_;  // [N] the last recorded done flags: the next step starts an episode
+  Collective* collective_ = nullptr;
+  Gae last_gae_;
+  std::vector<torch::Tensor> last_minibatches_;
 };
 
 }  // namespace hideseek_hider

@@ -64,24 +64,34 @@ struct UpdateReport {
   LoopTimes loop;  // since the previous update (the last rollout's inference and waits, this update)
 };
 
+// With a collective of several ranks (DD-PPO), each rank's TrainingRun steps its own arenas and
+// the ranks train one network: rank 0's initial weights are broadcast, a resume starts every rank
+// from rank 0's checkpoint (rank 0 decides whether there is one, and sends it), steps, episodes
+// and the logged statistics are the ranks' together, and rank 0 alone writes the checkpoint and
+// the logs. total_steps counts the environment steps of all ranks.
 class TrainingRun {
  public:
-  // Starts fresh, or resumes from output_dir/checkpoint.pt when it exists.
-  TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, int num_arenas, torch::Device device);
+  // Starts fresh, or resumes from output_dir/checkpoint.pt (rank 0's) when it exists. The
+  // collective, if any, must outlive the run.
+  TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, int num_arenas, torch::Device device,
+              Collective* collective = nullptr);
 
   // One batch: rewards and done flags of the previous actions, then this step's images.
   // Returns the actions, and the report when the batch completed a rollout and an update ran.
   std::vector<uint8_t> step(const uint8_t* images, const std::vector<float>& rewards, const std::vector<uint8_t>& dones,
                             std::optional<UpdateReport>* report);
-  bool finished() const { return trainer_.samplesSeen() >= options_.total_steps; }
+  bool finished() const { return steps() >= options_.total_steps; }
   bool resumed() const { return resumed_; }
   // Log rows of updates lost with the killed process, dropped at resume.
   int droppedLogRows() const { return dropped_log_rows_; }
-  int64_t steps() const { return trainer_.samplesSeen(); }
+  // Environment steps of all ranks.
+  int64_t steps() const { return trainer_.samplesSeen() * world_; }
   int64_t totalSteps() const { return options_.total_steps; }
   int numArenas() const { return num_arenas_; }
-  // Writes output_dir/checkpoint.pt atomically.
+  // Writes output_dir/checkpoint.pt atomically; on a rank other than 0, nothing.
   void saveCheckpoint();
+  const PpoTrainer& trainer() const { return trainer_; }
+  int rank() const { return rank_; }
   std::string checkpointPath() const { return options_.output_dir + "/checkpoint.pt"; }
   std::string logPath() const { return options_.output_dir + "/training_log.csv"; }
   // One row per update: update,steps,wait_s,inference_s,update_s,other_s (LoopTimes).
@@ -90,6 +100,9 @@ class TrainingRun {
  private:
   TrainingOptions options_;
   int num_arenas_;
+  Collective* collective_;
+  int rank_, world_;
+  std::string resume_from_;  // the checkpoint this rank starts from ("": a fresh run)
   bool resumed_ = false;
   int dropped_log_rows_ = 0;
   PpoTrainer trainer_;
@@ -102,7 +115,8 @@ class TrainingRun {
   std::vector<double> running_return_;
   std::vector<int64_t> running_length_;
   std::deque<std::pair<int64_t, double>> recent_;  // (length, return) of finished episodes
-  int64_t episodes_ = 0;
+  int64_t episodes_ = 0;                           // of all ranks
+  int64_t new_episodes_ = 0;                       // this rank's since the last update
   std::ofstream log_;
   std::ofstream loop_log_;
   LoopTimes loop_;
