@@ -146,6 +146,88 @@ n=$(tail -n +2 "$dir/eval/episodes.csv" 2>/dev/null | wc -l)
 [ "$n" = 20 ]
 row evaluator "evaluate.launch (lockstep waits for the evaluator)" "20 episodes, seeds 0-19" "$(pass $? "$n episodes")"
 
+# --- training: the world killed with SIGKILL; the same command resumes -----------------------------
+# The process of a node of this campaign's graph (its master port), by its executable's name.
+node_pid() {
+  local p
+  for p in $(pgrep -f "$1"); do
+    tr '\0' '\n' < "/proc/$p/environ" 2> /dev/null | grep -q "^ROS_MASTER_URI=.*:$port/\?$" && echo "$p"
+  done
+}
+# The training log's updates are 1..N with steps k x ROLLOUT, none twice and none missing.
+log_is_whole() {  # log, rollout samples, total steps
+  /usr/bin/python3 - "$@" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+rollout, total = int(sys.argv[2]), int(sys.argv[3])
+updates = [int(r["update"]) for r in rows]
+steps = [int(r["steps"]) for r in rows]
+ok = updates == list(range(1, len(rows) + 1)) and steps == [rollout * u for u in updates] and steps[-1] >= total
+print("%d rows, updates 1..%d, steps %d..%d%s" % (len(rows), updates[-1], steps[0], steps[-1], "" if ok else ": NOT WHOLE"))
+sys.exit(0 if ok else 1)
+PY
+}
+train=(roslaunch -p "$port" hideseek_world train.launch num_arenas:=4 hider_threads:=1 steps:=40960
+  checkpoint_interval:=5 output_dir:="$dir/train")
+"${train[@]}" > "$dir/train1.log" 2>&1 &
+game=$!
+for _ in $(seq 1 600); do [ -f "$dir/train/checkpoint.pt" ] && break; sleep 0.2; done
+sleep 4
+world=$(node_pid hideseek_world/world_node)
+[ -n "$world" ] && kill -KILL "$world"
+timeout 60 tail --pid="$game" -f /dev/null
+stopped=$?
+timeout 600 "${train[@]}" > "$dir/train2.log" 2>&1
+second=$?
+resumed=$(grep -o "resumed at step [0-9]*" "$dir/train2.log" | head -n 1)
+whole=$(log_is_whole "$dir/train/training_log.csv" 256 40960)
+[ -n "$world" ] && [ "$stopped" -eq 0 ] && [ "$second" -eq 0 ] && [ -n "$resumed" ] && log_is_whole "$dir/train/training_log.csv" 256 40960 > /dev/null
+row world_killed_in_training "SIGKILL to the world node 4 s after the first checkpoint of \`train.launch\` (4 arenas, 40,960 steps), then the same command" "the launch stops (the world is required); the same command resumes from the checkpoint; the log has no duplicate and no gap" "$(pass $? "launch stopped: $([ "$stopped" -eq 0 ] && echo yes || echo no); ${resumed:-not resumed}; log: $whole")"
+
+# --- a full disk under a checkpoint: the previous one survives, the error is clear ------------------
+# A 40 MB tmpfs holds one checkpoint (about 26 MB: weights and Adam's state) but not a second
+# beside it while it is written.
+mkdir -p "$dir/small"
+if mount -t tmpfs -o size=40m tmpfs "$dir/small" 2> /dev/null; then
+  full=(roslaunch -p "$port" hideseek_world train.launch num_arenas:=4 hider_threads:=1 steps:=40960
+    checkpoint_interval:=5 output_dir:="$dir/small/run")
+  timeout 600 "${full[@]}" > "$dir/full.log" 2>&1
+  line=$(grep -F "[FATAL]" "$dir/full.log" | head -n 1 | sed 's/\x1b\[[0-9;]*m//g; s/|/\\|/g' | cut -c1-200)
+  survivor=$(/usr/bin/python3 -c 'import zipfile, sys; zipfile.ZipFile(sys.argv[1]).testzip() is None and print("readable")' \
+    "$dir/small/run/checkpoint.pt" 2> /dev/null)
+  leftovers=$(ls "$dir/small/run" | grep -c "tmp" || true)
+  # Space again (the run moved to a disk with room): the same command resumes from the checkpoint
+  # that survived.
+  cp -r "$dir/small/run" "$dir/moved"
+  umount "$dir/small"
+  timeout 600 roslaunch -p "$port" hideseek_world train.launch num_arenas:=4 hider_threads:=1 steps:=40960 \
+    checkpoint_interval:=5 output_dir:="$dir/moved" > "$dir/full2.log" 2>&1
+  resumed=$(grep -o "resumed at step [0-9]*" "$dir/full2.log" | head -n 1)
+  echo "$line" | grep -q "No space left on device" && [ "$survivor" = readable ] && [ "$leftovers" = 0 ] && [ -n "$resumed" ]
+  row full_disk_checkpoint "\`train.launch\` into a 40 MB tmpfs: the second checkpoint cannot be written; then the run moved to a disk with room and the same command" "the hider stops with an error naming the file and the cause; the previous checkpoint survives intact, no temporary file is left; the same command resumes from it" "$(pass $? "${line:-no FATAL line}; previous checkpoint: ${survivor:-unreadable}; temporary files left: $leftovers; ${resumed:-not resumed}")"
+else
+  row full_disk_checkpoint "\`train.launch\` into a small tmpfs" "the previous checkpoint survives" "**not run**: mounting a tmpfs needs CAP_SYS_ADMIN"
+fi
+
+# --- a truncated run registry -------------------------------------------------------------------
+hider_with_registry() {  # registry file, log
+  timeout 30 rosrun hideseek_hider hider_node __name:=hider _game_config:="$PWD/config/game.yaml" \
+    _variant_config:="$PWD/config/variants/basic.yaml" _policy:=shipped _policy_registry:="$1" > "$2" 2>&1
+}
+roscore -p "$port" > "$dir/roscore.log" 2>&1 &
+core=$!
+sleep 3
+cut_at=$(grep -n "^  weights: basic.pt" policies/policies.yaml | cut -d: -f1)
+head -n $((cut_at - 6)) policies/policies.yaml > "$dir/trunc_registry.yaml"  # cut inside the shipped run's entry
+head -c "$(($(grep -b "^  weights: basic.pt" policies/policies.yaml | cut -d: -f1) + 12))" policies/policies.yaml > "$dir/trunc_registry2.yaml"  # inside its value
+hider_with_registry "$dir/trunc_registry.yaml" "$dir/reg1.log"
+line1=$(grep -E "\[ ?(FATAL|WARN)\]" "$dir/reg1.log" | head -n 1 | sed 's/\x1b\[[0-9;]*m//g; s/|/\\|/g' | cut -c1-200)
+hider_with_registry "$dir/trunc_registry2.yaml" "$dir/reg2.log"
+line2=$(grep -E "\[ ?(FATAL|WARN)\]" "$dir/reg2.log" | head -n 1 | sed 's/\x1b\[[0-9;]*m//g; s/|/\\|/g' | cut -c1-200)
+kill -INT "$core"; wait "$core" 2> /dev/null
+echo "$line1" | grep -q "trunc_registry.yaml" && echo "$line2" | grep -q "trunc_registry2.yaml"
+row truncated_registry "policies.yaml cut at a line inside the shipped run's entry, and inside its weights value; a hider asked for the shipped policy" "refused or warned with the registry's file named; never a wrong policy played silently" "$(pass $? "line cut: $line1; value cut: $line2")"
+
 {
   echo "| case | done | expected | outcome |"
   echo "| --- | --- | --- | --- |"

@@ -28,13 +28,23 @@ void readMotion(YamlFields& f, MotionOptions& m) {
   m.turn_rate = f.number("turn_rate_deg", m.turn_rate * 180.0 / kPi, 1.0, 3600.0) * kPi / 180.0;
 }
 
-// Applies one file's fields over opts. Sections are optional; unknown keys are errors.
+// Applies one file's fields over opts; unknown keys are errors. A game file that extends none is
+// the one source of the game's defaults: it must give every key (`base`). A file that extends
+// one, and a variant file, give only what they change.
 void applyGameFields(const YAML::Node& root, const std::string& source, GameOptions& g, VariantConfig* variant,
-                     std::string* maps_dir = nullptr) {
+                     std::string* maps_dir = nullptr, bool base = false) {
   YamlFields f(root, source, "");
+  // A section of this file, every key required in a base file.
+  auto section = [&](const char* name) {
+    if (base) f.require(name);
+    YamlFields s(f.child(name), source, name);
+    if (base) s.requireEveryKey();
+    return s;
+  };
   if (maps_dir) {
     // Only a game file says where its maps are; `extends` was followed by the caller.
-    f.text("extends", "", {});
+    if (f.has("extends")) f.text("extends", "", {});
+    if (base) f.requireEveryKey();
     *maps_dir = f.text("maps_dir", *maps_dir, {});
     g.name = f.text("game", g.name, {});
   }
@@ -45,31 +55,31 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
     if (variant->map_file.empty()) throw ConfigError(source, "map", "is required");
   }
   {
-    YamlFields p(f.child("physics"), source, "physics");
+    YamlFields p = section("physics");
     g.physics_dt = p.number("dt", g.physics_dt, 1e-4, 1.0);
     g.action_repeat = p.integer("action_repeat", g.action_repeat, 1, 1000);
     p.rejectUnknown();
   }
   {
-    YamlFields e(f.child("episode"), source, "episode");
+    YamlFields e = section("episode");
     g.max_steps = e.integer("max_steps", g.max_steps, 1, 1000000);
     g.capture_distance = e.number("capture_distance", g.capture_distance, 0.0, 10.0);
     g.min_spawn_distance = e.number("min_spawn_distance", g.min_spawn_distance, 0.0, 50.0);
     e.rejectUnknown();
   }
   {
-    YamlFields a(f.child("agents"), source, "agents");
+    YamlFields a = section("agents");
     g.agent_radius = a.number("radius", g.agent_radius, 0.05, 2.0);
     g.agent_height = a.number("height", g.agent_height, 0.1, 5.0);
     a.rejectUnknown();
   }
   {
-    YamlFields h(f.child("hider"), source, "hider");
+    YamlFields h = section("hider");
     readMotion(h, g.hider);
     h.rejectUnknown();
   }
   {
-    YamlFields s(f.child("seeker"), source, "seeker");
+    YamlFields s = section("seeker");
     readMotion(s, g.seeker);
     // The policy belongs to the variant; the game defaults file has none.
     if (variant) variant->seeker_policy = s.text("policy", "deterministic", {"deterministic", "stochastic"});
@@ -78,7 +88,7 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
     s.rejectUnknown();
   }
   {
-    YamlFields c(f.child("camera"), source, "camera");
+    YamlFields c = section("camera");
     g.camera.width = c.integer("width", g.camera.width, 8, 1024);
     g.camera.height = c.integer("height", g.camera.height, 8, 1024);
     g.camera.horizontal_fov =
@@ -89,7 +99,7 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
     c.rejectUnknown();
   }
   {
-    YamlFields r(f.child("rewards"), source, "rewards");
+    YamlFields r = section("rewards");
     g.rewards.survive = r.number("survive", g.rewards.survive, -10.0, 10.0);
     g.rewards.capture = r.number("capture", g.rewards.capture, -100.0, 100.0);
     g.rewards.visibility = r.boolean("visibility", g.rewards.visibility);
@@ -122,7 +132,7 @@ std::string applyGameFile(const std::string& path, GameOptions& g, int depth) {
     // The base's maps_dir is relative to the base; re-anchor it for this file.
     if (maps_dir.front() != '/') maps_dir = directoryOf(base) + "/" + maps_dir;
   }
-  applyGameFields(root, path, g, nullptr, &maps_dir);
+  applyGameFields(root, path, g, nullptr, &maps_dir, !(root.IsMap() && root["extends"]));
   if (maps_dir.empty()) throw ConfigError(path, "maps_dir", "must not be empty");
   return maps_dir;
 }

@@ -23,8 +23,31 @@ std::string range(double min, double max) {
 
 }  // namespace
 
+void YamlFields::require(const std::string& key) const {
+  if (!has(key)) {
+    throw ConfigError(source_, field(key),
+                      "is missing: this file gives every one of its keys (it is their one source of defaults)");
+  }
+}
+
+double YamlFields::number(const std::string& key, double min, double max) {
+  require(key);
+  return number(key, 0.0, min, max);
+}
+
+int YamlFields::integer(const std::string& key, int min, int max) {
+  require(key);
+  return integer(key, 0, min, max);
+}
+
+bool YamlFields::boolean(const std::string& key) {
+  require(key);
+  return boolean(key, false);
+}
+
 double YamlFields::number(const std::string& key, double fallback, double min, double max) {
   used_.insert(key);
+  if (every_key_required_) require(key);
   if (!has(key)) return fallback;
   double v = 0.0;
   try {
@@ -42,6 +65,7 @@ double YamlFields::number(const std::string& key, double fallback, double min, d
 
 int YamlFields::integer(const std::string& key, int fallback, int min, int max) {
   used_.insert(key);
+  if (every_key_required_) require(key);
   if (!has(key)) return fallback;
   int v = 0;
   try {
@@ -57,6 +81,7 @@ int YamlFields::integer(const std::string& key, int fallback, int min, int max) 
 
 bool YamlFields::boolean(const std::string& key, bool fallback) {
   used_.insert(key);
+  if (every_key_required_) require(key);
   if (!has(key)) return fallback;
   try {
     return node_[key].as<bool>();
@@ -68,6 +93,7 @@ bool YamlFields::boolean(const std::string& key, bool fallback) {
 std::string YamlFields::text(const std::string& key, const std::string& fallback,
                              const std::set<std::string>& allowed) {
   used_.insert(key);
+  if (every_key_required_) require(key);
   std::string v = fallback;
   if (has(key)) {
     try {
@@ -95,6 +121,7 @@ Vec2 YamlFields::vec2(const YAML::Node& node, const std::string& f) const {
 
 Rgb YamlFields::rgb(const std::string& key, Rgb fallback) {
   used_.insert(key);
+  if (every_key_required_) require(key);
   if (!has(key)) return fallback;
   const YAML::Node n = node_[key];
   if (!n.IsSequence() || n.size() != 3) throw ConfigError(source_, field(key), "must be a list [r, g, b] in [0, 1]");

@@ -47,6 +47,42 @@ std::string errorOf(const std::function<void()>& f) {
 
 }  // namespace
 
+// The game file that extends none (config/game.yaml) is the one source of the game's defaults:
+// without any one of its keys it is refused, naming the file and the key, never filled in from
+// elsewhere. A variant file gives only what it changes.
+TEST(ShippedConfig, TheBaseGameFileMustGiveEveryKeyAndAVariantOnlyWhatItChanges) {
+  const YAML::Node full = YAML::LoadFile(test::configPath("game.yaml"));
+  const std::string variant = test::configPath("variants/basic.yaml");
+  int keys = 0;
+  auto refused = [&](const YAML::Node& cut, const std::string& field) {
+    const std::string path = writeTemp("game_without_" + field + ".yaml", YAML::Dump(cut));
+    EXPECT_NE(errorOf([&] { loadVariantConfig(path, variant); }).find(path + ": field '" + field + "': is missing"),
+              std::string::npos)
+        << field;
+    ++keys;
+  };
+  for (const auto& top : full) {
+    const std::string key = top.first.as<std::string>();
+    YAML::Node cut = YAML::Clone(full);
+    cut.remove(key);
+    refused(cut, key);
+    if (!top.second.IsMap()) continue;
+    for (const auto& inner : top.second) {
+      const std::string sub = inner.first.as<std::string>();
+      YAML::Node cut_inner = YAML::Clone(full);
+      cut_inner[key].remove(sub);
+      refused(cut_inner, key + "." + sub);
+    }
+  }
+  EXPECT_GE(keys, 30);
+  // A variant that sets one field loads, the rest from game.yaml.
+  const std::string small =
+      writeTemp("one_field_variant.yaml", "variant: basic\nmap: deterministic.yaml\nhider:\n  speed: 2.5\n");
+  const VariantConfig v = loadVariantConfig(test::configPath("game.yaml"), small);
+  EXPECT_DOUBLE_EQ(v.game.hider.speed, 2.5);
+  EXPECT_EQ(v.game.max_steps, full["episode"]["max_steps"].as<int>());
+}
+
 TEST(ShippedConfig, EveryVariantAndMapLoads) {
   // Every variant of the paper has its file (more may be added), named by its `variant` field.
   const std::vector<std::string> names = variantNames(test::configPath("variants"));

@@ -1,8 +1,12 @@
 #include "hideseek_hider/hider_net.h"
 
 #include <ATen/CPUGeneratorImpl.h>
+#include <fcntl.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -172,9 +176,41 @@ void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo
     archive.write("optimizer", state);
     archive.write("rng", at::globalContext().defaultGenerator(at::kCPU).get_state());
   }
+  // Serialised in memory first: libtorch's file writer ends a file it cannot finish (a full disk)
+  // by throwing from a destructor, which terminates the process. Our own writes report the error.
+  std::ostringstream bytes;
+  archive.save_to(bytes);
+  const std::string data = bytes.str();
+  writeFileAtomically(path, data);
+}
+
+void writeFileAtomically(const std::string& path, const std::string& data) {
   const std::string tmp = path + ".tmp";
-  archive.save_to(tmp);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot move " + tmp + " to " + path);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0) throw std::runtime_error("cannot write " + tmp + ": " + std::strerror(errno));
+  size_t done = 0;
+  int error = 0;
+  while (done < data.size()) {
+    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      error = n < 0 ? errno : ENOSPC;
+      break;
+    }
+    done += static_cast<size_t>(n);
+  }
+  if (!error && ::fsync(fd) != 0) error = errno;
+  if (::close(fd) != 0 && !error) error = errno;
+  if (error) {
+    ::unlink(tmp.c_str());
+    throw std::runtime_error("cannot write " + path + " (" + std::strerror(error) + " after " + std::to_string(done) +
+                             " of " + std::to_string(data.size()) + " bytes); the previous file is left as it was");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    error = errno;
+    ::unlink(tmp.c_str());
+    throw std::runtime_error("cannot move " + tmp + " to " + path + ": " + std::strerror(error));
+  }
 }
 
 namespace {

@@ -268,7 +268,14 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
           100 * loop.wait_s / total, 100 * loop.other_s / total);
     }
     if (training_->finished()) {
-      training_->saveCheckpoint();
+      try {
+        training_->saveCheckpoint();
+      } catch (const std::exception& e) {
+        ROS_FATAL("hider: training finished, but its final checkpoint was not written: %s", e.what());
+        exit_code_ = 1;
+        ros::shutdown();
+        return;
+      }
       if (training_->rank() != 0) {
         ROS_INFO("train: done, %ld steps (rank %d: rank 0 writes the checkpoint and the log)",
                  static_cast<long>(training_->steps()), training_->rank());

@@ -12,21 +12,21 @@ PpoOptions loadPpoOptions(const std::string& path) {
   const YAML::Node root = hideseek_game::loadYamlFile(path);
   hideseek_game::YamlFields f(root, path, "");
   PpoOptions o;
-  o.rollout_steps = f.integer("rollout_steps", o.rollout_steps, 1, 100000);
-  o.epochs = f.integer("epochs", o.epochs, 1, 1000);
-  o.minibatches = f.integer("minibatches", o.minibatches, 1, 100000);
-  o.learning_rate = f.number("learning_rate", o.learning_rate, 1e-8, 1.0);
-  o.anneal_learning_rate = f.boolean("anneal_learning_rate", o.anneal_learning_rate);
-  o.adam_epsilon = f.number("adam_epsilon", o.adam_epsilon, 1e-12, 1.0);
-  o.gamma = f.number("gamma", o.gamma, 0.0, 1.0);
-  o.gae_lambda = f.number("gae_lambda", o.gae_lambda, 0.0, 1.0);
-  o.clip = f.number("clip", o.clip, 0.0, 10.0);
-  o.clip_value_loss = f.boolean("clip_value_loss", o.clip_value_loss);
-  o.value_coef = f.number("value_coef", o.value_coef, 0.0, 100.0);
-  o.entropy_coef = f.number("entropy_coef", o.entropy_coef, 0.0, 100.0);
-  o.max_grad_norm = f.number("max_grad_norm", o.max_grad_norm, 1e-6, 1e6);
-  o.normalize_advantages = f.boolean("normalize_advantages", o.normalize_advantages);
-  o.sequence_length = f.integer("sequence_length", o.sequence_length, 1, 100000);
+  o.rollout_steps = f.integer("rollout_steps", 1, 100000);
+  o.epochs = f.integer("epochs", 1, 1000);
+  o.minibatches = f.integer("minibatches", 1, 100000);
+  o.learning_rate = f.number("learning_rate", 1e-8, 1.0);
+  o.anneal_learning_rate = f.boolean("anneal_learning_rate");
+  o.adam_epsilon = f.number("adam_epsilon", 1e-12, 1.0);
+  o.gamma = f.number("gamma", 0.0, 1.0);
+  o.gae_lambda = f.number("gae_lambda", 0.0, 1.0);
+  o.clip = f.number("clip", 0.0, 10.0);
+  o.clip_value_loss = f.boolean("clip_value_loss");
+  o.value_coef = f.number("value_coef", 0.0, 100.0);
+  o.entropy_coef = f.number("entropy_coef", 0.0, 100.0);
+  o.max_grad_norm = f.number("max_grad_norm", 1e-6, 1e6);
+  o.normalize_advantages = f.boolean("normalize_advantages");
+  o.sequence_length = f.integer("sequence_length", 1, 100000);
   f.rejectUnknown();
   return o;
 }
@@ -108,6 +108,12 @@ PpoTrainer::PpoTrainer(HiderNet net, const PpoOptions& options, int num_arenas, 
       device_(device),
       optimizer_(net_->parameters(), torch::optim::AdamOptions(options.learning_rate).eps(options.adam_epsilon)) {
   const int64_t t = options.rollout_steps, n = num_arenas;
+  if (options.rollout_steps < 1 || options.epochs < 1 || options.minibatches < 1 ||
+      (net_->recurrent() && options.sequence_length < 1)) {
+    throw std::invalid_argument(
+        "PPO: rollout_steps, epochs, minibatches (and sequence_length for a GRU) must be at least 1; PpoOptions "
+        "has no defaults: load them from config/ppo.yaml (loadPpoOptions)");
+  }
   if ((t * n) % options.minibatches != 0) {
     throw std::invalid_argument("PPO: rollout_steps x arenas (" + std::to_string(t * n) +
                                 ") must divide into minibatches (" + std::to_string(options.minibatches) + ")");

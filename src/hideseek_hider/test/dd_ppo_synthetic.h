@@ -11,13 +11,14 @@
 
 #include "hideseek_hider/collective.h"
 #include "hideseek_hider/ppo.h"
+#include "shipped_ppo.h"
 
 namespace hideseek_hider {
 
 struct SyntheticSetup {
   int image = 36;  // the smallest image the network's convolutions take
   int arenas = 2;  // per rank
-  PpoOptions ppo;
+  PpoOptions ppo = shippedPpoOptions();
   SyntheticSetup() {
     ppo.rollout_steps = 8;
     ppo.epochs = 2;

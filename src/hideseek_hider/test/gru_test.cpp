@@ -10,6 +10,7 @@
 #include "hideseek_hider/hider_net.h"
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_hider/ppo.h"
+#include "shipped_ppo.h"
 
 namespace hideseek_hider {
 
@@ -257,7 +258,7 @@ TEST(RecurrentPpo, UpdateReRunsEachSequenceExactlyAsTheRolloutRanIt) {
   // rollout's log-probabilities exactly (ratio 1, no KL). A wrong start state, a missed reset or
   // a mis-assembled sequence would show as KL.
   torch::manual_seed(6);
-  PpoOptions o;
+  PpoOptions o = shippedPpoOptions();
   o.rollout_steps = 8;
   o.sequence_length = 4;
   o.epochs = 1;
@@ -280,7 +281,7 @@ TEST(RecurrentPpo, UpdateReRunsEachSequenceExactlyAsTheRolloutRanIt) {
 
 TEST(RecurrentPpo, TrainerStartsAFreshStateAfterAnEpisodeEnds) {
   torch::manual_seed(8);
-  PpoOptions o;
+  PpoOptions o = shippedPpoOptions();
   o.rollout_steps = 4;
   o.sequence_length = 4;
   o.minibatches = 1;
@@ -341,7 +342,7 @@ TEST(GruPolicy, MemorylessStartsEveryStepFromTheZeroState) {
 }
 
 TEST(RecurrentPpo, SequencesMustDivideTheRolloutAndTheMinibatches) {
-  PpoOptions o;
+  PpoOptions o = shippedPpoOptions();
   o.rollout_steps = 8;
   o.sequence_length = 3;
   EXPECT_NE(errorOf([&] {
@@ -379,7 +380,7 @@ struct CueTask {
 // episodes the trained net answers right.
 double trainOnCueTask(HiderNet net, int max_updates, int* used) {
   torch::manual_seed(7);
-  PpoOptions o;
+  PpoOptions o = shippedPpoOptions();
   o.rollout_steps = 12;  // four episodes per arena
   o.sequence_length = 6;
   o.minibatches = 4;

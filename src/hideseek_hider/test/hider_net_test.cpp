@@ -1,10 +1,13 @@
 #include "hideseek_hider/hider_net.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <iterator>
 
 #include "hideseek_hider/hider_policy.h"
 
@@ -79,6 +82,34 @@ TEST(Checkpoint, RoundTripGivesIdenticalOutputs) {
   EXPECT_TRUE(torch::equal(a.logits, b.logits));
   EXPECT_TRUE(torch::equal(a.value, b.value));
   EXPECT_TRUE(torch::equal(a.features, b.features));
+}
+
+// A write that runs out of space (here the process's file size limit, which fails a write as a
+// full disk does) throws naming the file and the cause, removes its temporary file and leaves the
+// previous checkpoint as it was.
+TEST(Checkpoint, AWriteThatRunsOutOfSpaceLeavesThePreviousFileIntact) {
+  const std::string path = testing::TempDir() + "full_disk_checkpoint.pt";
+  writeFileAtomically(path, std::string(1000, 'a'));
+  rlimit old{};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &old), 0);
+  const auto previous = std::signal(SIGXFSZ, SIG_IGN);  // EFBIG instead of the signal
+  rlimit small = old;
+  small.rlim_cur = 64 * 1024;
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+  std::string error;
+  try {
+    writeFileAtomically(path, std::string(1 << 20, 'b'));
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, previous);
+  EXPECT_NE(error.find("cannot write " + path), std::string::npos) << error;
+  EXPECT_NE(error.find("the previous file is left as it was"), std::string::npos) << error;
+  std::ifstream in(path);
+  const std::string kept((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(kept, std::string(1000, 'a'));
+  EXPECT_FALSE(std::ifstream(path + ".tmp").good()) << "the temporary file was left behind";
 }
 
 TEST(Checkpoint, WrongImageSizeIsRefusedSayingWhy) {

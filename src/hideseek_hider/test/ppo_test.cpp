@@ -1,11 +1,13 @@
 #include "hideseek_hider/ppo.h"
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <fstream>
 
 #include "hideseek_game/config_error.h"
+#include "shipped_ppo.h"
 
 namespace hideseek_hider {
 
@@ -44,6 +46,31 @@ TEST(PpoOptions, ShippedConfigLoadsAndTyposAreRejected) {
   EXPECT_THROW(loadPpoOptions(bad), hideseek_game::ConfigError);
 }
 
+// config/ppo.yaml is the one source of PPO's defaults: deleting any of its keys is refused naming
+// the file and that key (never a value from elsewhere), and options that were never loaded are
+// refused by the trainer.
+TEST(PpoOptions, EveryKeyIsRequiredAndUnloadedOptionsAreRefused) {
+  const std::string shipped = std::string(HIDESEEK_CONFIG_DIR) + "/ppo.yaml";
+  const YAML::Node full = YAML::LoadFile(shipped);
+  int keys = 0;
+  for (const auto& entry : full) {
+    const std::string key = entry.first.as<std::string>();
+    YAML::Node cut = YAML::Clone(full);
+    cut.remove(key);
+    const std::string path = testing::TempDir() + "ppo_without_" + key + ".yaml";
+    std::ofstream(path) << cut;
+    try {
+      loadPpoOptions(path);
+      ADD_FAILURE() << "a PPO file without " << key << " loaded";
+    } catch (const hideseek_game::ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(path + ": field '" + key + "': is missing"), std::string::npos) << e.what();
+    }
+    ++keys;
+  }
+  EXPECT_EQ(keys, 15);  // every field of PpoOptions
+  EXPECT_THROW(PpoTrainer(HiderNet(36, 36), PpoOptions{}, 2, torch::kCPU), std::invalid_argument);
+}
+
 namespace {
 
 struct TinyTaskResult {
@@ -56,7 +83,7 @@ struct TinyTaskResult {
 // episode is one step. A random policy earns 0.2 per step; PPO must learn the rule in seconds.
 TinyTaskResult learnTinyColourTask(Precision precision) {
   torch::manual_seed(7);
-  PpoOptions o;
+  PpoOptions o = shippedPpoOptions();
   o.rollout_steps = 16;
   o.minibatches = 4;
   o.learning_rate = 1e-3;
@@ -119,7 +146,7 @@ TEST(PpoTrainer, Bf16LearnsTheTinyTaskAsClearlyAsFp32) {
 
 TEST(PpoTrainer, CheckpointRestoresNetworkOptimiserAndRandomState) {
   torch::manual_seed(1);
-  PpoOptions o;
+  PpoOptions o = shippedPpoOptions();
   o.rollout_steps = 4;
   o.minibatches = 2;
   PpoTrainer trainer(HiderNet(36, 36), o, 2, torch::kCPU);
@@ -165,7 +192,7 @@ TEST(PpoTrainer, CheckpointRestoresNetworkOptimiserAndRandomState) {
 // resumed run (samples restored from its checkpoint) continues on the same schedule.
 TEST(PpoTrainer, LearningRateAnnealsLinearlyOverTheRunAndAcrossResumes) {
   torch::manual_seed(3);
-  PpoOptions o;
+  PpoOptions o = shippedPpoOptions();
   o.rollout_steps = 4;
   o.minibatches = 2;
   o.epochs = 1;

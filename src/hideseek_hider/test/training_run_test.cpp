@@ -9,6 +9,8 @@
 #include <thread>
 #include <vector>
 
+#include "shipped_ppo.h"
+
 namespace hideseek_hider {
 
 namespace {
@@ -32,7 +34,7 @@ constexpr int kArenas = 2;
 constexpr int kSize = 36;
 
 PpoOptions tinyPpo() {
-  PpoOptions o;
+  PpoOptions o = shippedPpoOptions();
   o.rollout_steps = 4;  // a rollout is 2 arenas x 4 steps = 8 samples
   o.minibatches = 2;
   o.epochs = 1;

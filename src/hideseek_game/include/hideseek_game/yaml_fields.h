@@ -22,6 +22,19 @@ class YamlFields {
   double number(const std::string& key, double fallback, double min, double max);
   int integer(const std::string& key, int fallback, int min, int max);
   bool boolean(const std::string& key, bool fallback);
+  // The same fields without a fallback: the key is required, and a file without it is refused
+  // ("is missing"). For files that are the one source of their settings' defaults (config/ppo.yaml).
+  double number(const std::string& key, double min, double max);
+  int integer(const std::string& key, int min, int max);
+  bool boolean(const std::string& key);
+  // Throws "is missing" when the mapping has no `key`.
+  void require(const std::string& key) const;
+  // From now on every field read is required, fallback or not: for a file that is the one source
+  // of its settings' defaults (a game file that extends none). Returns *this.
+  YamlFields& requireEveryKey() {
+    every_key_required_ = true;
+    return *this;
+  }
   std::string text(const std::string& key, const std::string& fallback, const std::set<std::string>& allowed);
   Vec2 vec2(const YAML::Node& node, const std::string& field) const;
   Rgb rgb(const std::string& key, Rgb fallback);
@@ -36,6 +49,7 @@ class YamlFields {
   std::string source_;
   std::string path_;
   std::set<std::string> used_;
+  bool every_key_required_ = false;
 };
 
 // The largest configuration file read (a game, variant or map file is a few kB).

@@ -110,6 +110,11 @@ struct CheckpointInfo {
   NetworkKind network = NetworkKind::kFeedForward;  // from the architecture
 };
 
+// Writes `data` to path.tmp, syncs it, then renames it over `path`. On any error (a full disk:
+// ENOSPC) it removes path.tmp and throws std::runtime_error naming the file and the cause; the
+// previous file at `path` is left untouched.
+void writeFileAtomically(const std::string& path, const std::string& data);
+
 // Writes the network and its description to `path` atomically (temporary file, then rename).
 // With an optimiser it also writes the optimiser state and the CPU random generator's state,
 // so that training resumes where it stopped.

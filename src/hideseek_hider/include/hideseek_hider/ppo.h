@@ -14,30 +14,34 @@
 
 namespace hideseek_hider {
 
-// Every hyperparameter, documented in config/ppo.yaml. SPEC fixes the learning rate and a buffer
-// of about 1000 steps per update (16 arenas x 64 steps = 1024); the rest are CleanRL's Atari values.
+// Every hyperparameter. config/ppo.yaml is their one source of defaults: this struct holds none
+// (a default-constructed one is all zeros, which PpoTrainer refuses), and loadPpoOptions requires
+// every key, so that a key deleted from the file is an error, never a value from elsewhere.
+// SPEC fixes the learning rate and a buffer of about 1000 steps per update (16 arenas x 64
+// steps = 1024); the rest are CleanRL's Atari values.
 struct PpoOptions {
-  int rollout_steps = 64;            // decision steps per arena between updates
-  int epochs = 4;                    // passes over the buffer per update
-  int minibatches = 4;               // the buffer is split into this many minibatches per pass
-  double learning_rate = 3e-4;       // Adam; the initial rate when annealed
-  bool anneal_learning_rate = true;  // decay linearly to 0 over the run's total steps
-  double adam_epsilon = 1e-5;
-  double gamma = 0.99;  // discount per decision step
-  double gae_lambda = 0.95;
-  double clip = 0.1;            // policy ratio clip
-  bool clip_value_loss = true;  // clip the value update to the same range
-  double value_coef = 0.5;
-  double entropy_coef = 0.01;
-  double max_grad_norm = 0.5;        // global gradient norm clip
-  bool normalize_advantages = true;  // per minibatch
+  int rollout_steps{};          // decision steps per arena between updates
+  int epochs{};                 // passes over the buffer per update
+  int minibatches{};            // the buffer is split into this many minibatches per pass
+  double learning_rate{};       // Adam; the initial rate when annealed
+  bool anneal_learning_rate{};  // decay linearly to 0 over the run's total steps
+  double adam_epsilon{};
+  double gamma{};  // discount per decision step
+  double gae_lambda{};
+  double clip{};           // policy ratio clip
+  bool clip_value_loss{};  // clip the value update to the same range
+  double value_coef{};
+  double entropy_coef{};
+  double max_grad_norm{};       // global gradient norm clip
+  bool normalize_advantages{};  // per minibatch
   // GRU networks only: the rollout of each arena is cut into chunks of this many steps, the
   // sequences that truncated backpropagation through time runs over; minibatches hold whole
   // sequences. Must divide rollout_steps.
-  int sequence_length = 32;
+  int sequence_length{};
 };
 
-// Reads config/ppo.yaml; throws hideseek_game::ConfigError naming the file and field.
+// Reads a PPO file (config/ppo.yaml); every key is required, none may be unknown. Throws
+// hideseek_game::ConfigError naming the file and the field.
 PpoOptions loadPpoOptions(const std::string& path);
 
 struct Gae {
