@@ -69,7 +69,6 @@ class GlooCollective : public Collective {
   explicit GlooCollective(const RendezvousOptions& o)
       : rank_(o.rank), world_(o.world_size), timeout_(millis(o.timeout_s)), address_(o.address) {
     const auto [host, port] = parseHostPort(o.address, "the rendezvous address");
-    host_ = host;
     c10d::TCPStoreOptions so;
     so.port = static_cast<uint16_t>(port);
     so.isServer = rank_ == 0;
@@ -264,7 +263,7 @@ class GlooCollective : public Collective {
 
   int rank_, world_;
   Ms timeout_;
-  std::string address_, host_;
+  std::string address_;
   c10::intrusive_ptr<c10d::TCPStore> store_, side_;
   c10::intrusive_ptr<c10d::ProcessGroupGloo> group_;
   int64_t ops_ = 0;
