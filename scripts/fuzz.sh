@@ -7,10 +7,11 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_EACH=${FUZZ_SECONDS:-120}
-TARGETS=(${FUZZ_TARGETS:-config_fuzz action_batch_fuzz checkpoint_fuzz})
+TARGETS=(${FUZZ_TARGETS:-config_fuzz action_batch_fuzz checkpoint_fuzz bag_fuzz})
 declare -A CORPUS=([config_fuzz]=src/hideseek_game/fuzz/corpus/config
   [action_batch_fuzz]=src/hideseek_game/fuzz/corpus/action_batch
-  [checkpoint_fuzz]=src/hideseek_hider/fuzz/corpus/checkpoint)
+  [checkpoint_fuzz]=src/hideseek_hider/fuzz/corpus/checkpoint
+  [bag_fuzz]=src/hideseek_analysis/fuzz/corpus/bag)
 scripts/sanitize_build.sh "${TARGETS[@]}" > build_sanitize.log 2>&1 || {
   tail -n 30 build_sanitize.log; echo "fuzz: the build failed (build_sanitize.log)"; exit 1; }
 export ASAN_OPTIONS="detect_leaks=0"  # libFuzzer's -rss_limit_mb bounds memory; leaks are make test-sanitize's

@@ -13,6 +13,7 @@ PACKAGES=(
   libosmesa6-dev libeigen3-dev libyaml-cpp-dev
   libtorch-dev libopenblas0-pthread
   zlib1g-dev  # the checkpoint check inflates TorchScript entries (issue #49)
+  libroslz4-dev libbz2-dev  # the bag check decompresses chunks itself (issue #49)
   libopenblas0-openmp  # the BLAS the training programs link: it shares libtorch's OpenMP threads (#27)
   libgtest-dev googletest
   xvfb xauth imagemagick xterm

@@ -5,6 +5,8 @@
 #include <rosbag/query.h>
 #include <rosbag/view.h>
 
+#include "hideseek_analysis/bag_check.h"
+
 namespace hideseek_analysis {
 
 DecisionRecord toDecisionRecord(const hideseek_msgs::StepBatch& m) {
@@ -58,6 +60,9 @@ DecisionRecord toDecisionRecord(const hideseek_msgs::StepBatch& m) {
 }
 
 StepLog readStepBag(const std::string& path) {
+  // rosbag trusts the lengths and offsets the file declares: check them all first.
+  const std::string problem = checkBagFile(path);
+  if (!problem.empty()) throw std::runtime_error("cannot read bag " + path + ": " + problem + "; nothing was analysed");
   rosbag::Bag bag;
   try {
     bag.open(path, rosbag::bagmode::Read);

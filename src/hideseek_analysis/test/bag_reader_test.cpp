@@ -5,6 +5,8 @@
 
 #include <filesystem>
 
+#include "hideseek_analysis/bag_check.h"
+
 namespace hideseek_analysis {
 namespace {
 
@@ -76,6 +78,66 @@ TEST(ReadStepBag, SaysWhatIsWrongWithABagItCannotUse) {
     EXPECT_NE(std::string(e.what()).find("holds no hideseek_msgs/StepBatch"), std::string::npos) << e.what();
   }
   std::filesystem::remove(empty);
+}
+
+// bag_fuzz's seed corpus (fuzz/make_bag_corpus.py): bags as rosbag writes them, and copies cut or
+// altered as a copy that did not finish, a killed recorder or a hostile file would leave them.
+std::string corpus(const std::string& name) { return std::string(HIDESEEK_BAG_CORPUS) + "/" + name; }
+
+std::string refusal(const std::string& name) {
+  try {
+    readStepBag(corpus(name));
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "read without an error";
+}
+
+TEST(ReadStepBag, ReadsStoredLz4AndBz2ChunksImagesAndOtherTopics) {
+  EXPECT_EQ(readStepBag(corpus("steps_lz4")).decisions(), 24u);
+  EXPECT_EQ(readStepBag(corpus("steps_none")).decisions(), 12u);
+  EXPECT_EQ(readStepBag(corpus("steps_bz2")).decisions(), 12u);
+  EXPECT_EQ(readStepBag(corpus("steps_two_topics")).decisions(), 12u);
+  const StepLog images = readStepBag(corpus("steps_images"));
+  EXPECT_EQ(images.numImages(), 8);  // 2 arenas x decisions 0, 2, 4, 6
+  EXPECT_EQ(images.imageHeight(), 2);
+}
+
+TEST(ReadStepBag, RefusesACutUnclosedOrHostileBagBeforeRosbagReadsIt) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"cut_mid_chunk", "the bag is cut: its index is declared at byte"},
+      {"unindexed", "its recording was not closed"},
+      {"huge_chunk_size", "a chunk of 4294967280 bytes"},
+      {"index_offset_mid_record", "which is not a message of connection"},
+      {"record_header_2gib", "a record header of 2147483647 bytes"},
+      {"hostile_array_length", "StepBatch on /world/steps: episode of 4294967280 entries"},
+  };
+  for (const auto& [name, expected] : cases) {
+    const std::string what = refusal(name);
+    EXPECT_NE(what.find(expected), std::string::npos) << name << ": " << what;
+    EXPECT_NE(what.find(corpus(name)), std::string::npos) << name << ": " << what;
+    EXPECT_NE(what.find("at byte"), std::string::npos) << name << ": " << what;
+  }
+}
+
+TEST(CheckStepBatchBytes, AcceptsWhatRoscppWritesAndRefusesEveryCut) {
+  auto b = batch(3);
+  b.height = b.width = 2;
+  b.images.assign(12, 9);
+  std::vector<uint8_t> bytes(ros::serialization::serializationLength(b));
+  ros::serialization::OStream out(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  ros::serialization::serialize(out, b);
+  EXPECT_EQ(checkStepBatchBytes(bytes.data(), bytes.size(), 64), "");
+  for (size_t cut = 0; cut < bytes.size(); ++cut) {
+    EXPECT_NE(checkStepBatchBytes(bytes.data(), cut, 64), "") << "cut at " << cut;
+  }
+  bytes.push_back(0);
+  EXPECT_EQ(checkStepBatchBytes(bytes.data(), bytes.size(), 64), "1 bytes after the message");
+  b.num_arenas = 65;
+  bytes.assign(ros::serialization::serializationLength(b), 0);
+  ros::serialization::OStream out2(bytes.data(), static_cast<uint32_t>(bytes.size()));
+  ros::serialization::serialize(out2, b);
+  EXPECT_EQ(checkStepBatchBytes(bytes.data(), bytes.size(), 64), "num_arenas 65 (at most 64)");
 }
 
 TEST(ToDecisionRecord, NamesTheFieldWhoseLengthIsWrong) {

@@ -1,41 +1,11 @@
 #include "hideseek_game/checked_action_batch.h"
 
-#include <cstring>
+#include "hideseek_game/wire_reader.h"
 
 namespace hideseek_game {
 
-namespace {
-
-// A cursor over the wire bytes; every read checks that the bytes are there.
-class Reader {
- public:
-  Reader(const uint8_t* data, size_t size) : data_(data), left_(size) {}
-  bool u32(uint32_t& v) {
-    if (left_ < 4) return false;
-    std::memcpy(&v, data_, 4);  // ROS serializes little-endian, as this host
-    data_ += 4;
-    left_ -= 4;
-    return true;
-  }
-  // n bytes, n checked against what is left first.
-  bool bytes(void* out, size_t n) {
-    if (n > left_) return false;
-    if (n) std::memcpy(out, data_, n);
-    data_ += n;
-    left_ -= n;
-    return true;
-  }
-  size_t left() const { return left_; }
-
- private:
-  const uint8_t* data_;
-  size_t left_;
-};
-
-}  // namespace
-
 std::string parseActionBatch(const uint8_t* data, size_t size, size_t max_arenas, hideseek_msgs::ActionBatch* out) {
-  Reader r(data, size);
+  WireReader r(data, size);
   uint32_t seq = 0, sec = 0, nsec = 0, frame_len = 0;
   if (!r.u32(seq) || !r.u32(sec) || !r.u32(nsec) || !r.u32(frame_len)) return "truncated header";
   if (frame_len > r.left()) return "header frame_id longer than the message";

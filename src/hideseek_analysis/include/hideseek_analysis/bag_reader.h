@@ -15,7 +15,7 @@ DecisionRecord toDecisionRecord(const hideseek_msgs::StepBatch& msg);
 
 // Every StepBatch of the bag, whatever topic it was recorded on, in decision order. Throws
 // MissingStepsError (prefixed with the bag's path) at the first hole, and std::runtime_error for
-// a bag that cannot be opened or holds no StepBatch.
+// a bag that cannot be opened, fails checkBagFile (cut, unindexed, malformed) or holds no StepBatch.
 StepLog readStepBag(const std::string& path);
 
 }  // namespace hideseek_analysis
