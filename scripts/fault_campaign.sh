@@ -8,11 +8,19 @@ cd "$(dirname "$0")/.."
 source scripts/env.sh
 report=${1:-/dev/stdout}
 dir=$(mktemp -d /tmp/hideseek_faults.XXXXXX)
-port=$((12100 + RANDOM % 100))
+port=$((12400 + RANDOM % 100))  # apart from the sweep (12100-12112) and the tests (11600-12099)
 export ROS_MASTER_URI=http://localhost:$port
 rows=()
 row() { rows+=("| $1 | $2 | $3 | $4 |"); echo "fault_campaign: $1: $4" >&2; }
 pass() { [ "$1" -eq 0 ] && echo "**pass**: $2" || echo "**FAIL**: $2"; }
+
+# The process of a node of this campaign's graph (its master port), by its executable's name.
+node_pid() {
+  local p
+  for p in $(pgrep -f "$1"); do
+    tr '\0' '\n' < "/proc/$p/environ" 2> /dev/null | grep -q "^ROS_MASTER_URI=.*:$port/\?$" && echo "$p"
+  done
+}
 
 # --- start-up: each stops the game with a FATAL line naming the problem --------------------------
 fatal_case() {  # name, expected text, launch file and arguments...
@@ -42,6 +50,24 @@ head -c 140 config/variants/stochasticmaps.yaml > "$dir/trunc_variant2.yaml"  # 
 fatal_case truncated_variant_mid_value "trunc_variant2.yaml" game.launch.xml variant:=basic variant_config:="$dir/trunc_variant2.yaml"
 # Either the hider or the analysis node may stop first; both name the file.
 fatal_case analysis_missing_checkpoint "/nonexistent.pt" analyze.launch policy:=/nonexistent.pt steps:=160 num_arenas:=1 output_dir:="$dir/an"
+
+# Hostile checkpoints: archives that pass as archives but lie about what they hold.
+/usr/bin/python3 - "$dir/wrong_shape.pt" <<'PY'
+import sys, torch
+m = torch.jit.load("policies/basic.pt")  # a valid archive written by torch.jit.save, conv1 of 16 filters
+m.model.conv1._c.setattr("weight", torch.zeros(16, 3, 8, 8))
+torch.jit.save(m, sys.argv[1])
+PY
+fatal_case wrong_tensor_shapes "conv1.weight has shape [16, 3, 8, 8]" basic.launch policy:="$dir/wrong_shape.pt"
+/usr/bin/python3 - policies/basic.pt "$dir/huge_sizes.pt" <<'PY'
+import struct, sys
+b = bytearray(open(sys.argv[1], "rb").read())
+eocd = b.rfind(b"PK\x05\x06")
+first = struct.unpack_from("<I", b, eocd + 16)[0]
+struct.pack_into("<II", b, first + 20, 0xF0000000, 0xF0000000)  # the first entry claims 4 GB
+open(sys.argv[2], "wb").write(b)
+PY
+fatal_case huge_declared_sizes "4026531840" basic.launch policy:="$dir/huge_sizes.pt"
 
 # --- a running lockstep game under malformed input -----------------------------------------------
 roslaunch -p "$port" hideseek_world basic.launch mode:=lockstep num_arenas:=2 policy:=random > "$dir/game.log" 2>&1 &
@@ -140,6 +166,33 @@ info=$(rosbag info "$bag" 2>/dev/null | grep -E "^messages" | tr -s ' ')
 [ -n "$bag" ] && [ -n "$info" ]
 row bag_on_sigint "Ctrl-C (SIGINT) on a recording launch" "the bag is closed and indexed" "$(pass $? "${info:-no readable bag}")"
 
+# --- analysis bags: one cut mid-chunk, one whose recorder was killed -------------------------------
+analyze() {  # bag, output dir, log
+  timeout 300 rosrun hideseek_analysis analyze_bag basic "$PWD/policies/basic.pt" "$1" "$2" > "$3" 2>&1
+}
+files_in() { find "$1" -type f 2> /dev/null | wc -l; }
+head -c "$(($(stat -c %s "$bag" 2> /dev/null || echo 0) / 2))" "$bag" > "$dir/cut.bag"  # half: inside a chunk
+analyze "$dir/cut.bag" "$dir/cut_out" "$dir/cut_an.log"
+rc=$?
+line=$(grep -m 1 "cannot read bag" "$dir/cut_an.log" | sed 's|/tmp/hideseek_faults[^:]*/||' | cut -c1-200)
+[ "$rc" -ne 0 ] && echo "$line" | grep -q "the bag is cut" && [ "$(files_in "$dir/cut_out")" -eq 0 ]
+row analysis_bag_cut "\`analyze_bag\` on the bag above cut at half its size (inside a chunk)" "refused before rosbag reads it, naming the bag and the byte; nothing written" "$(pass $? "exit $rc; ${line:-no error line}; files written: $(files_in "$dir/cut_out")")"
+roslaunch -p "$port" hideseek_world basic.launch mode:=lockstep num_arenas:=2 policy:=random record:=true bag_dir:="$dir/killed" > "$dir/rec2.log" 2>&1 &
+game=$!
+sleep 12
+recorder=$(node_pid "rosbag/record")
+[ -n "$recorder" ] && kill -KILL "$recorder"
+sleep 1
+kill -INT "$game"; wait "$game" 2>/dev/null
+active=$(ls "$dir"/killed/*.bag.active 2>/dev/null | head -n 1)
+analyze "$active" "$dir/killed_out" "$dir/killed_an.log"
+refused=$(grep -m 1 "cannot read bag" "$dir/killed_an.log" | sed 's|/tmp/hideseek_faults[^:]*/||' | cut -c1-200)
+rosbag reindex "$active" > /dev/null 2>&1
+analyze "$active" "$dir/killed_out2" "$dir/killed_an2.log"
+read_back=$(grep -m 1 -o "analysis: [0-9]* decisions of 2 arenas ([0-9]* steps), [0-9a-z ]*missing" "$dir/killed_an2.log")
+[ -n "$recorder" ] && echo "$refused" | grep -q "was not closed" && echo "$read_back" | grep -q "no step missing"
+row recorder_killed "SIGKILL to \`rosbag record\` of a recording game, then \`analyze_bag\`, then \`rosbag reindex\` and \`analyze_bag\` again" "refused as unindexed, saying how to repair it; after the repair every recorded step is read, none missing" "$(pass $? "${refused:-not refused}; after reindex: ${read_back:-nothing read}")"
+
 # --- evaluation: an evaluator that starts late still sees every episode ----------------------------
 timeout 300 roslaunch -p "$port" hideseek_world evaluate.launch variant:=basic policy:=random episodes:=20 output_dir:="$dir/eval" > "$dir/eval.log" 2>&1
 n=$(tail -n +2 "$dir/eval/episodes.csv" 2>/dev/null | wc -l)
@@ -147,13 +200,6 @@ n=$(tail -n +2 "$dir/eval/episodes.csv" 2>/dev/null | wc -l)
 row evaluator "evaluate.launch (lockstep waits for the evaluator)" "20 episodes, seeds 0-19" "$(pass $? "$n episodes")"
 
 # --- training: the world killed with SIGKILL; the same command resumes -----------------------------
-# The process of a node of this campaign's graph (its master port), by its executable's name.
-node_pid() {
-  local p
-  for p in $(pgrep -f "$1"); do
-    tr '\0' '\n' < "/proc/$p/environ" 2> /dev/null | grep -q "^ROS_MASTER_URI=.*:$port/\?$" && echo "$p"
-  done
-}
 # The training log's updates are 1..N with steps k x ROLLOUT, none twice and none missing.
 log_is_whole() {  # log, rollout samples, total steps
   /usr/bin/python3 - "$@" <<'PY'
@@ -183,6 +229,54 @@ resumed=$(grep -o "resumed at step [0-9]*" "$dir/train2.log" | head -n 1)
 whole=$(log_is_whole "$dir/train/training_log.csv" 256 40960)
 [ -n "$world" ] && [ "$stopped" -eq 0 ] && [ "$second" -eq 0 ] && [ -n "$resumed" ] && log_is_whole "$dir/train/training_log.csv" 256 40960 > /dev/null
 row world_killed_in_training "SIGKILL to the world node 4 s after the first checkpoint of \`train.launch\` (4 arenas, 40,960 steps), then the same command" "the launch stops (the world is required); the same command resumes from the checkpoint; the log has no duplicate and no gap" "$(pass $? "launch stopped: $([ "$stopped" -eq 0 ] && echo yes || echo no); ${resumed:-not resumed}; log: $whole")"
+
+# --- the master: restarted under a training run that uses it, killed under one that started it -----
+kill_master() {  # the master of this port and its rosout, as a crash would
+  kill -KILL $(pgrep -f "rosmaster --core -p $port") $(node_pid rosout/rosout) "$@" 2> /dev/null
+}
+roscore -p "$port" > "$dir/core1.log" 2>&1 &
+core=$!
+sleep 3
+mtrain=(roslaunch -p "$port" hideseek_world train.launch num_arenas:=4 hider_threads:=1 steps:=40960
+  checkpoint_interval:=5 output_dir:="$dir/mtrain")
+"${mtrain[@]}" > "$dir/mtrain1.log" 2>&1 &
+game=$!
+for _ in $(seq 1 600); do [ -f "$dir/mtrain/checkpoint.pt" ] && break; sleep 0.2; done
+kill_master "$core"
+sleep 6
+roscore -p "$port" > "$dir/core2.log" 2>&1 &
+core=$!
+sleep 8
+known=$(rosnode list 2> /dev/null | grep -c -E "^/(world|hider|seeker)$")
+timeout 900 tail --pid="$game" -f /dev/null
+wait "$game"
+first=$?
+said=$(grep -c "a new ROS master answers" "$dir/mtrain1.log")
+timeout 300 "${mtrain[@]}" > "$dir/mtrain2.log" 2>&1
+second=$?
+resumed=$(grep -o "resumed at step [0-9]*" "$dir/mtrain2.log" | head -n 1)
+whole=$(log_is_whole "$dir/mtrain/training_log.csv" 256 40960)
+kill -INT "$core"; wait "$core" 2> /dev/null
+[ "$said" -eq 3 ] && [ "$first" -eq 0 ] && [ "$second" -eq 0 ] && [ "$resumed" = "resumed at step 40960" ] &&
+  log_is_whole "$dir/mtrain/training_log.csv" 256 40960 > /dev/null
+row master_restarted "\`roscore\` killed with SIGKILL after the first checkpoint of \`train.launch\` run against it, and started again 6 s later; then the same command" "training goes on over the nodes' connections and finishes; each node says the new master does not know it, and what to do; the same command finds the run complete; the log has no duplicate and no gap" "$(pass $? "launch exit $first; $said of 3 nodes said so; nodes the new master knows: $known; then: ${resumed:-not resumed}; log: $whole")"
+otrain=(roslaunch -p "$port" hideseek_world train.launch num_arenas:=4 hider_threads:=1 steps:=40960
+  checkpoint_interval:=5 output_dir:="$dir/otrain")
+"${otrain[@]}" > "$dir/otrain1.log" 2>&1 &
+game=$!
+for _ in $(seq 1 600); do [ -f "$dir/otrain/checkpoint.pt" ] && break; sleep 0.2; done
+sleep 4
+kill_master
+timeout 60 tail --pid="$game" -f /dev/null
+stopped=$?
+died=$(grep -c "REQUIRED process \[master\] has died" "$dir/otrain1.log")
+timeout 600 "${otrain[@]}" > "$dir/otrain2.log" 2>&1
+second=$?
+resumed=$(grep -o "resumed at step [0-9]*" "$dir/otrain2.log" | head -n 1)
+whole=$(log_is_whole "$dir/otrain/training_log.csv" 256 40960)
+[ "$stopped" -eq 0 ] && [ "$died" -ge 1 ] && [ "$second" -eq 0 ] && [ -n "$resumed" ] &&
+  log_is_whole "$dir/otrain/training_log.csv" 256 40960 > /dev/null
+row master_killed_under_launch "SIGKILL to the master that \`train.launch\` started, 4 s after its first checkpoint; then the same command" "the launch stops (the master is a required process); the same command resumes from the checkpoint; the log has no duplicate and no gap" "$(pass $? "launch stopped: $([ "$stopped" -eq 0 ] && echo yes || echo no) (REQUIRED process [master] has died: $died); ${resumed:-not resumed}; log: $whole")"
 
 # --- a full disk under a checkpoint: the previous one survives, the error is clear ------------------
 # A 40 MB tmpfs holds one checkpoint (about 26 MB: weights and Adam's state) but not a second

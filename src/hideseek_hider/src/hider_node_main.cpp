@@ -3,6 +3,7 @@
 #include <exception>
 
 #include "hideseek_game/heap.h"
+#include "hideseek_game/master_watch.h"
 #include "hideseek_hider/hider_node.h"
 
 int main(int argc, char** argv) {
@@ -14,6 +15,7 @@ int main(int argc, char** argv) {
   // The node handles outlive the try block: an error thrown while the node starts is logged
   // while roscpp still runs, so roslaunch shows it instead of only "process has died".
   ros::NodeHandle nh, pnh("~");
+  const hideseek_game::MasterWatch master_watch;  // says when the master dies or restarts
   try {
     hideseek_hider::HiderNode node{nh, pnh};
     ros::spin();

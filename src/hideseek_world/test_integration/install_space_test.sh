@@ -15,7 +15,7 @@ workspace="$(cd "$root/../.." && pwd)"
 tmp=$(mktemp -d /tmp/hideseek_install_test.XXXXXX)
 copy=$tmp/ws
 prefix=$tmp/prefix
-port=$((12100 + RANDOM % 100))
+port=$((12200 + RANDOM % 100))  # the sweep uses 12100-12112, the fault campaign 12400-12499
 failures=()
 say() { echo "install_space_test: $*"; }
 

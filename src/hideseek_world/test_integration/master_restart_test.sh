@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Integration test: the ROS master dies under a running game and a new one starts on its port.
+# usage: master_restart_test.sh XUNIT_OUTPUT
+# The game goes on over the nodes' connections; each of world, seeker and hider says, once, that
+# the master does not answer, and then that the new master does not know it and what to do.
+set -uo pipefail
+source "$(dirname "$0")/xunit.sh"
+out=$1
+dir=$(mktemp -d /tmp/hideseek_master_test.XXXXXX)
+port=$((12300 + RANDOM % 100))
+export ROS_MASTER_URI=http://localhost:$port
+failures=()
+roscore -p "$port" > "$dir/core1.log" 2>&1 &
+core=$!
+for _ in $(seq 1 100); do rostopic list > /dev/null 2>&1 && break; sleep 0.2; done
+roslaunch -p "$port" hideseek_world basic.launch mode:=lockstep num_arenas:=2 policy:=random > "$dir/game.log" 2>&1 &
+launch=$!
+for _ in $(seq 1 300); do grep -a -q "episode .* (seed" "$dir/game.log" && break; sleep 0.2; done
+episodes() { grep -a -c "episode .* (seed" "$dir/game.log"; }
+# The master and its rosout die as a crash would.
+kill -KILL $(pgrep -f "rosmaster --core -p $port") $(pgrep -f "rosout.*__name:=rosout") "$core" 2> /dev/null
+said() { grep -a "$1" "$dir/game.log" | grep -a -o "/[a-z]*: $2" | sort -u | tr '\n' ' '; }  # (the log holds NULs)
+for _ in $(seq 1 100); do [ "$(said "does not answer" "the ROS")" = "/hider: the ROS /seeker: the ROS /world: the ROS " ] && break; sleep 0.2; done
+gone=$(said "does not answer" "the ROS")
+before=$(episodes)
+roscore -p "$port" > "$dir/core2.log" 2>&1 &
+core=$!
+for _ in $(seq 1 100); do [ "$(said "a new ROS master answers" "a new")" = "/hider: a new /seeker: a new /world: a new " ] && break; sleep 0.2; done
+unknown=$(said "a new ROS master answers" "a new")
+after=$(episodes)
+[ "$gone" = "/hider: the ROS /seeker: the ROS /world: the ROS " ] ||
+  failures+=("the nodes that said the master does not answer: '$gone'")
+[ "$unknown" = "/hider: a new /seeker: a new /world: a new " ] ||
+  failures+=("the nodes that said the new master does not know them: '$unknown'")
+grep -a -q "stop the launch and run the same command" "$dir/game.log" || failures+=("no node said what to do")
+[ "$after" -gt "$before" ] || failures+=("the game stopped with the master: $before episodes, then $after")
+kill -INT "$launch" 2> /dev/null
+timeout 30 tail --pid="$launch" -f /dev/null || failures+=("the launch did not stop within 30 s of SIGINT")
+kill -INT "$core" 2> /dev/null
+wait "$core" 2> /dev/null
+write_xunit "$out" master MasterRestartedUnderARunningGame "${failures[@]}"
+printf 'failure: %s\n' "${failures[@]}"
+[ ${#failures[@]} -eq 0 ] && rm -rf "$dir"
+[ ${#failures[@]} -eq 0 ]
