@@ -248,14 +248,8 @@ int make(const MakeOptions& o) {
     if (x.variant != current_variant) {
       const auto v = hw::loadVariantConfig(o.game_file, o.config_dir + "/variants/" + x.variant + ".yaml");
       const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(v.map_file));
-      hw::RendererOptions r;
-      r.camera = v.game.camera;
-      r.max_views = 1;
-      r.agent_radius = v.game.agent_radius;
-      r.agent_height = v.game.agent_height;
-      r.colors = map->colors;
       renderer.reset();
-      renderer = std::make_unique<hw::Renderer>(r);
+      renderer = std::make_unique<hw::Renderer>(hw::rendererOptionsFor(v.game, map->colors, 1));
       arena = std::make_unique<hw::Arena>(v.game, map);
       h = v.game.camera.height;
       w = v.game.camera.width;

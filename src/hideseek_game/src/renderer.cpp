@@ -179,7 +179,24 @@ struct Renderer::Impl {
   std::vector<FrameVertex> frame;
   Polygon poly;
   Polygon scratch;
+
+  // The three steps of Renderer::render: each view's triangles into the frame, in its tile's clip
+  // space; the frame drawn by OSMesa; each tile copied out as a top-row-first RGB8 image.
+  void appendView(const RendererOptions& options, size_t k, const ViewRequest& view, bool segmentation,
+                  const Eigen::Vector3f& fog_color);
+  void draw(const Rgb& sky);
+  void copyTiles(const RendererOptions& options, size_t views, size_t image_bytes, uint8_t* out) const;
 };
+
+RendererOptions rendererOptionsFor(const GameOptions& game, const MapColors& colors, int max_views) {
+  RendererOptions r;
+  r.camera = game.camera;
+  r.max_views = max_views;
+  r.agent_radius = game.agent_radius;
+  r.agent_height = game.agent_height;
+  r.colors = colors;
+  return r;
+}
 
 Renderer::Renderer(const RendererOptions& options) : options_(options), impl_(std::make_unique<Impl>()) {
   Impl& r = *impl_;
@@ -311,79 +328,71 @@ void Renderer::setScene(int scene, const Layout& layout) {
   }
 }
 
-void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, uint8_t* out) {
-  Impl& r = *impl_;
-  if (static_cast<int>(views.size()) > options_.max_views) {
-    throw std::invalid_argument("renderer: " + std::to_string(views.size()) + " views requested, built for " +
-                                std::to_string(options_.max_views));
-  }
-  const int w = options_.camera.width, h = options_.camera.height;
-  const bool segmentation = mode == RenderMode::kSegmentation;
-  const Rgb sky = segmentation ? Rgb{} : options_.colors.sky;
-  const Eigen::Vector3f fog_color(sky.r, sky.g, sky.b);
-  r.frame.clear();
-  for (size_t k = 0; k < views.size(); ++k) {
-    const ViewRequest& view = views[k];
-    const auto scene = r.scenes.find(view.scene);
-    if (scene == r.scenes.end())
-      throw std::invalid_argument("renderer: scene " + std::to_string(view.scene) + " not set");
-    const AgentState& v = view.viewer;
-    const Eigen::Vector3f eye(v.position.x, v.position.y, options_.camera.mount_height);
-    const Eigen::Matrix4f vp = r.projection * viewMatrix(v, options_.camera.mount_height);
-    // Maps the view's clip space onto its tile of the framebuffer: x' = sx x + ox w.
-    const float sx = static_cast<float>(w) / r.fb_width, sy = static_cast<float>(h) / r.fb_height;
-    const float ox = (2.f * (k % r.tiles_x) * w + w) / r.fb_width - 1.f;
-    const float oy = (2.f * (k / r.tiles_x) * h + h) / r.fb_height - 1.f;
+void Renderer::Impl::appendView(const RendererOptions& options, size_t k, const ViewRequest& view, bool segmentation,
+                                const Eigen::Vector3f& fog_color) {
+  Impl& r = *this;
+  const int w = options.camera.width, h = options.camera.height;
+  const auto scene = r.scenes.find(view.scene);
+  if (scene == r.scenes.end())
+    throw std::invalid_argument("renderer: scene " + std::to_string(view.scene) + " not set");
+  const AgentState& v = view.viewer;
+  const Eigen::Vector3f eye(v.position.x, v.position.y, options.camera.mount_height);
+  const Eigen::Matrix4f vp = r.projection * viewMatrix(v, options.camera.mount_height);
+  // Maps the view's clip space onto its tile of the framebuffer: x' = sx x + ox w.
+  const float sx = static_cast<float>(w) / r.fb_width, sy = static_cast<float>(h) / r.fb_height;
+  const float ox = (2.f * (k % r.tiles_x) * w + w) / r.fb_width - 1.f;
+  const float oy = (2.f * (k / r.tiles_x) * h + h) / r.fb_height - 1.f;
 
-    auto emit = [&](const Quad& q, const Eigen::Vector3f& offset, float cos_yaw, float sin_yaw, const Rgb& tint,
-                    bool is_agent) {
-      // Back faces never show: a camera sees a face only from its front.
-      Eigen::Vector3f corners[4];
-      for (int i = 0; i < 4; ++i) {
-        const Eigen::Vector3f& c = q.corners[i];
-        corners[i] = Eigen::Vector3f(offset.x() + cos_yaw * c.x() - sin_yaw * c.y(),
-                                     offset.y() + sin_yaw * c.x() + cos_yaw * c.y(), c.z());
-      }
-      const Eigen::Vector3f normal(cos_yaw * q.normal.x() - sin_yaw * q.normal.y(),
-                                   sin_yaw * q.normal.x() + cos_yaw * q.normal.y(), q.normal.z());
-      if (normal.dot(eye - corners[0]) <= 0.f) return;
-      Eigen::Vector3f color = segmentation
-                                  ? (is_agent ? Eigen::Vector3f(1.f, 1.f, 1.f) : Eigen::Vector3f::Zero())
-                                  : Eigen::Vector3f(q.color.r * tint.r, q.color.g * tint.g, q.color.b * tint.b);
-      r.poly.clear();
-      bool all_inside = true;
-      for (const Eigen::Vector3f& c : corners) {
-        const Eigen::Vector4f p = vp * Eigen::Vector4f(c.x(), c.y(), c.z(), 1.f);
-        const float fog = segmentation ? 0.f : std::min(options_.fog_density * (c - eye).norm(), kMaxFog);
-        r.poly.push_back({p, color + fog * (fog_color - color)});
-        all_inside = all_inside && std::abs(p.x()) <= p.w() && std::abs(p.y()) <= p.w() && std::abs(p.z()) <= p.w();
-      }
-      if (!all_inside) clipPolygon(r.poly, r.scratch);
-      for (size_t i = 1; i + 1 < r.poly.size(); ++i) {
-        for (size_t j : {size_t{0}, i, i + 1}) {
-          const ClipVertex& cv = r.poly[j];
-          r.frame.push_back({sx * cv.p.x() + ox * cv.p.w(), sy * cv.p.y() + oy * cv.p.w(), cv.p.z(), cv.p.w(), cv.c.x(),
-                             cv.c.y(), cv.c.z()});
-        }
-      }
-    };
-
-    const Rgb white{1.f, 1.f, 1.f};
-    for (const Quad& q : scene->second) emit(q, Eigen::Vector3f::Zero(), 1.f, 0.f, white, false);
-    const AgentState& o = view.other;
-    const Rgb tint = view.other_is_hider ? options_.colors.hider : options_.colors.seeker;
-    const std::optional<Rgb>& front = view.other_is_hider ? options_.colors.hider_front : options_.colors.seeker_front;
-    const Eigen::Vector3f at(o.position.x, o.position.y, 0.f);
-    const float c = std::cos(o.yaw), s = std::sin(o.yaw);
-    if (front) {
-      for (size_t q = 0; q < r.plain_cylinder.size(); ++q) {
-        emit(r.plain_cylinder[q], at, c, s, r.front_segment[q] ? *front : tint, true);
-      }
-    } else {
-      for (const Quad& q : r.cylinder) emit(q, at, c, s, tint, true);
+  auto emit = [&](const Quad& q, const Eigen::Vector3f& offset, float cos_yaw, float sin_yaw, const Rgb& tint,
+                  bool is_agent) {
+    // Back faces never show: a camera sees a face only from its front.
+    Eigen::Vector3f corners[4];
+    for (int i = 0; i < 4; ++i) {
+      const Eigen::Vector3f& c = q.corners[i];
+      corners[i] = Eigen::Vector3f(offset.x() + cos_yaw * c.x() - sin_yaw * c.y(),
+                                   offset.y() + sin_yaw * c.x() + cos_yaw * c.y(), c.z());
     }
-  }
+    const Eigen::Vector3f normal(cos_yaw * q.normal.x() - sin_yaw * q.normal.y(),
+                                 sin_yaw * q.normal.x() + cos_yaw * q.normal.y(), q.normal.z());
+    if (normal.dot(eye - corners[0]) <= 0.f) return;
+    Eigen::Vector3f color = segmentation ? (is_agent ? Eigen::Vector3f(1.f, 1.f, 1.f) : Eigen::Vector3f::Zero())
+                                         : Eigen::Vector3f(q.color.r * tint.r, q.color.g * tint.g, q.color.b * tint.b);
+    r.poly.clear();
+    bool all_inside = true;
+    for (const Eigen::Vector3f& c : corners) {
+      const Eigen::Vector4f p = vp * Eigen::Vector4f(c.x(), c.y(), c.z(), 1.f);
+      const float fog = segmentation ? 0.f : std::min(options.fog_density * (c - eye).norm(), kMaxFog);
+      r.poly.push_back({p, color + fog * (fog_color - color)});
+      all_inside = all_inside && std::abs(p.x()) <= p.w() && std::abs(p.y()) <= p.w() && std::abs(p.z()) <= p.w();
+    }
+    if (!all_inside) clipPolygon(r.poly, r.scratch);
+    for (size_t i = 1; i + 1 < r.poly.size(); ++i) {
+      for (size_t j : {size_t{0}, i, i + 1}) {
+        const ClipVertex& cv = r.poly[j];
+        r.frame.push_back({sx * cv.p.x() + ox * cv.p.w(), sy * cv.p.y() + oy * cv.p.w(), cv.p.z(), cv.p.w(), cv.c.x(),
+                           cv.c.y(), cv.c.z()});
+      }
+    }
+  };
 
+  const Rgb white{1.f, 1.f, 1.f};
+  for (const Quad& q : scene->second) emit(q, Eigen::Vector3f::Zero(), 1.f, 0.f, white, false);
+  const AgentState& o = view.other;
+  const Rgb tint = view.other_is_hider ? options.colors.hider : options.colors.seeker;
+  const std::optional<Rgb>& front = view.other_is_hider ? options.colors.hider_front : options.colors.seeker_front;
+  const Eigen::Vector3f at(o.position.x, o.position.y, 0.f);
+  const float c = std::cos(o.yaw), s = std::sin(o.yaw);
+  if (front) {
+    for (size_t q = 0; q < r.plain_cylinder.size(); ++q) {
+      emit(r.plain_cylinder[q], at, c, s, r.front_segment[q] ? *front : tint, true);
+    }
+  } else {
+    for (const Quad& q : r.cylinder) emit(q, at, c, s, tint, true);
+  }
+}
+
+void Renderer::Impl::draw(const Rgb& sky) {
+  Impl& r = *this;
   // Several renderers may share a thread (tests do); each draws into its own context.
   OSMesaMakeCurrent(r.context, r.framebuffer.data(), GL_UNSIGNED_BYTE, r.fb_width, r.fb_height);
   glClearColor(sky.r, sky.g, sky.b, 1.f);
@@ -398,12 +407,16 @@ void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, ui
                         reinterpret_cast<void*>(4 * sizeof(float)));
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(r.frame.size()));
   glFinish();
+}
 
+void Renderer::Impl::copyTiles(const RendererOptions& options, size_t views, size_t image_bytes, uint8_t* out) const {
+  const Impl& r = *this;
+  const int w = options.camera.width, h = options.camera.height;
   // OSMesa's buffer has GL's bottom row first; images want the top row first.
   const size_t row_bytes = static_cast<size_t>(w) * 3;
-  for (size_t k = 0; k < views.size(); ++k) {
+  for (size_t k = 0; k < views; ++k) {
     const int x0 = static_cast<int>(k % r.tiles_x) * w, y0 = static_cast<int>(k / r.tiles_x) * h;
-    uint8_t* image = out + k * imageBytes();
+    uint8_t* image = out + k * image_bytes;
     for (int row = 0; row < h; ++row) {
       const uint8_t* src = r.framebuffer.data() + (static_cast<size_t>(y0 + h - 1 - row) * r.fb_width + x0) * 4;
       uint8_t* dst = image + row * row_bytes;
@@ -414,6 +427,21 @@ void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, ui
       }
     }
   }
+}
+
+void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, uint8_t* out) {
+  if (static_cast<int>(views.size()) > options_.max_views) {
+    throw std::invalid_argument("renderer: " + std::to_string(views.size()) + " views requested, built for " +
+                                std::to_string(options_.max_views));
+  }
+  const bool segmentation = mode == RenderMode::kSegmentation;
+  const Rgb sky = segmentation ? Rgb{} : options_.colors.sky;
+  impl_->frame.clear();
+  for (size_t k = 0; k < views.size(); ++k) {
+    impl_->appendView(options_, k, views[k], segmentation, Eigen::Vector3f(sky.r, sky.g, sky.b));
+  }
+  impl_->draw(sky);
+  impl_->copyTiles(options_, views.size(), imageBytes(), out);
 }
 
 }  // namespace hideseek_game

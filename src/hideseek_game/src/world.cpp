@@ -17,12 +17,7 @@ World::World(const GameOptions& options, std::shared_ptr<const MapSpec> map, int
   arenas_.reserve(num_arenas);
   for (int i = 0; i < num_arenas; ++i) arenas_.emplace_back(options, map);
   if (render) {
-    RendererOptions r;
-    r.camera = options.camera;
-    r.max_views = num_arenas;
-    r.agent_radius = options.agent_radius;
-    r.agent_height = options.agent_height;
-    r.colors = map->colors;
+    RendererOptions r = rendererOptionsFor(options, map->colors, num_arenas);
     r.render_threads = render_threads;
     renderer_ = std::make_unique<Renderer>(r);
   }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "hideseek_game/agent.h"
+#include "test_util.h"
 
 namespace hideseek_game {
 
@@ -17,6 +18,10 @@ Layout emptyArena() {
   return l;
 }
 
+// The hider's motion as the shipped game file gives it (2 m/s, 180 deg/s; accelerate mode 2 m/s^2
+// up to 4 m/s): the structs themselves hold zeros until a game file is loaded.
+MotionOptions shippedHider() { return test::loadVariant("basic").game.hider; }
+
 void step(AgentState& a, Action act, const MotionOptions& m, const Layout& l, int frames = kRepeat) {
   for (int i = 0; i < frames; ++i) advanceAgent(a, act, m, kDt, l, 0.4);
 }
@@ -25,7 +30,7 @@ void step(AgentState& a, Action act, const MotionOptions& m, const Layout& l, in
 
 TEST(Kinematics, ConstantModeMovesAtItsSpeedBothWays) {
   for (double speed : {2.0, 1.0, 1.5}) {
-    MotionOptions m;
+    MotionOptions m = shippedHider();
     m.speed = speed;
     AgentState a;
     step(a, Action::kForward, m, emptyArena());
@@ -38,7 +43,7 @@ TEST(Kinematics, ConstantModeMovesAtItsSpeedBothWays) {
 }
 
 TEST(Kinematics, TurnsAt180DegreesPerSecondWithoutMoving) {
-  MotionOptions m;
+  MotionOptions m = shippedHider();
   AgentState a;
   step(a, Action::kTurnLeft, m, emptyArena());
   EXPECT_NEAR(a.yaw, kPi * 0.12, 1e-9);
@@ -48,7 +53,7 @@ TEST(Kinematics, TurnsAt180DegreesPerSecondWithoutMoving) {
 }
 
 TEST(Kinematics, AccelerateModeRampsUpCapsAndCoastsToRest) {
-  MotionOptions m;
+  MotionOptions m = shippedHider();
   m.mode = SpeedMode::kAccelerate;
   AgentState a;
   a.position = {-6.0, 0.0};
@@ -65,7 +70,7 @@ TEST(Kinematics, AccelerateModeRampsUpCapsAndCoastsToRest) {
 }
 
 TEST(Kinematics, SlidesAlongWallWithoutPassingThrough) {
-  MotionOptions m;
+  MotionOptions m = shippedHider();
   AgentState a;
   a.position = {6.5, 0.0};
   a.yaw = kPi / 4;  // into the +x wall at 45 degrees
@@ -78,7 +83,7 @@ TEST(Kinematics, SlidesAlongRotatedBoxAndNeverEntersIt) {
   Layout l = emptyArena();
   const Box box = Box::make({0.0, 0.0}, {4.0, 1.0}, 1.5, kPi / 6);
   l.obstacles.push_back(box);
-  MotionOptions m;
+  MotionOptions m = shippedHider();
   AgentState a;
   a.position = {0.0, -2.0};
   a.yaw = kPi / 2;  // straight at the box's long side
@@ -91,7 +96,7 @@ TEST(Kinematics, SlidesAlongRotatedBoxAndNeverEntersIt) {
 }
 
 TEST(Kinematics, AccelerateModeLosesSpeedIntoAWall) {
-  MotionOptions m;
+  MotionOptions m = shippedHider();
   m.mode = SpeedMode::kAccelerate;
   AgentState a;
   a.position = {6.4, 0.0};

@@ -22,11 +22,7 @@ inline std::shared_ptr<const MapSpec> loadMap(const std::string& name) {
 
 // A one-view, one-thread renderer of a variant's camera with a map's colours.
 inline RendererOptions rendererOptions(const VariantConfig& v, const MapSpec& map) {
-  RendererOptions r;
-  r.camera = v.game.camera;
-  r.agent_radius = v.game.agent_radius;
-  r.agent_height = v.game.agent_height;
-  r.colors = map.colors;
+  RendererOptions r = rendererOptionsFor(v.game, map.colors, 1);
   r.render_threads = 1;
   return r;
 }

@@ -37,11 +37,7 @@ TEST(VisibilityVsRendering, AgreeOnAtLeast99PercentOfRandomStates) {
   for (const std::string variant : {"basic", "stochasticmaps"}) {
     const VariantConfig v = test::loadVariant(variant);
     auto map = std::make_shared<const MapSpec>(loadMapFile(v.map_file));
-    RendererOptions ro;
-    ro.camera = v.game.camera;
-    ro.max_views = 1;
-    ro.colors = map->colors;
-    Renderer renderer(ro);
+    Renderer renderer(rendererOptionsFor(v.game, map->colors, 1));
     std::mt19937 rng(2024);
     std::vector<uint8_t> image(renderer.imageBytes());
     int agree = 0, visible = 0, only_geometric = 0, only_pixels = 0;

@@ -17,6 +17,11 @@ using hideseek_game::GameOptions;
 
 const std::string kConfig = HIDESEEK_CONFIG_DIR;
 
+// The game as the shipped game file gives it: the options structs hold zeros until one is loaded.
+GameOptions shippedGame() {
+  return hideseek_game::loadVariantConfig(kConfig + "/game.yaml", kConfig + "/variants/basic.yaml").game;
+}
+
 Layout deterministicLayout() {
   const auto spec = hideseek_game::loadMapFile(kConfig + "/maps/deterministic.yaml");
   std::mt19937 unused;
@@ -25,8 +30,7 @@ Layout deterministicLayout() {
 
 // Moves the seeker by its own action for one decision step, as the world would.
 void advance(AgentState& s, Action a, const Layout& layout) {
-  hideseek_game::MotionOptions m;
-  m.speed = 1.5;
+  static const hideseek_game::MotionOptions m = shippedGame().seeker;  // 1.5 m/s, 180 deg/s
   for (int i = 0; i < 6; ++i) hideseek_game::advanceAgent(s, a, m, 0.02, layout, 0.4);
 }
 
@@ -152,7 +156,7 @@ TEST(SeekerPolicy, DeterministicSeekerCatchesAStandingHiderItCanSee) {
   Layout open;
   open.half_extent = 7.0;
   open.waypoints = {{0.0, 0.0}};
-  GameOptions g;
+  const GameOptions g = shippedGame();
   SeekerPolicy seeker({});
   seeker.reset(open, 0);
   AgentState s{{-5.0, -5.0}, 2.0, 0.0};

@@ -17,15 +17,19 @@ enum class RenderMode {
 
 struct RendererOptions {
   CameraOptions camera;
-  int max_views = 1;  // views per frame; each gets one tile of the framebuffer
-  double agent_radius = 0.4;
-  double agent_height = 1.2;
+  int max_views = 1;      // views per frame; each gets one tile of the framebuffer
+  double agent_radius{};  // m, the game's (rendererOptionsFor)
+  double agent_height{};
   MapColors colors;
   float fog_density = 0.035f;  // 1/m: enough haze that distance reads at 84 x 84
   // llvmpipe rasteriser threads (LP_NUM_THREADS, which wins when set). On the 2-core reference
   // machine 2 threads gave 9,200 arena-steps/s in the core and 5,900 through ROS, 1 thread 4,300.
   int render_threads = 2;
 };
+
+// A renderer of the game's cameras and agents in a map's colours, max_views views per frame: every
+// value the game decides comes from it; fog and threads keep the renderer's own defaults.
+RendererOptions rendererOptionsFor(const GameOptions& game, const MapColors& colors, int max_views);
 
 // One camera image to render: the viewer's pose, the scene it stands in and the other agent.
 struct ViewRequest {
