@@ -147,37 +147,20 @@ def weakness_finding(probes, gains):
     return "\n".join(text)
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("report")
-    parser.add_argument("--paper", required=True)
-    a = parser.parse_args()
-    with open(a.paper) as f:
-        paper = yaml.safe_load(f)
-    ref = paper["variants"]
-    WEAKER[:] = paper["moderate_weaknesses"]
-    STRONGER[:] = paper["advantages"]
-    table2 = {r["variant"]: r for r in rows(os.path.join(a.report, "table2.csv"))}
-    # The paper's Table 2 order; a variant the paper lacks has no reference numbers to print beside.
-    analysed = [v for base in ref for v in (base, base + "_gru")
-                if os.path.isfile(os.path.join(a.report, v, "probes.csv"))]
-    if not analysed:
-        raise SystemExit("reproduce_report: no variant folder with probes.csv in %s" % a.report)
-    probes = {v: probe_accuracies(os.path.join(a.report, v)) for v in analysed}
-    memory_probes = {v: probe_accuracies(os.path.join(a.report, v), "gru_state") for v in analysed}
-    gains = {v: paired_gains(os.path.join(a.report, v)) for v in analysed}
+TABLE3_HEADER = ["variant", "S: trained / random-init", "paper S", "H: trained / random-init", "paper H",
+                 "balanced S: trained / random-init", "balanced H: trained / random-init",
+                 "balanced gain S / H (paired)", "prior S=1 / H=1"]
 
-    # Table 3: probe accuracy beside the paper's.
-    header = ["variant", "S: trained / random-init", "paper S", "H: trained / random-init", "paper H",
-              "balanced S: trained / random-init", "balanced H: trained / random-init",
-              "balanced gain S / H (paired)", "prior S=1 / H=1"]
+
+def table3(report, analysed, ref, probes, memory_probes):
+    """Table 3: probe accuracy beside the paper's; writes table3.md/.csv and returns its rows."""
     t3 = []
     for v in analysed:
         r = ref[base_variant(v)]
         for name, p, representation in ((v, probes[v], "features"), (v + ": GRU state", memory_probes[v], "gru_state")):
             if not p:
                 continue
-            g = paired_gains(os.path.join(a.report, v), representation)
+            g = paired_gains(os.path.join(report, v), representation)
             # The paper's network is feed-forward: its numbers stand beside ours for comparison only.
             t3.append([name,
                        "%.1f / %.1f" % (p["S", "trained"][0], p["S", "random_init"][0]),
@@ -188,13 +171,16 @@ def main():
                        "%s / %s" % (pm(*p["H", "trained"][1:4:2]), pm(*p["H", "random_init"][1:4:2])),
                        " / ".join("%+.1f ± %.1f" % g[k][:2] if k in g else "-" for k in ("S", "H")),
                        "%.1f / %.1f" % (p["S", "trained"][2], p["H", "trained"][2])])
-    write_table(os.path.join(a.report, "table3"), header, t3)
+    write_table(os.path.join(report, "table3"), TABLE3_HEADER, t3)
+    return t3
 
-    # State frequencies and transitions across variants.
+
+def plot_state_frequencies(report, analysed):
+    """State frequencies, trained minus random, of every analysed variant side by side."""
     fig, ax = plt.subplots(figsize=(9, 4))
     width = 0.8 / len(analysed)
     for k, v in enumerate(analysed):
-        diff = [float(r["trained_minus_random"]) for r in rows(os.path.join(a.report, v, "state_frequencies.csv"))]
+        diff = [float(r["trained_minus_random"]) for r in rows(os.path.join(report, v, "state_frequencies.csv"))]
         ax.bar(np.arange(8) + (k - (len(analysed) - 1) / 2) * width, diff, width, label=v)
     ax.axhline(0, color="k", lw=0.8)
     ax.set_xticks(range(8))
@@ -204,10 +190,13 @@ def main():
                  "O: obstacle in view)", fontsize=9)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(a.report, "state_frequencies_variants.png"), dpi=90)
+    fig.savefig(os.path.join(report, "state_frequencies_variants.png"), dpi=90)
     plt.close(fig)
 
-    # At most four panels a row; state names on the first column's rows only, so none overlaps.
+
+def plot_transitions(report, analysed):
+    """Each variant's transition matrix; at most four panels a row, state names on the first column
+    only, so none overlaps."""
     ncols = min(4, len(analysed))
     nrows = (len(analysed) + ncols - 1) // ncols
     fig, axes = plt.subplots(nrows, ncols, figsize=(2.9 * ncols + 1.6, 3.3 * nrows), squeeze=False)
@@ -215,7 +204,7 @@ def main():
         ax.set_visible(False)
     for k, (ax, v) in enumerate(zip(axes.flat, analysed)):
         p = np.full((8, 8), np.nan)
-        for r in rows(os.path.join(a.report, v, "transitions.csv")):
+        for r in rows(os.path.join(report, v, "transitions.csv")):
             if r["probability"] != "":
                 p[STATE_NAMES.index(r["from"]), STATE_NAMES.index(r["to"])] = float(r["probability"])
         image = ax.imshow(p, cmap="viridis", vmin=0, vmax=1)
@@ -226,12 +215,14 @@ def main():
         ax.set_title(v, fontsize=9)
     fig.colorbar(image, ax=list(axes.flat), label="P(to | a change out of from)")
     fig.suptitle("Transitions between distinct states (rows: from, columns: to)", fontsize=10)
-    fig.savefig(os.path.join(a.report, "transitions_variants.png"), dpi=80, bbox_inches="tight")
+    fig.savefig(os.path.join(report, "transitions_variants.png"), dpi=80, bbox_inches="tight")
     plt.close(fig)
 
-    # Survival against representation: one point per variant with a policy and an analysis.
-    # GRU hiders are drawn apart and left out of the fit, which is over the paper's network.
-    # A GRU hider's point reads the probe of its GRU state, what its heads act on.
+
+def plot_survival(report, analysed, table2, probes, memory_probes):
+    """Survival against representation: one point per variant with a policy and an analysis. GRU
+    hiders are drawn apart and left out of the fit, which is over the paper's network; a GRU
+    hider's point reads the probe of its GRU state, what its heads act on."""
     points = [((memory_probes[v] or probes[v])["H", "trained"][1], float(table2[v]["living_trained"]), v,
                (memory_probes[v] or probes[v])["H", "trained"][3])
               for v in analysed if v in table2 and table2[v]["living_trained"] not in ("", None)]
@@ -257,17 +248,20 @@ def main():
     ax.set_ylabel("average living steps (seeds 0-99, greedy)")
     ax.set_title("Survival against representation\n" + fit_note, fontsize=9)
     fig.tight_layout()
-    fig.savefig(os.path.join(a.report, "survival_vs_representation.png"), dpi=90)
+    fig.savefig(os.path.join(report, "survival_vs_representation.png"), dpi=90)
     plt.close(fig)
 
-    with open(os.path.join(a.report, "table2.md")) as f:
+
+def write_index(report, analysed, t3, probes, gains):
+    """index.md: Table 2, the GRU comparison where there is one, Table 3, the figures, the folders."""
+    with open(os.path.join(report, "table2.md")) as f:
         table2_md = f.read()
     index = ["# Reproduction report", "",
              "Made by `make reproduce`: every shipped policy and the random hider evaluated on every variant, "
              "then every variant with a shipped policy analysed (`analyze.launch`).", "",
              "## Table 2: living steps and success", "", table2_md.strip(), "",
              "CSV: [table2.csv](table2.csv); per evaluation: [evaluations/](evaluations/)", ""]
-    gru_vs_ff = os.path.join(a.report, "gru_vs_ff.md")
+    gru_vs_ff = os.path.join(report, "gru_vs_ff.md")
     if os.path.exists(gru_vs_ff):  # scripts/evaluate_all.sh: the GRU hiders against their feed-forward twins
         with open(gru_vs_ff) as f:
             body = f.read().split("\n", 1)[1].strip()  # without its own title
@@ -276,24 +270,50 @@ def main():
         index += ["## The GRU hider against its feed-forward twin", "", body, "",
                   "CSV: [gru_vs_ff.csv](gru_vs_ff.csv)", ""]
     index += ["## Table 3: linear probes of the 512 mid-level features", "",
-             "Test accuracy in % on episodes held out from the probe's fit; the balanced accuracy (mean recall of "
-             "both classes) is 50 % for any probe that ignores its input. Every probe is scored on several random "
-             "splits by episode (analyze.launch probe_splits): the mean ± the standard deviation over the splits; "
-             "the paired gain is trained minus random-init on the same splits, split by split. A GRU hider (`<variant>_gru`) has a "
-             "second row, the probes of its 512-unit GRU state after the step; the paper's columns there are its "
-             "feed-forward network's, for comparison.", "", markdown(header, t3).strip(), "",
-             "CSV: [table3.csv](table3.csv)", "",
-             "### Weaknesses against advantages", "", weakness_finding(probes, gains), "",
-             "## Across variants", "",
-             "![state frequencies](state_frequencies_variants.png)", "",
-             "![transitions](transitions_variants.png)", "",
-             "![survival against representation](survival_vs_representation.png)", "",
-             "## Per variant", ""]
+              "Test accuracy in % on episodes held out from the probe's fit; the balanced accuracy (mean recall of "
+              "both classes) is 50 % for any probe that ignores its input. Every probe is scored on several random "
+              "splits by episode (analyze.launch probe_splits): the mean ± the standard deviation over the splits; "
+              "the paired gain is trained minus random-init on the same splits, split by split. A GRU hider (`<variant>_gru`) has a "
+              "second row, the probes of its 512-unit GRU state after the step; the paper's columns there are its "
+              "feed-forward network's, for comparison.", "", markdown(TABLE3_HEADER, t3).strip(), "",
+              "CSV: [table3.csv](table3.csv)", "",
+              "### Weaknesses against advantages", "", weakness_finding(probes, gains), "",
+              "## Across variants", "",
+              "![state frequencies](state_frequencies_variants.png)", "",
+              "![transitions](transitions_variants.png)", "",
+              "![survival against representation](survival_vs_representation.png)", "",
+              "## Per variant", ""]
     for v in analysed:
-        files = sorted(f for f in os.listdir(os.path.join(a.report, v)))
+        files = sorted(f for f in os.listdir(os.path.join(report, v)))
         index.append("- **%s**: " % v + ", ".join("[%s](%s/%s)" % (f, v, f) for f in files))
-    with open(os.path.join(a.report, "index.md"), "w") as f:
+    with open(os.path.join(report, "index.md"), "w") as f:
         f.write("\n".join(index) + "\n")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("report")
+    parser.add_argument("--paper", required=True)
+    a = parser.parse_args()
+    with open(a.paper) as f:
+        paper = yaml.safe_load(f)
+    ref = paper["variants"]
+    WEAKER[:] = paper["moderate_weaknesses"]
+    STRONGER[:] = paper["advantages"]
+    table2 = {r["variant"]: r for r in rows(os.path.join(a.report, "table2.csv"))}
+    # The paper's Table 2 order; a variant the paper lacks has no reference numbers to print beside.
+    analysed = [v for base in ref for v in (base, base + "_gru")
+                if os.path.isfile(os.path.join(a.report, v, "probes.csv"))]
+    if not analysed:
+        raise SystemExit("reproduce_report: no variant folder with probes.csv in %s" % a.report)
+    probes = {v: probe_accuracies(os.path.join(a.report, v)) for v in analysed}
+    memory_probes = {v: probe_accuracies(os.path.join(a.report, v), "gru_state") for v in analysed}
+    gains = {v: paired_gains(os.path.join(a.report, v)) for v in analysed}
+    t3 = table3(a.report, analysed, ref, probes, memory_probes)
+    plot_state_frequencies(a.report, analysed)
+    plot_transitions(a.report, analysed)
+    plot_survival(a.report, analysed, table2, probes, memory_probes)
+    write_index(a.report, analysed, t3, probes, gains)
     print("reproduce_report: wrote %s/index.md (%d variants analysed: %s)" % (a.report, len(analysed),
                                                                           ", ".join(analysed)))
 

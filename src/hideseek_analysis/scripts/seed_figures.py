@@ -30,6 +30,11 @@ from hideseek_analysis import STATE_NAMES  # noqa: E402
 from sweep_table2 import load_episodes, sweep_runs  # noqa: E402
 
 
+
+def runs_label(n):
+    return "1 run" if n == 1 else "%d runs" % n
+
+
 def order(root, found):
     import yaml
     with open(os.path.join(root, "config", "paper_reference.yaml")) as f:
@@ -94,7 +99,7 @@ def main(argv=None):
                          "ci_high": "" if np.isnan(ci[1]) else round(ci[1], 5)})
         x = np.arange(8) + (k - (len(variants) - 1) / 2) * width
         err = None if np.isnan(lo).any() else [np.array(means) - lo, np.array(hi) - means]
-        ax.bar(x, means, width, yerr=err, capsize=2, label="%s (%d runs)" % (v, len(runs)))
+        ax.bar(x, means, width, yerr=err, capsize=2, label="%s (%s)" % (v, runs_label(len(runs))))
     ax.axhline(0, color="k", lw=0.8)
     ax.set_xticks(np.arange(8))
     ax.set_xticklabels(STATE_NAMES)
@@ -144,7 +149,7 @@ def main(argv=None):
             warnings.simplefilter("ignore", RuntimeWarning)
             mean = np.nanmean(c, axis=0)
             lo, hi = np.nanmin(c, axis=0), np.nanmax(c, axis=0)
-        line, = ax.plot(bins, mean, label="%s (%d runs)" % (v, len(curves)))
+        line, = ax.plot(bins, mean, label="%s (%s)" % (v, runs_label(len(curves))))
         if len(curves) > 1:
             ax.fill_between(bins, lo, hi, color=line.get_color(), alpha=0.15)
     ax.set_xlabel("step of the episode")

@@ -99,12 +99,7 @@ MemoryReplay replayMemory(const StepLog& log, const std::vector<hideseek_hider::
                              std::to_string(log.imageWidth()) + ", variant '" + variant.name + "' renders " +
                              std::to_string(h) + "x" + std::to_string(w));
   }
-  hw::RendererOptions r;
-  r.camera = variant.game.camera;
-  r.max_views = n;
-  r.agent_radius = variant.game.agent_radius;
-  r.agent_height = variant.game.agent_height;
-  r.colors = map->colors;
+  hw::RendererOptions r = hw::rendererOptionsFor(variant.game, map->colors, n);
   r.render_threads = render_threads;
   hw::Renderer renderer(r);
   std::vector<hw::Arena> arenas;
@@ -173,125 +168,141 @@ MemoryReplay replayMemory(const StepLog& log, const std::vector<hideseek_hider::
   return out;
 }
 
+namespace {
+
+// steps_trained.csv: the trained policy's states, episode by episode; returns the episodes' seeds.
+std::set<uint32_t> writeTrainedSteps(const std::vector<ArenaStepRecord>& records, const std::string& dir) {
+  std::set<uint32_t> seeds;
+  std::ofstream out = openOrThrow(dir + "/steps_trained.csv");
+  out << kStepsHeader;
+  for (const ArenaStepRecord* r : byEpisode(records)) {
+    writeStepRow(out, *r);
+    seeds.insert(r->seed);
+  }
+  return seeds;
+}
+
+// features.csv (each image's labels) and the features of every recorded image through the
+// trained network and a random one (features_*.npy); a recurrent policy's memory too (memory_*.npy).
+void writeFeatures(const StepLog& log, hideseek_hider::HiderNet& trained, const hw::VariantConfig& variant,
+                   std::shared_ptr<const hw::MapSpec> map, const AnalysisInputsOptions& options, const std::string& dir,
+                   AnalysisInputsSummary& summary) {
+  const int h = log.imageHeight(), w = log.imageWidth();
+  if (h != trained->imageHeight() || w != trained->imageWidth()) {
+    throw std::runtime_error("the recorded images are " + std::to_string(h) + "x" + std::to_string(w) +
+                             ", the policy's network takes " + std::to_string(trained->imageHeight()) + "x" +
+                             std::to_string(trained->imageWidth()));
+  }
+  std::ofstream labels = openOrThrow(dir + "/features.csv");
+  labels << "episode,step,S,H,O\n";
+  for (const auto& r : log.records()) {
+    if (r.image < 0) continue;
+    labels << r.seed << ',' << r.step << ',' << r.hider_sees_seeker << ',' << r.seeker_sees_hider << ','
+           << r.obstacle_in_view << '\n';
+  }
+  torch::manual_seed(options.random_init_seed);
+  hideseek_hider::HiderNet random_init(h, w, trained->network());
+  for (auto [name, net] : {std::pair<const char*, hideseek_hider::HiderNet*>{"trained", &trained},
+                           std::pair<const char*, hideseek_hider::HiderNet*>{"random", &random_init}}) {
+    const torch::Tensor f = extractFeatures(*net, log.images().data(), summary.images, h, w, options.batch);
+    writeNpy(dir + "/features_" + name + ".npy", f.data_ptr<float>(), f.size(0), f.size(1));
+  }
+  if (trained->recurrent()) {
+    const MemoryReplay replay = replayMemory(log, {&trained, &random_init}, variant, map, options.pixel_tolerance);
+    summary.memory_images_compared = replay.images_compared;
+    summary.max_pixel_difference = replay.max_pixel_difference;
+    for (auto [name, k] : {std::pair<const char*, size_t>{"trained", 0}, std::pair<const char*, size_t>{"random", 1}}) {
+      const torch::Tensor m = replay.memory[k].contiguous();
+      writeNpy(dir + "/memory_" + name + ".npy", m.data_ptr<float>(), m.size(0), m.size(1));
+    }
+  }
+}
+
+// One step of a scripted episode as the step log records it.
+ArenaStepRecord toRecord(const hideseek_seeker::ScriptedStep& s) {
+  ArenaStepRecord r;
+  r.seed = s.seed;
+  r.step = static_cast<uint32_t>(s.step);
+  r.hider_x = s.hider.position.x;
+  r.hider_y = s.hider.position.y;
+  r.hider_yaw = s.hider.yaw;
+  r.seeker_x = s.seeker.position.x;
+  r.seeker_y = s.seeker.position.y;
+  r.seeker_yaw = s.seeker.yaw;
+  r.distance = hw::distance(s.hider.position, s.seeker.position);
+  r.hider_sees_seeker = s.labels.hider_sees_seeker;
+  r.seeker_sees_hider = s.labels.seeker_sees_hider;
+  r.obstacle_in_view = s.labels.obstacle_in_view;
+  r.hider_action = static_cast<int>(s.hider_action);
+  return r;
+}
+
+// steps_random.csv: the random policy over at least as many steps as the trained one, in whole
+// episodes, from the trained rollout's first seed on.
+void writeRandomSteps(const hw::VariantConfig& variant, std::shared_ptr<const hw::MapSpec> map, uint32_t first_seed,
+                      const std::string& dir, AnalysisInputsSummary& summary) {
+  std::ofstream out = openOrThrow(dir + "/steps_random.csv");
+  out << kStepsHeader;
+  uint32_t next_seed = first_seed;
+  while (summary.random_steps < summary.steps) {
+    std::vector<ArenaStepRecord> episode;
+    const auto played = hideseek_seeker::playScriptedHider(
+        variant, map, hideseek_seeker::EvaderKind::kRandom, next_seed, 1,
+        [&](const hideseek_seeker::ScriptedStep& s) { episode.push_back(toRecord(s)); });
+    // The episode's last step carries how it ended (rewards are the trained rollout's only).
+    if (!episode.empty()) episode.back().outcome = played.front().survived ? 2 : 1;
+    for (const auto& r : episode) writeStepRow(out, r);
+    summary.random_steps += episode.size();
+    ++summary.random_episodes;
+    ++next_seed;
+  }
+}
+
+// layouts.csv: the layouts of the complete episodes with the smallest seeds (not the first to
+// end, which would favour short episodes), rebuilt from their seeds and checked against the
+// recorded start: a bag of another variant or map would not match.
+void writeLayouts(const std::vector<ArenaStepRecord>& records, const hw::VariantConfig& variant,
+                  std::shared_ptr<const hw::MapSpec> map, const AnalysisInputsOptions& options, const std::string& dir,
+                  AnalysisInputsSummary& summary) {
+  std::map<uint32_t, const ArenaStepRecord*> start;
+  std::set<uint32_t> complete;
+  for (const auto& r : records) {
+    if (r.step == 0) start[r.seed] = &r;
+    if (r.outcome != 0 && start.count(r.seed)) complete.insert(r.seed);
+  }
+  std::ofstream out = openOrThrow(dir + "/layouts.csv");
+  out << "episode,half_extent,x,y,size_x,size_y,yaw\n";
+  hw::Arena arena(variant.game, map);
+  for (uint32_t seed : complete) {
+    if (static_cast<int>(summary.trajectory_seeds.size()) >= options.trajectory_episodes) break;
+    arena.reset(seed);
+    const ArenaStepRecord& s = *start[seed];
+    if (std::abs(arena.hider().position.x - s.hider_x) > 1e-3 ||
+        std::abs(arena.hider().position.y - s.hider_y) > 1e-3) {
+      throw std::runtime_error("episode " + std::to_string(seed) + " of the recording does not start where variant '" +
+                               variant.name + "' starts it: was it recorded with another variant or map?");
+    }
+    for (const hw::Box& b : arena.layout().obstacles) {
+      out << seed << ',' << arena.layout().half_extent << ',' << b.center.x << ',' << b.center.y << ',' << b.size.x
+          << ',' << b.size.y << ',' << b.yaw << '\n';
+    }
+    summary.trajectory_seeds.push_back(seed);
+  }
+}
+
+}  // namespace
+
 AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::HiderNet& trained,
                                           const hw::VariantConfig& variant, std::shared_ptr<const hw::MapSpec> map,
                                           const AnalysisInputsOptions& options, const std::string& dir) {
   AnalysisInputsSummary summary;
-  const auto& records = log.records();
-  summary.steps = records.size();
-
-  // The trained policy's states.
-  std::set<uint32_t> seeds;
-  {
-    std::ofstream out = openOrThrow(dir + "/steps_trained.csv");
-    out << kStepsHeader;
-    for (const ArenaStepRecord* r : byEpisode(records)) {
-      writeStepRow(out, *r);
-      seeds.insert(r->seed);
-    }
-  }
+  summary.steps = log.records().size();
+  const std::set<uint32_t> seeds = writeTrainedSteps(log.records(), dir);
   summary.episodes = seeds.size();
-
-  // Features of every recorded image, through the trained network and a random one.
   summary.images = log.numImages();
-  if (summary.images > 0) {
-    const int h = log.imageHeight(), w = log.imageWidth();
-    if (h != trained->imageHeight() || w != trained->imageWidth()) {
-      throw std::runtime_error("the recorded images are " + std::to_string(h) + "x" + std::to_string(w) +
-                               ", the policy's network takes " + std::to_string(trained->imageHeight()) + "x" +
-                               std::to_string(trained->imageWidth()));
-    }
-    std::ofstream labels = openOrThrow(dir + "/features.csv");
-    labels << "episode,step,S,H,O\n";
-    for (const auto& r : records) {
-      if (r.image < 0) continue;
-      labels << r.seed << ',' << r.step << ',' << r.hider_sees_seeker << ',' << r.seeker_sees_hider << ','
-             << r.obstacle_in_view << '\n';
-    }
-    torch::manual_seed(options.random_init_seed);
-    hideseek_hider::HiderNet random_init(h, w, trained->network());
-    for (auto [name, net] : {std::pair<const char*, hideseek_hider::HiderNet*>{"trained", &trained},
-                             std::pair<const char*, hideseek_hider::HiderNet*>{"random", &random_init}}) {
-      const torch::Tensor f = extractFeatures(*net, log.images().data(), summary.images, h, w, options.batch);
-      writeNpy(dir + "/features_" + name + ".npy", f.data_ptr<float>(), f.size(0), f.size(1));
-    }
-    if (trained->recurrent()) {
-      const MemoryReplay replay = replayMemory(log, {&trained, &random_init}, variant, map, options.pixel_tolerance);
-      summary.memory_images_compared = replay.images_compared;
-      summary.max_pixel_difference = replay.max_pixel_difference;
-      for (auto [name, k] :
-           {std::pair<const char*, size_t>{"trained", 0}, std::pair<const char*, size_t>{"random", 1}}) {
-        const torch::Tensor m = replay.memory[k].contiguous();
-        writeNpy(dir + "/memory_" + name + ".npy", m.data_ptr<float>(), m.size(0), m.size(1));
-      }
-    }
-  }
-
-  // The random policy over at least as many steps, in whole episodes.
-  {
-    std::ofstream out = openOrThrow(dir + "/steps_random.csv");
-    out << kStepsHeader;
-    uint32_t next_seed = seeds.empty() ? 0 : *seeds.begin();
-    while (summary.random_steps < summary.steps) {
-      std::vector<ArenaStepRecord> episode;
-      const auto played = hideseek_seeker::playScriptedHider(variant, map, hideseek_seeker::EvaderKind::kRandom,
-                                                             next_seed, 1, [&](const hideseek_seeker::ScriptedStep& s) {
-                                                               ArenaStepRecord r;
-                                                               r.seed = s.seed;
-                                                               r.step = static_cast<uint32_t>(s.step);
-                                                               r.hider_x = s.hider.position.x;
-                                                               r.hider_y = s.hider.position.y;
-                                                               r.hider_yaw = s.hider.yaw;
-                                                               r.seeker_x = s.seeker.position.x;
-                                                               r.seeker_y = s.seeker.position.y;
-                                                               r.seeker_yaw = s.seeker.yaw;
-                                                               r.distance =
-                                                                   hw::distance(s.hider.position, s.seeker.position);
-                                                               r.hider_sees_seeker = s.labels.hider_sees_seeker;
-                                                               r.seeker_sees_hider = s.labels.seeker_sees_hider;
-                                                               r.obstacle_in_view = s.labels.obstacle_in_view;
-                                                               r.hider_action = static_cast<int>(s.hider_action);
-                                                               episode.push_back(r);
-                                                             });
-      // The episode's last step carries how it ended (rewards are the trained rollout's only).
-      if (!episode.empty()) episode.back().outcome = played.front().survived ? 2 : 1;
-      for (const auto& r : episode) writeStepRow(out, r);
-      summary.random_steps += episode.size();
-      ++summary.random_episodes;
-      ++next_seed;
-    }
-  }
-
-  // The layouts of the complete episodes with the smallest seeds (not the first to end, which
-  // would favour short episodes), rebuilt from their seeds and checked against the recorded
-  // start: a bag of another variant or map would not match.
-  {
-    std::map<uint32_t, const ArenaStepRecord*> start;
-    std::set<uint32_t> complete;
-    for (const auto& r : records) {
-      if (r.step == 0) start[r.seed] = &r;
-      if (r.outcome != 0 && start.count(r.seed)) complete.insert(r.seed);
-    }
-    std::ofstream out = openOrThrow(dir + "/layouts.csv");
-    out << "episode,half_extent,x,y,size_x,size_y,yaw\n";
-    hw::Arena arena(variant.game, map);
-    for (uint32_t seed : complete) {
-      if (static_cast<int>(summary.trajectory_seeds.size()) >= options.trajectory_episodes) break;
-      arena.reset(seed);
-      const ArenaStepRecord& s = *start[seed];
-      if (std::abs(arena.hider().position.x - s.hider_x) > 1e-3 ||
-          std::abs(arena.hider().position.y - s.hider_y) > 1e-3) {
-        throw std::runtime_error("episode " + std::to_string(seed) +
-                                 " of the recording does not start where variant '" + variant.name +
-                                 "' starts it: was it recorded with another variant or map?");
-      }
-      for (const hw::Box& b : arena.layout().obstacles) {
-        out << seed << ',' << arena.layout().half_extent << ',' << b.center.x << ',' << b.center.y << ',' << b.size.x
-            << ',' << b.size.y << ',' << b.yaw << '\n';
-      }
-      summary.trajectory_seeds.push_back(seed);
-    }
-  }
+  if (summary.images > 0) writeFeatures(log, trained, variant, map, options, dir, summary);
+  writeRandomSteps(variant, map, seeds.empty() ? 0 : *seeds.begin(), dir, summary);
+  writeLayouts(log.records(), variant, map, options, dir, summary);
   return summary;
 }
 

@@ -325,4 +325,47 @@ hideseek_msgs::GameState toGameState(const World& world, const std::optional<Epi
   return state;
 }
 
+namespace {
+
+// The first array whose length is not the arena count, or "".
+std::string firstWrongLength(size_t n, std::initializer_list<std::pair<const char*, size_t>> arrays) {
+  for (const auto& [name, size] : arrays) {
+    if (size != n)
+      return std::string(name) + " has " + std::to_string(size) + " entries for " + std::to_string(n) + " arenas";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string checkObservationBatch(const hideseek_msgs::ObservationBatch& msg, int height, int width,
+                                  size_t max_arenas) {
+  const size_t n = msg.num_arenas;
+  if (n == 0 || n > max_arenas) return "num_arenas " + std::to_string(n) + " (1 to " + std::to_string(max_arenas) + ")";
+  if (msg.height != static_cast<uint32_t>(height) || msg.width != static_cast<uint32_t>(width)) {
+    return "images of " + std::to_string(msg.height) + "x" + std::to_string(msg.width) + ", the hider sees " +
+           std::to_string(height) + "x" + std::to_string(width);
+  }
+  const size_t bytes = static_cast<size_t>(height) * width * 3;
+  if (msg.images.size() != n * bytes) {
+    return std::to_string(msg.images.size()) + " image bytes for " + std::to_string(n) + " RGB8 images";
+  }
+  return firstWrongLength(n, {{"step", msg.step.size()},
+                              {"seed", msg.seed.size()},
+                              {"rewards", msg.rewards.size()},
+                              {"done", msg.done.size()}});
+}
+
+std::string checkSeekerObservationBatch(const hideseek_msgs::SeekerObservationBatch& msg, size_t max_arenas) {
+  const size_t n = msg.num_arenas;
+  if (n == 0 || n > max_arenas) return "num_arenas " + std::to_string(n) + " (1 to " + std::to_string(max_arenas) + ")";
+  return firstWrongLength(n, {{"pose", msg.pose.size()},
+                              {"sees_hider", msg.sees_hider.size()},
+                              {"hider_position", msg.hider_position.size()},
+                              {"step", msg.step.size()},
+                              {"episode", msg.episode.size()},
+                              {"seed", msg.seed.size()},
+                              {"maps", msg.maps.size()}});
+}
+
 }  // namespace hideseek_game

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hideseek_game/msg_conversion.h"
 #include "hideseek_game/params.h"
 #include "hideseek_game/run_registry.h"
 #include "hideseek_game/topic_names.h"
@@ -207,18 +208,15 @@ void HiderNode::startTraining(const HiderNodeOptions& options) {
 
 void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& msg) {
   const size_t n = msg->num_arenas;
-  const size_t bytes = static_cast<size_t>(image_height_) * image_width_ * 3;
-  if (msg->height != static_cast<uint32_t>(image_height_) || msg->width != static_cast<uint32_t>(image_width_) ||
-      msg->images.size() != n * bytes || msg->step.size() != n || msg->seed.size() != n || msg->rewards.size() != n ||
-      msg->done.size() != n) {
+  const size_t image_bytes = static_cast<size_t>(image_height_) * image_width_ * 3;
+  const std::string problem =
+      hideseek_game::checkObservationBatch(*msg, image_height_, image_width_, hideseek_game::kMaxArenas);
+  if (!problem.empty()) {
     ++malformed_;
     hideseek_game::WallThrottle& throttle = malformed_throttle_;
     if (throttle.ready()) {
-      ROS_WARN(
-          "hider: ignored an observation batch that does not hold %zu %dx%d images with step ids (%lu so far; %lu more "
-          "like it since the last)",
-          n, image_height_, image_width_, static_cast<unsigned long>(malformed_),
-          static_cast<unsigned long>(throttle.suppressed()));
+      ROS_WARN("hider: ignored an observation batch: %s (%lu so far; %lu more like it since the last)", problem.c_str(),
+               static_cast<unsigned long>(malformed_), static_cast<unsigned long>(throttle.suppressed()));
     }
     return;
   }
@@ -291,7 +289,7 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
     std::vector<ArenaObservation> batch(n);
     const bool poses = msg->hider_pose.size() == n && msg->seeker_pose.size() == n;
     for (size_t i = 0; i < n; ++i) {
-      batch[i] = {msg->images.data() + i * bytes, msg->seed[i], msg->step[i], {}, {}};
+      batch[i] = {msg->images.data() + i * image_bytes, msg->seed[i], msg->step[i], {}, {}};
       if (poses) {
         batch[i].hider = {{msg->hider_pose[i].x, msg->hider_pose[i].y}, msg->hider_pose[i].theta, 0.0};
         batch[i].seeker = {{msg->seeker_pose[i].x, msg->seeker_pose[i].y}, msg->seeker_pose[i].theta, 0.0};

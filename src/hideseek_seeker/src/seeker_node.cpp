@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "hideseek_game/msg_conversion.h"
 #include "hideseek_game/params.h"
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/wall_throttle.h"
@@ -43,15 +44,14 @@ SeekerNode::SeekerNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
 
 void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::ConstPtr& msg) {
   const size_t n = msg->num_arenas;
-  if (msg->pose.size() != n || msg->sees_hider.size() != n || msg->hider_position.size() != n ||
-      msg->step.size() != n || msg->episode.size() != n || msg->seed.size() != n || msg->maps.size() != n) {
+  const std::string problem = hideseek_game::checkSeekerObservationBatch(*msg, hideseek_game::kMaxArenas);
+  if (!problem.empty()) {
     ++malformed_;
     hideseek_game::WallThrottle& throttle = malformed_throttle_;
     if (throttle.ready()) {
-      ROS_WARN(
-          "seeker: ignored an observation batch whose arrays do not all hold %zu arenas (%lu so far; %lu more like it "
-          "since the last)",
-          n, static_cast<unsigned long>(malformed_), static_cast<unsigned long>(throttle.suppressed()));
+      ROS_WARN("seeker: ignored an observation batch: %s (%lu so far; %lu more like it since the last)",
+               problem.c_str(), static_cast<unsigned long>(malformed_),
+               static_cast<unsigned long>(throttle.suppressed()));
     }
     return;
   }

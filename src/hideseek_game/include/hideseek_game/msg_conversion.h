@@ -38,6 +38,10 @@ hideseek_msgs::ObservationBatch toObservationBatch(const World& world, const std
                                                    const std::vector<float>& rewards, const std::vector<uint8_t>& done,
                                                    const std::vector<uint8_t>& outcome);
 
+// "" for an observation batch a hider can act on: at most max_arenas arenas, every array one entry
+// per arena, height x width RGB8 images; otherwise what is wrong, for the receiver's throttled warning.
+std::string checkObservationBatch(const hideseek_msgs::ObservationBatch& msg, int height, int width, size_t max_arenas);
+
 // Each arena's map as the seeker receives it, rebuilt only when the arena's layout changes.
 class ArenaMapCache {
  public:
@@ -52,6 +56,9 @@ class ArenaMapCache {
 // position only while it sees the hider), with each arena's map.
 hideseek_msgs::SeekerObservationBatch toSeekerObservationBatch(const World& world, const std::vector<uint8_t>& done,
                                                                const std::vector<hideseek_msgs::ArenaMap>& maps);
+
+// "" for a seeker batch whose arrays all hold one entry per arena (at most max_arenas), or what is wrong.
+std::string checkSeekerObservationBatch(const hideseek_msgs::SeekerObservationBatch& msg, size_t max_arenas);
 
 // Arena 0's game state after a decision. When the decision ended an episode (`finished`), the
 // state is that episode's end, not the next episode's start.
