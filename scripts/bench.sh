@@ -5,12 +5,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/env.sh
+source scripts/measure.sh
 ARENAS=${ARENAS:-16}
 SECONDS_PER_RUN=${SECONDS_PER_RUN:-10}
 ROS_UPDATES=${ROS_UPDATES:-20}
 FLOOR_UPDATES=${FLOOR_UPDATES:-4}
-ROLLOUT=$(awk '/^rollout_steps:/ { print $2 }' config/ppo.yaml)  # config/ppo.yaml's steps per arena per update
-[ -n "$ROLLOUT" ] || { echo "bench: config/ppo.yaml has no rollout_steps" >&2; exit 2; }
+ROLLOUT=$(rollout_steps config/ppo.yaml)  # config/ppo.yaml's steps per arena per update
 echo "# world core: physics, labels and rendering of $ARENAS arenas at 84x84 in one process"
 devel/lib/hideseek_game/world_core_bench config/game.yaml config/variants/basic.yaml "$ARENAS" "$SECONDS_PER_RUN"
 echo "# the same from Python (hideseek.make_vec, random hider actions, the scripted seeker planning), $ARENAS environments"
@@ -51,17 +51,14 @@ echo "train_gru_samples_per_s $gru"
 echo "train_gru_ratio $(ratio "$gru" "$floor")"
 echo "train_gru_gflops $(echo "$gru_out" | field '^gflops')"
 
-# PPO through the ROS graph (world, seeker, hider in train mode), timed from the end of update 2
-# to the end of update 2 + ROS_UPDATES; prints samples/s and where the hider's time went
+# PPO through the ROS graph (world, seeker, hider in train mode), timed after the warm-up
+# (scripts/measure.sh) over ROS_UPDATES updates; prints samples/s and where the hider's time went
 # (its loop_profile.csv over the same updates).
 ros_train() {  # NETWORK: "samples_per_s update inference wait other" (shares of the loop's time)
   local run
   run=$(mktemp -d)
-  roslaunch -p 11433 hideseek_world train.launch num_arenas:="$ARENAS" network:="$1" \
-    steps:=$((ARENAS * ROLLOUT * (ROS_UPDATES + 2))) output_dir:="$run" checkpoint_interval:=100000 >/dev/null 2>&1
-  awk -F, 'NR == 3 { s0 = $2; t0 = $3 } END { printf "%.0f ", ($2 - s0) / ($3 - t0) }' "$run/training_log.csv"
-  awk -F, 'NR > 3 { w += $3; i += $4; u += $5; o += $6 }
-    END { t = w + i + u + o; printf "%.3f %.3f %.3f %.3f\n", u / t, i / t, w / t, o / t }' "$run/loop_profile.csv"
+  train_through_graph "$run" 11433 "$ARENAS" "$ROS_UPDATES" network:="$1" > /dev/null 2>&1
+  echo "$(samples_per_s "$run/training_log.csv") $(loop_shares "$run/loop_profile.csv")"
   rm -rf "$run"
 }
 echo "# training through the ROS graph: world, seeker, hider in train mode, $ARENAS arenas, 84x84, default"
@@ -102,11 +99,11 @@ dd_train() {  # "samples_per_s"
   port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
   for r in 0 1; do
     roslaunch -p $((11435 + r)) hideseek_world train.launch num_arenas:="$ARENAS" hider_threads:=1 \
-      world_size:=2 rank:=$r rendezvous:=127.0.0.1:"$port" steps:=$((2 * ARENAS * ROLLOUT * (ROS_UPDATES + 2))) \
+      world_size:=2 rank:=$r rendezvous:=127.0.0.1:"$port" steps:=$((2 * ARENAS * ROLLOUT * (MEASURE_WARMUP + ROS_UPDATES))) \
       output_dir:="$([ $r = 0 ] && echo "$run0" || echo "$run1")" checkpoint_interval:=100000 >/dev/null 2>&1 &
   done
   wait
-  awk -F, 'NR == 3 { s0 = $2; t0 = $3 } END { printf "%.0f\n", ($2 - s0) / ($3 - t0) }' "$run0/training_log.csv"
+  samples_per_s "$run0/training_log.csv"
   rm -rf "$run0" "$run1"
 }
 echo "# training across machines, both ranks here: 2 ranks x 1 learner thread, $ARENAS arenas each, against"

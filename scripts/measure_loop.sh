@@ -24,8 +24,8 @@ cd "$(dirname "$0")/.."
 arenas=${1:-16}
 updates=${3:-20}
 [ "$updates" -ge 1 ] 2> /dev/null || { echo "measure_loop: UPDATES must be a whole number >= 1, got '$updates'" >&2; exit 2; }
-rollout=$(awk '/^rollout_steps:/ { print $2 }' "$config")
-[ -n "$rollout" ] || { echo "measure_loop: $config has no rollout_steps" >&2; exit 2; }
+source scripts/measure.sh
+rollout=$(rollout_steps "$config")
 label=${4:-${arenas}x$rollout}
 shift $(($# < 4 ? $# : 4))
 network=${NETWORK:-ff}
@@ -64,8 +64,7 @@ w1=$(ticks world) s1=$(ticks seeker) h1=$(ticks hider) r1=$(rows)
 wait $launch || true
 out=$(floor) && read -r floor_after ratio1 <<< "$out"
 # Rows r0 and r1 as read above (the polling may have seen them a few ms late; the log's own times are exact).
-graph=$(awk -F, -v a="$r0" -v b="$r1" 'NR == a { s0 = $2; t0 = $3 } NR == b { printf "%.0f", ($2 - s0) / ($3 - t0) }' \
-  "$run/training_log.csv")
+graph=$(samples_per_s "$run/training_log.csv" $((r0 - 1)) $((r1 - 1)))  # row k + 1 ends update k
 hz=$(getconf CLK_TCK)
 awk -v l="$label" -v f0="$floor_before" -v f1="$floor_after" -v g="$graph" -v n=$((r1 - r0)) -v hz="$hz" \
   -v w=$((w1 - w0)) -v s=$((s1 - s0)) -v h=$((h1 - h0)) 'BEGIN {

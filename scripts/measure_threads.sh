@@ -6,8 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/env.sh
+source scripts/measure.sh
 precision=${1:-fp32}
-export ROS_MASTER_URI=http://localhost:11488
 echo "| precision | hider_threads | OPENBLAS_NUM_THREADS | render_threads | train_ros_samples_per_s | train_floor_samples_per_s |"
 echo "| --- | --- | --- | --- | --- | --- |"
 for ht in 1 2; do
@@ -16,10 +16,9 @@ for ht in 1 2; do
       awk '/samples_per_s/ { print $2 }')
     for rt in 1 2; do
       run=$(mktemp -d)
-      roslaunch -p 11488 hideseek_world train.launch num_arenas:=16 steps:=$((16 * 64 * 7)) \
-        output_dir:="$run" checkpoint_interval:=100000 precision:="$precision" hider_threads:="$ht" \
-        blas_threads:="$blas" render_threads:="$rt" >/dev/null 2>&1
-      ros=$(awk -F, 'NR == 2 { s0 = $2; t0 = $3 } END { printf "%.0f", ($2 - s0) / ($3 - t0) }' "$run/training_log.csv")
+      train_through_graph "$run" 11488 16 5 precision:="$precision" hider_threads:="$ht" blas_threads:="$blas" \
+        render_threads:="$rt" > /dev/null 2>&1
+      ros=$(samples_per_s "$run/training_log.csv")
       rm -rf "$run"
       echo "| $precision | $ht | $blas | $rt | $ros | $floor |"
     done

@@ -14,23 +14,19 @@ ws=$(realpath "${WORKSPACE:-$(dirname "$0")/..}")
 port=${PORT:-11900}
 here=$(dirname "$(realpath "$0")")
 source "$here/env.sh"
+source "$here/measure.sh"
 set +u
 source "$ws/devel/setup.bash"
 set -u
-updates=22
-steps=$((16 * 64 * updates))
+ROLLOUT=$(rollout_steps "$ws/config/ppo.yaml")
+updates=$((MEASURE_WARMUP + 20))
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 # One training of `updates` updates into $1 on port $2 with $3 learner threads, in the background.
-train() {
-  ROS_MASTER_URI=http://localhost:$2 roslaunch -p "$2" hideseek_world train.launch variant:=basic steps:=$steps \
-    output_dir:="$1" checkpoint_interval:=100000 hider_threads:="$3" > "$1.log" 2>&1
-}
+train() { train_through_graph "$1" "$2" 16 20 variant:=basic hider_threads:="$3" > "$1.log" 2>&1; }
 # samples/s over updates 3..22 of a training log
-rate() {
-  awk -F, -v last=$updates 'NR == 3 { s0 = $2; t0 = $3 } NR == last + 1 { printf "%.1f", ($2 - s0) / ($3 - t0) }' "$1/training_log.csv"
-}
+rate() { samples_per_s "$1/training_log.csv" "$MEASURE_WARMUP" "$updates"; }
 one() {
   local d=$tmp/a$1
   train "$d" "$port" 2
