@@ -5,7 +5,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 TESTS=(game_core_test seeker_core_test hider_core_test episode_tally_test training_run_test teleop_test
-  analysis_core_test vec_game_test config_fuzz_replay action_batch_fuzz_replay checkpoint_fuzz_replay)
+  analysis_core_test vec_game_test config_fuzz_replay action_batch_fuzz_replay checkpoint_fuzz_replay bag_fuzz_replay)
 start=$(date +%s)
 scripts/sanitize_build.sh "${TESTS[@]}" > build_sanitize.log 2>&1 || {
   tail -n 30 build_sanitize.log; echo "test-sanitize: the build failed (build_sanitize.log)"; exit 1; }
