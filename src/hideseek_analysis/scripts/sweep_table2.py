@@ -222,7 +222,8 @@ def main(argv=None):
         fig, ax = plt.subplots(figsize=(8, 5))
         for v in present:
             prof, lo, hi = st.performance_profile(data[(v, "greedy")], taus, rng, max(200, args.reps // 4))
-            line, = ax.plot(taus, prof, label="%s (%d runs)" % (v, len(data[(v, "greedy")])))
+            n = len(data[(v, "greedy")])
+            line, = ax.plot(taus, prof, label="%s (%d run%s)" % (v, n, "" if n == 1 else "s"))
             ax.fill_between(taus, lo, hi, color=line.get_color(), alpha=0.15)
         ax.set_xlabel("living steps tau")
         ax.set_ylabel("fraction of episodes living more than tau")
