@@ -24,6 +24,104 @@
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_seeker/scripted_game.h"
 
+namespace {
+
+namespace hw = hideseek_game;
+
+// The hider that plays: "random", a scripted evader's name, or a checkpoint.
+std::unique_ptr<hideseek_hider::HiderPolicy> makeHider(const std::string& policy_path, const hw::VariantConfig& variant,
+                                                       bool greedy, bool memoryless) {
+  if (policy_path == "random") {
+    if (memoryless) throw std::runtime_error("memoryless applies to a GRU policy, not to the random hider");
+    return std::make_unique<hideseek_hider::RandomHiderPolicy>();
+  }
+  if (const auto evader = hideseek_hider::scriptedPolicy(policy_path)) {
+    if (memoryless) throw std::runtime_error("memoryless applies to a GRU policy, not to " + policy_path);
+    return std::make_unique<hideseek_hider::ScriptedHiderPolicy>(*evader, variant);
+  }
+  const int h = variant.game.camera.height, w = variant.game.camera.width;
+  auto policy = std::make_unique<hideseek_hider::NetworkHiderPolicy>(hideseek_hider::loadCheckpoint(policy_path, h, w),
+                                                                     torch::kCPU, greedy);
+  policy->setMemoryless(memoryless);
+  return policy;
+}
+
+// OUTPUT_layouts.yaml beside OUTPUT.csv: the layout of each arena's first episode.
+void writeLayouts(const hw::World& world, const std::string& csv_path, const std::string& variant_name) {
+  std::string layouts_path = csv_path;
+  if (layouts_path.size() > 4 && layouts_path.compare(layouts_path.size() - 4, 4, ".csv") == 0) {
+    layouts_path.resize(layouts_path.size() - 4);
+  }
+  layouts_path += "_layouts.yaml";
+  std::ofstream layouts(layouts_path);
+  if (!layouts) throw std::runtime_error("cannot write " + layouts_path);
+  layouts << "# play_episodes: the layout of each episode in " << csv_path << " (variant " << variant_name << ")\n"
+          << "episodes:\n";
+  for (int i = 0; i < world.numArenas(); ++i) {
+    const hw::Layout& l = world.arena(i).layout();
+    layouts << "  - seed: " << world.arena(i).seed() << "\n    half_extent: " << l.half_extent << "\n    obstacles:";
+    if (l.obstacles.empty()) layouts << " []";
+    layouts << "\n";
+    for (const auto& b : l.obstacles) {
+      layouts << "      - {center: [" << b.center.x << ", " << b.center.y << "], size: [" << b.size.x << ", "
+              << b.size.y << "], yaw: " << b.yaw << "}\n";
+    }
+  }
+}
+
+// Plays every arena to the end of its first episode and writes those steps to `out`, one row per
+// step. Every arena plays on after its first episode (the arenas stay in phase, as in the graph).
+void playFirstEpisodes(hw::GameLoop& game, hideseek_hider::HiderPolicy& hider,
+                       std::vector<hideseek_seeker::SeekerPolicy>& seekers, std::ofstream& out) {
+  const hw::World& world = game.world();
+  const int n = world.numArenas();
+  out << "seed,step,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome\n";
+  std::vector<bool> playing(n, true);
+  const hw::ArenaSeekerDecide decide = [&](int i, const hw::SeekerPerception& p) { return seekers[i].act(p); };
+  for (int left = n; left > 0;) {
+    std::vector<hideseek_hider::ArenaObservation> batch(n);
+    std::vector<hw::AgentState> hiders(n), seeker_states(n);
+    std::vector<hw::Labels> labels(n);
+    std::vector<uint32_t> seeds(n);
+    std::vector<int> steps(n);
+    for (int i = 0; i < n; ++i) {
+      const hw::Arena& a = world.arena(i);
+      batch[i] = {game.hiderImages().data() + i * world.imageBytes(), a.seed(), static_cast<uint32_t>(a.stepCount()),
+                  a.hider(), a.seeker()};
+      hiders[i] = a.hider();
+      seeker_states[i] = a.seeker();
+      labels[i] = a.labels();
+      seeds[i] = a.seed();
+      steps[i] = a.stepCount();
+    }
+    const std::vector<uint8_t> actions = hider.act(batch);
+    std::vector<hw::Action> hider_actions(n);
+    for (int i = 0; i < n; ++i) hider_actions[i] = static_cast<hw::Action>(actions[i]);
+    const hw::Decision d = game.step(hider_actions, decide);
+    for (int i = 0; i < n; ++i) {
+      const std::optional<hw::EpisodeSummary>& finished = d.steps[i].finished;
+      if (finished) seekers[i].reset(world.arena(i).layout(), world.arena(i).seed());
+      if (!playing[i]) continue;
+      const hw::AgentState &hs = hiders[i], &ss = seeker_states[i];
+      const hw::Labels& l = labels[i];
+      out << seeds[i] << ',' << steps[i] << ',' << hs.position.x << ',' << hs.position.y << ',' << hs.yaw << ','
+          << ss.position.x << ',' << ss.position.y << ',' << ss.yaw << ',' << l.hider_sees_seeker << ','
+          << l.seeker_sees_hider << ',' << l.obstacle_in_view << ',' << hw::distance(hs.position, ss.position) << ','
+          << static_cast<int>(actions[i]) << ',';
+      if (finished) {
+        const char* outcome = finished->outcome == hw::Outcome::kSurvived ? "survived" : "captured";
+        out << outcome;
+        playing[i] = false;
+        --left;
+        std::printf("seed %u: %s after %d steps\n", seeds[i], outcome, finished->steps);
+      }
+      out << '\n';
+    }
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   if (argc < 6 || argc > 8) {
     std::fprintf(
@@ -41,13 +139,11 @@ int main(int argc, char** argv) {
   }
   const std::string variant_name = argv[1], policy_path = argv[2];
   const long first_seed = std::atol(argv[3]), count = std::atol(argv[4]);
-  const bool greedy = mode == "greedy";
   if (first_seed < 0 || count < 1 || count > 64) {
     std::fprintf(stderr, "play_episodes: FIRST_SEED must be >= 0 and COUNT in [1, 64]\n");
     return 2;
   }
   try {
-    namespace hw = hideseek_game;
     const std::string config = hw::configDirectory();
     const auto variant = hw::loadVariantConfig(config + "/game.yaml", config + "/variants/" + variant_name + ".yaml");
     const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(variant.map_file));
@@ -57,21 +153,7 @@ int main(int argc, char** argv) {
     loop_options.seed = static_cast<uint32_t>(first_seed);
     hw::GameLoop game(variant.game, map, loop_options);
     const hw::World& world = game.world();
-    std::unique_ptr<hideseek_hider::HiderPolicy> hider;
-    if (policy_path == "random") {
-      if (memory == "memoryless")
-        throw std::runtime_error("memoryless applies to a GRU policy, not to the random hider");
-      hider = std::make_unique<hideseek_hider::RandomHiderPolicy>();
-    } else if (const auto evader = hideseek_hider::scriptedPolicy(policy_path)) {
-      if (memory == "memoryless") throw std::runtime_error("memoryless applies to a GRU policy, not to " + policy_path);
-      hider = std::make_unique<hideseek_hider::ScriptedHiderPolicy>(*evader, variant);
-    } else {
-      const int h = variant.game.camera.height, w = variant.game.camera.width;
-      auto policy = std::make_unique<hideseek_hider::NetworkHiderPolicy>(
-          hideseek_hider::loadCheckpoint(policy_path, h, w), torch::kCPU, greedy);
-      policy->setMemoryless(memory == "memoryless");
-      hider = std::move(policy);
-    }
+    const auto hider = makeHider(policy_path, variant, mode == "greedy", memory == "memoryless");
     std::vector<hideseek_seeker::SeekerPolicy> seekers;
     for (int i = 0; i < n; ++i) {
       seekers.emplace_back(hideseek_seeker::seekerOptionsFor(variant));
@@ -79,71 +161,8 @@ int main(int argc, char** argv) {
     }
     std::ofstream out(argv[5]);
     if (!out) throw std::runtime_error(std::string("cannot write ") + argv[5]);
-    std::string layouts_path = argv[5];
-    if (layouts_path.size() > 4 && layouts_path.compare(layouts_path.size() - 4, 4, ".csv") == 0) {
-      layouts_path.resize(layouts_path.size() - 4);
-    }
-    layouts_path += "_layouts.yaml";
-    std::ofstream layouts(layouts_path);
-    if (!layouts) throw std::runtime_error("cannot write " + layouts_path);
-    layouts << "# play_episodes: the layout of each episode in " << argv[5] << " (variant " << variant_name << ")\n"
-            << "episodes:\n";
-    for (int i = 0; i < n; ++i) {
-      const hw::Layout& l = world.arena(i).layout();
-      layouts << "  - seed: " << world.arena(i).seed() << "\n    half_extent: " << l.half_extent << "\n    obstacles:";
-      if (l.obstacles.empty()) layouts << " []";
-      layouts << "\n";
-      for (const auto& b : l.obstacles) {
-        layouts << "      - {center: [" << b.center.x << ", " << b.center.y << "], size: [" << b.size.x << ", "
-                << b.size.y << "], yaw: " << b.yaw << "}\n";
-      }
-    }
-    layouts.close();
-    out << "seed,step,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome\n";
-    // Every arena plays on after its first episode (the arenas stay in phase, as in the graph);
-    // only the first episode of each is written.
-    std::vector<bool> playing(n, true);
-    const hw::ArenaSeekerDecide decide = [&](int i, const hw::SeekerPerception& p) { return seekers[i].act(p); };
-    for (int left = n; left > 0;) {
-      std::vector<hideseek_hider::ArenaObservation> batch(n);
-      std::vector<hw::AgentState> hiders(n), seeker_states(n);
-      std::vector<hw::Labels> labels(n);
-      std::vector<uint32_t> seeds(n);
-      std::vector<int> steps(n);
-      for (int i = 0; i < n; ++i) {
-        const hw::Arena& a = world.arena(i);
-        batch[i] = {game.hiderImages().data() + i * world.imageBytes(), a.seed(), static_cast<uint32_t>(a.stepCount()),
-                    a.hider(), a.seeker()};
-        hiders[i] = a.hider();
-        seeker_states[i] = a.seeker();
-        labels[i] = a.labels();
-        seeds[i] = a.seed();
-        steps[i] = a.stepCount();
-      }
-      const std::vector<uint8_t> actions = hider->act(batch);
-      std::vector<hw::Action> hider_actions(n);
-      for (int i = 0; i < n; ++i) hider_actions[i] = static_cast<hw::Action>(actions[i]);
-      const hw::Decision d = game.step(hider_actions, decide);
-      for (int i = 0; i < n; ++i) {
-        const std::optional<hw::EpisodeSummary>& finished = d.steps[i].finished;
-        if (finished) seekers[i].reset(world.arena(i).layout(), world.arena(i).seed());
-        if (!playing[i]) continue;
-        const hw::AgentState &hs = hiders[i], &ss = seeker_states[i];
-        const hw::Labels& l = labels[i];
-        out << seeds[i] << ',' << steps[i] << ',' << hs.position.x << ',' << hs.position.y << ',' << hs.yaw << ','
-            << ss.position.x << ',' << ss.position.y << ',' << ss.yaw << ',' << l.hider_sees_seeker << ','
-            << l.seeker_sees_hider << ',' << l.obstacle_in_view << ',' << hw::distance(hs.position, ss.position) << ','
-            << static_cast<int>(actions[i]) << ',';
-        if (finished) {
-          const char* outcome = finished->outcome == hw::Outcome::kSurvived ? "survived" : "captured";
-          out << outcome;
-          playing[i] = false;
-          --left;
-          std::printf("seed %u: %s after %d steps\n", seeds[i], outcome, finished->steps);
-        }
-        out << '\n';
-      }
-    }
+    writeLayouts(world, argv[5], variant_name);
+    playFirstEpisodes(game, *hider, seekers, out);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "play_episodes: %s\n", e.what());
     return 1;
