@@ -93,6 +93,7 @@ class FileSource : public Source {
   }
   uint64_t size() const override { return size_; }
   void read(uint64_t at, void* out, size_t n) override {
+    if (n == 0) return;
     in_.seekg(static_cast<std::streamoff>(at));
     in_.read(static_cast<char*>(out), static_cast<std::streamsize>(n));
     if (!in_) bad(at, "the file could not be read");
@@ -107,7 +108,9 @@ class BufferSource : public Source {
  public:
   explicit BufferSource(const std::vector<uint8_t>& bytes) : bytes_(bytes) {}
   uint64_t size() const override { return bytes_.size(); }
-  void read(uint64_t at, void* out, size_t n) override { std::memcpy(out, bytes_.data() + at, n); }
+  void read(uint64_t at, void* out, size_t n) override {
+    if (n) std::memcpy(out, bytes_.data() + at, n);  // an empty vector's data() may be null
+  }
 
  private:
   const std::vector<uint8_t>& bytes_;
