@@ -169,7 +169,22 @@ class GlooCollective : public Collective {
       throw CollectiveError("DD-PPO rank " + me + ": the rendezvous at " + address_ +
                             " failed: " + firstLine(e.what()));
     }
-    // Wait for every rank, naming those that do not come.
+    try {
+      compareFingerprints(o, me);
+    } catch (const CollectiveError&) {
+      throw;
+    } catch (const std::exception& e) {
+      // The store's host, rank 0, went away while this rank read the others' settings.
+      throw CollectiveError(
+          "DD-PPO rank " + me + ": the rendezvous at " + address_ +
+          " failed while the ranks compared their settings (rank 0, its host, stopped): " + firstLine(e.what()));
+    }
+  }
+
+  // Waits for every rank's fingerprint, naming those that do not come, and compares them with
+  // rank 0's. Rank 0 hosts the store: it stays until every rank has read the fingerprints, so that
+  // each rank can name what differs, whichever finds it first.
+  void compareFingerprints(const RendezvousOptions& o, const std::string& me) {
     const auto until = std::chrono::steady_clock::now() + timeout_;
     std::vector<int> missing;
     do {
@@ -194,6 +209,12 @@ class GlooCollective : public Collective {
       const std::string d =
           difference(deserialize(textOf(store_->get("fingerprint/" + std::to_string(r)))), reference, r);
       if (!d.empty()) differences += (differences.empty() ? "" : "; ") + d;
+    }
+    store_->add("fingerprints_read", 1);
+    if (rank_ == 0) {
+      while (store_->add("fingerprints_read", 0) < world_ && std::chrono::steady_clock::now() < until) {
+        std::this_thread::sleep_for(Ms(20));
+      }
     }
     if (!differences.empty()) {
       throw CollectiveError("DD-PPO: the ranks disagree, so none trains: " + differences);
