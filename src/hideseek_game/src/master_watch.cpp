@@ -35,9 +35,10 @@ void MasterWatch::run(double period_s) {
   bool up = true;
   std::unique_lock<std::mutex> lock(mutex_);
   while (!wake_.wait_for(lock, std::chrono::duration<double>(period_s), [this] { return stop_; })) {
+    // The lock guards stop_ only: the master is asked without it.
+    lock.unlock();
     const bool answers = ros::master::check();
     if (up && !answers) {
-      ++outages_;
       ROS_ERROR(
           "%s: the ROS master at %s does not answer. This node goes on over the connections it has; "
           "nothing new can join until a master answers again.",
@@ -46,7 +47,6 @@ void MasterWatch::run(double period_s) {
       if (masterKnowsThisNode()) {
         ROS_WARN("%s: the ROS master at %s answers again and still knows this node.", node.c_str(), uri.c_str());
       } else {
-        ++restarts_;
         ROS_ERROR(
             "%s: a new ROS master answers at %s and does not know this node: its topics, services and "
             "parameters are not registered there, so a subscriber that starts now (rviz, rostopic, rosbag "
@@ -57,6 +57,7 @@ void MasterWatch::run(double period_s) {
       }
     }
     up = answers;
+    lock.lock();
   }
 }
 

@@ -9,7 +9,6 @@
 // its death stops the launch, and the same command resumes a training run from its checkpoint.)
 #pragma once
 
-#include <atomic>
 #include <condition_variable>
 #include <mutex>
 #include <thread>
@@ -23,17 +22,12 @@ class MasterWatch {
   MasterWatch(const MasterWatch&) = delete;
   MasterWatch& operator=(const MasterWatch&) = delete;
 
-  int outages() const { return outages_; }    // times the master stopped answering
-  int restarts() const { return restarts_; }  // times it came back without knowing this node
-
  private:
   void run(double period_s);
 
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stop_ = false;
-  std::atomic<int> outages_{0};
-  std::atomic<int> restarts_{0};
   std::thread thread_;
 };
 
