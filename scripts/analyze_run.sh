@@ -40,7 +40,7 @@ mkdir -p "$out"
 # play_episodes plays at most 64 episodes at once: chunks of 50, one CSV.
 for ((at = 0; at < episodes; at += 50)); do
   n=$((episodes - at < 50 ? episodes - at : 50))
-  devel/lib/hideseek_hider/play_episodes "$variant" "$policy" $((first + at)) "$n" "$tmp/chunk.csv" greedy > /dev/null
+  devel/lib/hideseek_play/play_episodes "$variant" "$policy" $((first + at)) "$n" "$tmp/chunk.csv" greedy > /dev/null
   if [ $at = 0 ]; then cp "$tmp/chunk.csv" "$tmp/steps.csv"; else tail -n +2 "$tmp/chunk.csv" >> "$tmp/steps.csv"; fi
 done
 /usr/bin/python3 src/hideseek_analysis/scripts/behaviour.py "$tmp/steps.csv" "$out" --run "$name"

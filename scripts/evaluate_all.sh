@@ -59,8 +59,8 @@ for v in "${variants[@]}"; do
     evaluate "$v" gru_memoryless "$gru" "$out/evaluations/${v}_gru_memoryless" memoryless:=true
   fi
 done
-/usr/bin/python3 scripts/table2.py config/paper_reference.yaml "$out/evaluations" "$out/table2" policies
+/usr/bin/python3 src/hideseek_analysis/scripts/table2.py config/paper_reference.yaml "$out/evaluations" "$out/table2" policies
 cat "$out/table2.md"
 # The GRU hiders against their feed-forward twins, evaluation seed by evaluation seed.
-/usr/bin/python3 scripts/gru_vs_ff.py "$out/evaluations" policies "$out/gru_vs_ff" > /dev/null
+/usr/bin/python3 src/hideseek_analysis/scripts/gru_vs_ff.py "$out/evaluations" policies "$out/gru_vs_ff" > /dev/null
 echo "evaluate_all: the GRU hiders against their feed-forward twins: $out/gru_vs_ff.md"

@@ -47,7 +47,7 @@ if [ "$game" != v2 ]; then
   exit 0
 fi
 map=$(sed -n 's/^map: *\([^ ]*\).*/\1/p' "config/variants/$variant.yaml")
-devel/lib/hideseek_hider/play_episodes "$variant" "$weights" 0 6 "/tmp/hideseek_traj_$name.csv" greedy > /dev/null
+devel/lib/hideseek_play/play_episodes "$variant" "$weights" 0 6 "/tmp/hideseek_traj_$name.csv" greedy > /dev/null
 /usr/bin/python3 src/hideseek_analysis/scripts/plot_trajectories.py "/tmp/hideseek_traj_$name.csv" "config/maps/$map" "$docs/trajectories.png" \
   "$name ($variant, game $game), greedy, seeds 0-5"
 echo "evaluate_run: $name: $docs/trajectories.png"

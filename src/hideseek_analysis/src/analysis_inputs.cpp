@@ -9,7 +9,7 @@
 
 #include "hideseek_game/arena.h"
 #include "hideseek_game/renderer.h"
-#include "hideseek_seeker/scripted_game.h"
+#include "hideseek_play/scripted_game.h"
 
 namespace hideseek_analysis {
 
@@ -219,7 +219,7 @@ void writeFeatures(const StepLog& log, hideseek_hider::HiderNet& trained, const 
 }
 
 // One step of a scripted episode as the step log records it.
-ArenaStepRecord toRecord(const hideseek_seeker::ScriptedStep& s) {
+ArenaStepRecord toRecord(const hideseek_play::ScriptedStep& s) {
   ArenaStepRecord r;
   r.seed = s.seed;
   r.step = static_cast<uint32_t>(s.step);
@@ -246,9 +246,9 @@ void writeRandomSteps(const hw::VariantConfig& variant, std::shared_ptr<const hw
   uint32_t next_seed = first_seed;
   while (summary.random_steps < summary.steps) {
     std::vector<ArenaStepRecord> episode;
-    const auto played = hideseek_seeker::playScriptedHider(
-        variant, map, hideseek_seeker::EvaderKind::kRandom, next_seed, 1,
-        [&](const hideseek_seeker::ScriptedStep& s) { episode.push_back(toRecord(s)); });
+    const auto played =
+        hideseek_play::playScriptedHider(variant, map, hideseek_hider::EvaderKind::kRandom, next_seed, 1,
+                                         [&](const hideseek_play::ScriptedStep& s) { episode.push_back(toRecord(s)); });
     // The episode's last step carries how it ended (rewards are the trained rollout's only).
     if (!episode.empty()) episode.back().outcome = played.front().survived ? 2 : 1;
     for (const auto& r : episode) writeStepRow(out, r);

@@ -49,16 +49,17 @@
 #include "hideseek_game/renderer.h"
 #include "hideseek_game/run_registry.h"
 #include "hideseek_hider/hider_net.h"
-#include "hideseek_seeker/scripted_game.h"
+#include "hideseek_play/scripted_game.h"
 
 namespace hw = hideseek_game;
-namespace hs = hideseek_seeker;
+namespace hh = hideseek_hider;
+namespace hp = hideseek_play;
 
 namespace {
 
 struct Sample {
   std::string variant;
-  hs::EvaderKind evader = hs::EvaderKind::kRandom;
+  hh::EvaderKind evader = hh::EvaderKind::kRandom;
   uint32_t seed = 0;
   int step = 0;
   hw::AgentState hider, seeker;
@@ -174,10 +175,10 @@ int make(const MakeOptions& o) {
     std::vector<Sample> candidates;
     std::vector<int> episodes_of_variant;
     const long first_seed = o.first_seed + 1000L * static_cast<long>(vi);
-    for (const hs::EvaderKind evader : hs::kAllEvaders) {
+    for (const hh::EvaderKind evader : hh::kAllEvaders) {
       const int first_episode = episode_id;
-      hs::playScriptedHider(v, map, evader, static_cast<uint32_t>(first_seed), o.episodes,
-                            [&](const hs::ScriptedStep& s) {
+      hp::playScriptedHider(v, map, evader, static_cast<uint32_t>(first_seed), o.episodes,
+                            [&](const hp::ScriptedStep& s) {
                               if (s.step % o.every != 0) return;
                               Sample x;
                               x.variant = name;
@@ -211,7 +212,7 @@ int make(const MakeOptions& o) {
       throw std::runtime_error("variant " + name + ": an (S, H) cell has no step in " + std::to_string(o.episodes) +
                                " episodes per hider; play more episodes (--episodes)");
     }
-    std::map<hs::EvaderKind, int> per_evader;
+    std::map<hh::EvaderKind, int> per_evader;
     for (auto& c : cells) {
       std::shuffle(c.begin(), c.end(), rng);
       for (size_t k = 0; k < take; ++k) {
@@ -222,8 +223,8 @@ int make(const MakeOptions& o) {
     composition << "| " << name << " | " << cells[0].size() << " / " << cells[1].size() << " / " << cells[2].size()
                 << " / " << cells[3].size() << " | " << take << " | " << episodes_of_variant.size() - n_test << " / "
                 << n_test << " | ";
-    for (size_t k = 0; k < std::size(hs::kAllEvaders); ++k) {
-      composition << (k ? " / " : "") << per_evader[hs::kAllEvaders[k]];
+    for (size_t k = 0; k < std::size(hh::kAllEvaders); ++k) {
+      composition << (k ? " / " : "") << per_evader[hh::kAllEvaders[k]];
     }
     composition << " |\n";
     cameras.push_back(v.game.camera.height * 10000 + v.game.camera.width);
@@ -279,7 +280,7 @@ int make(const MakeOptions& o) {
   labels.precision(6);
   for (size_t k = 0; k < chosen.size(); ++k) {
     const Sample& x = chosen[k];
-    labels << k << ',' << x.variant << ',' << hs::evaderName(x.evader) << ',' << x.seed << ',' << x.step << ','
+    labels << k << ',' << x.variant << ',' << hh::evaderName(x.evader) << ',' << x.seed << ',' << x.step << ','
            << x.labels.hider_sees_seeker << ',' << x.labels.seeker_sees_hider << ',' << x.labels.obstacle_in_view << ','
            << x.episode << ',' << (x.test ? "test" : "train") << ',' << x.hider.position.x << ',' << x.hider.position.y
            << ',' << x.hider.yaw << ',' << x.seeker.position.x << ',' << x.seeker.position.y << ',' << x.seeker.yaw

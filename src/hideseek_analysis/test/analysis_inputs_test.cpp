@@ -9,7 +9,7 @@
 
 #include "hideseek_game/hash_uniform.h"
 #include "hideseek_game/world.h"
-#include "hideseek_seeker/scripted_game.h"
+#include "hideseek_seeker/seeker_policy.h"
 
 namespace hideseek_analysis {
 namespace {

@@ -90,7 +90,7 @@ TEST_F(RunRegistryTest, TheShippedRegistryIsReadable) {
   EXPECT_NO_THROW(loadRunRegistry(std::string(HIDESEEK_POLICY_DIR) + "/policies.yaml"));
 }
 
-// What scripts/hideseek_registry.py prints for `command` (one name per line), run on /usr/bin/python3.
+// What hideseek_registry.py (hideseek_analysis) prints for `command` (one name per line), run on /usr/bin/python3.
 std::vector<std::string> pythonRegistry(const std::string& args) {
   const std::string command = "/usr/bin/python3 " HIDESEEK_REGISTRY_SCRIPT " " + args + " 2>&1";
   std::vector<std::string> lines;

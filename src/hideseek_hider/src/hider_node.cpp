@@ -130,7 +130,7 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
   image_width_ = o.variant.game.camera.width;
   // Measured on the 2-core reference machine: 2 intra-op threads train 1.5x faster than 1.
   torch::set_num_threads(o.threads);
-  std::optional<hideseek_seeker::EvaderKind> evader;
+  std::optional<EvaderKind> evader;
   try {
     if (o.mode == HiderMode::kPolicy) evader = scriptedPolicy(o.policy);
   } catch (const std::invalid_argument& e) {

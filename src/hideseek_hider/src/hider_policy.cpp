@@ -17,10 +17,10 @@ std::vector<uint8_t> RandomHiderPolicy::act(const std::vector<ArenaObservation>&
   return actions;
 }
 
-std::optional<hideseek_seeker::EvaderKind> scriptedPolicy(const std::string& policy) {
+std::optional<EvaderKind> scriptedPolicy(const std::string& policy) {
   const std::string prefix = "scripted/";
   if (policy.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
-  const auto kind = hideseek_seeker::evaderKind(policy.substr(prefix.size()));
+  const auto kind = evaderKind(policy.substr(prefix.size()));
   if (!kind) {
     throw std::invalid_argument("'" + policy +
                                 "' names no scripted evader: scripted/random, scripted/backpedal, scripted/flee, "
@@ -29,7 +29,7 @@ std::optional<hideseek_seeker::EvaderKind> scriptedPolicy(const std::string& pol
   return kind;
 }
 
-ScriptedHiderPolicy::ScriptedHiderPolicy(hideseek_seeker::EvaderKind kind, const hideseek_game::VariantConfig& variant)
+ScriptedHiderPolicy::ScriptedHiderPolicy(EvaderKind kind, const hideseek_game::VariantConfig& variant)
     : kind_(kind),
       variant_(variant),
       layout_source_(variant.game,

@@ -122,8 +122,8 @@ auto locked(F f) {
   };
 }
 
-hideseek_seeker::EvaderKind evader(const std::string& name) {
-  const auto kind = hideseek_seeker::evaderKind(name);
+hideseek_hider::EvaderKind evader(const std::string& name) {
+  const auto kind = hideseek_hider::evaderKind(name);
   if (!kind)
     throw std::invalid_argument("'" + name + "' names no scripted hider: random, backpedal, flee, hide or lap");
   return *kind;
@@ -192,7 +192,7 @@ PYBIND11_MODULE(_core, m) {
       .def(
           "scripted_actions",
           [](VecGame& g, const std::string& name) {
-            const hideseek_seeker::EvaderKind kind = evader(name);
+            const hideseek_hider::EvaderKind kind = evader(name);
             std::vector<uint8_t> a;
             {
               py::gil_scoped_release release;

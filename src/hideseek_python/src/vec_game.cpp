@@ -4,7 +4,6 @@
 #include <utility>
 
 #include "hideseek_game/map.h"
-#include "hideseek_seeker/scripted_game.h"
 
 namespace hideseek_python {
 
@@ -41,7 +40,7 @@ VecGame::VecGame(const hg::VariantConfig& variant, int num_envs, uint32_t seed, 
             loopOptions(num_envs, seed, render_threads)),
       finished_(num_envs),
       starts_(num_envs, 0),
-      evaders_(std::size(hideseek_seeker::kAllEvaders)) {
+      evaders_(std::size(hideseek_hider::kAllEvaders)) {
   seekers_.reserve(num_envs);
   for (int i = 0; i < num_envs; ++i) {
     seekers_.emplace_back(hideseek_seeker::seekerOptionsFor(variant_));
@@ -137,7 +136,7 @@ ArenaInfo VecGame::info(int env) const {
   return info;
 }
 
-std::vector<uint8_t> VecGame::scriptedActions(hideseek_seeker::EvaderKind kind) {
+std::vector<uint8_t> VecGame::scriptedActions(hideseek_hider::EvaderKind kind) {
   const int n = numEnvs();
   std::unique_ptr<Evaders>& e = evaders_[static_cast<size_t>(kind)];
   if (!e) {

@@ -50,7 +50,7 @@ def _play_with_module(variant, num_envs, seed, policy):
 @pytest.mark.parametrize("variant,policy,play_policy", [("stochasticmaps", "random", "random"),
                                                         ("stochasticseeker", "flee", "scripted/flee")])
 def test_same_episodes_as_play_episodes(variant, policy, play_policy, tmp_path):
-    play = _catkin_find("hideseek_hider", "play_episodes")
+    play = _catkin_find("hideseek_play", "play_episodes")
     out = tmp_path / "episodes.csv"
     subprocess.run([play, variant, play_policy, "30", "3", str(out)], check=True, capture_output=True)
     theirs = sorted(csv.DictReader(open(out)), key=lambda r: (int(r["seed"]), int(r["step"])))

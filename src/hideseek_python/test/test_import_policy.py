@@ -67,7 +67,7 @@ def test_imported_policy_plays_as_in_python(tmp_path):
     subprocess.run([_tool("hideseek_hider", "import_policy"), str(script), str(checkpoint), "basic", "1024"],
                    check=True, capture_output=True)
     out = tmp_path / "episodes.csv"
-    subprocess.run([_tool("hideseek_hider", "play_episodes"), "basic", str(checkpoint), "0", "2", str(out)],
+    subprocess.run([_tool("hideseek_play", "play_episodes"), "basic", str(checkpoint), "0", "2", str(out)],
                    check=True, capture_output=True)
     theirs = {}
     for r in csv.DictReader(open(out)):

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "hideseek_game/map.h"
-#include "hideseek_seeker/scripted_game.h"
+#include "hideseek_play/scripted_game.h"
 
 using hideseek_python::VecGame;
 
@@ -20,7 +20,7 @@ hideseek_game::VariantConfig variant(const std::string& name) {
 }
 
 // Plays `kind` in every arena until `episodes` episodes of arena 0 ended; their living steps.
-std::vector<int> playArena0(VecGame& game, hideseek_seeker::EvaderKind kind, int episodes) {
+std::vector<int> playArena0(VecGame& game, hideseek_hider::EvaderKind kind, int episodes) {
   std::vector<int> steps;
   while (static_cast<int>(steps.size()) < episodes) {
     game.step(game.scriptedActions(kind));
@@ -34,12 +34,12 @@ std::vector<int> playArena0(VecGame& game, hideseek_seeker::EvaderKind kind, int
 // A scripted hider played through the environment lives exactly as long as in the calibration
 // table's in-process game (playScriptedHider), episode by episode: the same game, seeker and evader.
 TEST(VecGame, ScriptedHidersPlayTheCalibrationsEpisodes) {
-  for (const auto& [name, kind] : {std::pair{"stochasticseeker", hideseek_seeker::EvaderKind::kFlee},
-                                   std::pair{"basic", hideseek_seeker::EvaderKind::kRandom}}) {
+  for (const auto& [name, kind] : {std::pair{"stochasticseeker", hideseek_hider::EvaderKind::kFlee},
+                                   std::pair{"basic", hideseek_hider::EvaderKind::kRandom}}) {
     const hideseek_game::VariantConfig v = variant(name);
     VecGame game(v, 1, 0, 1);
     const std::vector<int> got = playArena0(game, kind, 3);
-    const auto expected = hideseek_seeker::playScriptedHider(
+    const auto expected = hideseek_play::playScriptedHider(
         v, std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(v.map_file)), kind, 0, 3);
     ASSERT_EQ(expected.size(), 3u);
     for (int e = 0; e < 3; ++e) EXPECT_EQ(got[e], expected[e].living_steps) << name << " episode " << e;

@@ -9,7 +9,6 @@
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/wall_throttle.h"
 #include "hideseek_game/world_node_options.h"
-#include "hideseek_seeker/scripted_game.h"
 
 namespace hideseek_seeker {
 

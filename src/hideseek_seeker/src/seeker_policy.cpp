@@ -8,6 +8,15 @@ using hideseek_game::distance;
 using hideseek_game::kPi;
 using hideseek_game::wrapAngle;
 
+SeekerOptions seekerOptionsFor(const hideseek_game::VariantConfig& variant, double grid_resolution) {
+  SeekerOptions o;
+  o.type = variant.seeker_policy == "stochastic" ? SeekerPolicyType::kStochastic : SeekerPolicyType::kDeterministic;
+  o.radius = variant.game.agent_radius;
+  o.turn_per_step = variant.game.seeker.turn_rate * variant.game.physics_dt * variant.game.seeker_decision_frames;
+  o.grid_resolution = grid_resolution;
+  return o;
+}
+
 const char* modeName(SeekerMode mode) {
   switch (mode) {
     case SeekerMode::kChase:

@@ -1,11 +1,11 @@
-"""Tests of scripts/gru_vs_ff.py (the GRU hider against its feed-forward twin): run with python3 -m pytest."""
+"""Tests of hideseek_analysis' gru_vs_ff.py (the GRU hider against its feed-forward twin): run with python3 -m pytest."""
 import csv
 import os
 import subprocess
 import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-SCRIPT = os.path.join(ROOT, "scripts", "gru_vs_ff.py")
+SCRIPT = os.path.join(ROOT, "src", "hideseek_analysis", "scripts", "gru_vs_ff.py")
 
 POLICIES = """
 basic: {training_seed: 0, steps: 1177600}

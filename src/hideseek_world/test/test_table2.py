@@ -1,4 +1,4 @@
-"""Tests of scripts/table2.py (Table 2 beside the paper's): run with python3 -m pytest."""
+"""Tests of hideseek_analysis' table2.py (Table 2 beside the paper's): run with python3 -m pytest."""
 import csv
 import os
 import subprocess
@@ -7,7 +7,7 @@ import sys
 import pytest
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-TABLE2 = os.path.join(ROOT, "scripts", "table2.py")
+TABLE2 = os.path.join(ROOT, "src", "hideseek_analysis", "scripts", "table2.py")
 PAPER = os.path.join(ROOT, "config", "paper_reference.yaml")
 
 

@@ -41,7 +41,7 @@ failures=()
 mkdir -p "$dir/random"
 timeout 300 roslaunch -p "$port" hideseek_world evaluate.launch variant:=stochasticseeker policy:=random episodes:=40 \
   num_arenas:=4 output_dir:="$dir/random" > "$dir/random/launch.log" 2>&1
-"$(catkin_find hideseek_seeker calibration_table --first-only 2>/dev/null || echo calibration_table)" \
+"$(catkin_find hideseek_play calibration_table --first-only 2>/dev/null || echo calibration_table)" \
   --episodes 40 --evaders random --episodes-csv "$dir/in_process.csv" stochasticseeker > /dev/null
 if [ ! -s "$dir/random/episodes.csv" ]; then
   failures+=("the graph's evaluation wrote no episodes.csv")
@@ -62,7 +62,7 @@ compare() {  # NAME VARIANT POLICY EVADER GAME_FILE [LAUNCH ARGS...]
   mkdir -p "$dir/$name"
   timeout 300 roslaunch -p "$port" hideseek_world evaluate.launch variant:="$variant" policy:="$policy" episodes:=20 \
     num_arenas:=4 output_dir:="$dir/$name" "$@" > "$dir/$name/launch.log" 2>&1
-  "$(catkin_find hideseek_seeker calibration_table --first-only 2>/dev/null || echo calibration_table)" \
+  "$(catkin_find hideseek_play calibration_table --first-only 2>/dev/null || echo calibration_table)" \
     --game "$game" --episodes 20 --evaders "$evader" --episodes-csv "$dir/$name/in_process.csv" "$variant" > /dev/null
   if [ ! -s "$dir/$name/episodes.csv" ]; then
     failures+=("$name: the graph's evaluation wrote no episodes.csv")

@@ -12,7 +12,7 @@ out=$1
 root="$(cd "$(dirname "$0")/.." && pwd)"
 workspace="$(cd "$root/../.." && pwd)"
 dir=$(mktemp -d /tmp/hideseek_trajectories_test.XXXXXX)
-play=$(catkin_find hideseek_hider play_episodes --first-only)
+play=$(catkin_find hideseek_play play_episodes --first-only)
 failures=()
 if [ -z "$play" ]; then
   failures+=("play_episodes not built")

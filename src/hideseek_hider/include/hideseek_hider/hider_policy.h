@@ -10,7 +10,7 @@
 #include "hideseek_game/arena.h"
 #include "hideseek_game/game_options.h"
 #include "hideseek_hider/hider_net.h"
-#include "hideseek_seeker/scripted_evader.h"
+#include "hideseek_hider/scripted_evader.h"
 
 namespace hideseek_hider {
 
@@ -39,20 +39,20 @@ class RandomHiderPolicy : public HiderPolicy {
 // Each episode's layout is drawn again from its seed, as the world draws it.
 class ScriptedHiderPolicy : public HiderPolicy {
  public:
-  ScriptedHiderPolicy(hideseek_seeker::EvaderKind kind, const hideseek_game::VariantConfig& variant);
+  ScriptedHiderPolicy(EvaderKind kind, const hideseek_game::VariantConfig& variant);
   std::vector<uint8_t> act(const std::vector<ArenaObservation>& batch) override;
 
  private:
-  hideseek_seeker::EvaderKind kind_;
+  EvaderKind kind_;
   hideseek_game::VariantConfig variant_;
   hideseek_game::Arena layout_source_;  // reset with an episode's seed, it holds that episode's layout
-  std::vector<hideseek_seeker::ScriptedEvader> evaders_;
+  std::vector<ScriptedEvader> evaders_;
   std::vector<std::optional<uint32_t>> seeds_;  // each arena's episode seed at the last act()
 };
 
 // The evader a policy name scripted/NAME asks for, nothing for a name without the prefix; throws
 // std::invalid_argument for scripted/ and a name that is no evader.
-std::optional<hideseek_seeker::EvaderKind> scriptedPolicy(const std::string& policy);
+std::optional<EvaderKind> scriptedPolicy(const std::string& policy);
 
 // Inference from a checkpoint: one batched forward pass per step, no autograd. A GRU network
 // carries each arena's state from step to step and starts from zero at an episode's step 0 (a

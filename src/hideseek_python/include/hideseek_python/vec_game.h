@@ -14,7 +14,7 @@
 
 #include "hideseek_game/game_loop.h"
 #include "hideseek_game/game_options.h"
-#include "hideseek_seeker/scripted_evader.h"
+#include "hideseek_hider/scripted_evader.h"
 #include "hideseek_seeker/seeker_policy.h"
 
 namespace hideseek_python {
@@ -83,7 +83,7 @@ class VecGame {
   // hider, drawn from seed and step; backpedal, flee, hide, lap: evaders that read the true state),
   // as policy:=scripted/NAME plays them in process. The evaders keep state within an episode
   // (their goal and path): ask once per step, as the graph does.
-  std::vector<uint8_t> scriptedActions(hideseek_seeker::EvaderKind kind);
+  std::vector<uint8_t> scriptedActions(hideseek_hider::EvaderKind kind);
 
  private:
   void episodeStarted(int env);
@@ -96,7 +96,7 @@ class VecGame {
   bool untouched_ = true;         // no step or single-arena reset since construction or reset()
   std::vector<uint64_t> starts_;  // episodes started per arena, so that evaders reset once per episode
   struct Evaders {
-    std::vector<hideseek_seeker::ScriptedEvader> arenas;
+    std::vector<hideseek_hider::ScriptedEvader> arenas;
     std::vector<uint64_t> reset_at;  // starts_ when each was last reset
   };
   std::vector<std::unique_ptr<Evaders>> evaders_;  // per EvaderKind, made when first asked

@@ -10,12 +10,16 @@
 
 #include "hideseek_game/agent.h"
 #include "hideseek_game/arena.h"
-#include "hideseek_seeker/grid_planner.h"
+#include "hideseek_game/game_options.h"
+#include "hideseek_game/grid_planner.h"
 
 namespace hideseek_seeker {
 
 using hideseek_game::Action;
 using hideseek_game::AgentState;
+using hideseek_game::GridPlanner;
+using hideseek_game::Layout;
+using hideseek_game::Vec2;
 
 enum class SeekerPolicyType { kDeterministic, kStochastic };
 
@@ -28,6 +32,10 @@ struct SeekerOptions {
   double turn_per_step = 0.12 * hideseek_game::kPi;  // rad turned by one turn action
   double goal_tolerance = 0.5;                       // m: a waypoint or last known position counts as reached
 };
+
+// The seeker of a variant, as the seeker node builds it: its policy type, radius and turn from the
+// variant; the grid resolution is the node's planning setting.
+SeekerOptions seekerOptionsFor(const hideseek_game::VariantConfig& variant, double grid_resolution = 0.1);
 
 enum class SeekerMode { kPatrol, kChase, kLastKnown, kWander };
 const char* modeName(SeekerMode mode);

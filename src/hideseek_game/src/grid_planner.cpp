@@ -1,17 +1,17 @@
-#include "hideseek_seeker/grid_planner.h"
+#include "hideseek_game/grid_planner.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <queue>
 
-namespace hideseek_seeker {
+namespace hideseek_game {
 
 bool sameFootprints(const Layout& a, const Layout& b) {
   if (a.half_extent != b.half_extent || a.obstacles.size() != b.obstacles.size()) return false;
   for (size_t i = 0; i < a.obstacles.size(); ++i) {
-    const hideseek_game::Box& p = a.obstacles[i];
-    const hideseek_game::Box& q = b.obstacles[i];
+    const Box& p = a.obstacles[i];
+    const Box& q = b.obstacles[i];
     if (p.center.x != q.center.x || p.center.y != q.center.y || p.size.x != q.size.x || p.size.y != q.size.y ||
         p.yaw != q.yaw) {
       return false;
@@ -146,4 +146,4 @@ Vec2 GridPlanner::randomReachablePoint(Vec2 from, std::mt19937& rng) const {
   return from;
 }
 
-}  // namespace hideseek_seeker
+}  // namespace hideseek_game

@@ -1,4 +1,4 @@
-#include "hideseek_seeker/grid_planner.h"
+#include "hideseek_game/grid_planner.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 
 #include "hideseek_game/map.h"
 
-namespace hideseek_seeker {
+namespace hideseek_game {
 
 namespace {
 
@@ -74,4 +74,4 @@ TEST(GridPlanner, UnreachableGoalGivesNoPath) {
   EXPECT_FALSE(planner.plan({-3.0, 0.0}, {-3.0, 5.0}).empty());
 }
 
-}  // namespace hideseek_seeker
+}  // namespace hideseek_game

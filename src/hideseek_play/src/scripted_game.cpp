@@ -1,4 +1,4 @@
-#include "hideseek_seeker/scripted_game.h"
+#include "hideseek_play/scripted_game.h"
 
 #include <algorithm>
 #include <utility>
@@ -6,19 +6,13 @@
 #include "hideseek_game/arena.h"
 #include "hideseek_game/game_loop.h"
 
-namespace hideseek_seeker {
+namespace hideseek_play {
 
 using hideseek_game::Action;
 using hideseek_game::Arena;
-
-SeekerOptions seekerOptionsFor(const hideseek_game::VariantConfig& variant, double grid_resolution) {
-  SeekerOptions o;
-  o.type = variant.seeker_policy == "stochastic" ? SeekerPolicyType::kStochastic : SeekerPolicyType::kDeterministic;
-  o.radius = variant.game.agent_radius;
-  o.turn_per_step = variant.game.seeker.turn_rate * variant.game.physics_dt * variant.game.seeker_decision_frames;
-  o.grid_resolution = grid_resolution;
-  return o;
-}
+using hideseek_hider::ScriptedEvader;
+using hideseek_seeker::seekerOptionsFor;
+using hideseek_seeker::SeekerPolicy;
 
 std::vector<ScriptedEpisode> playScriptedHider(const hideseek_game::VariantConfig& variant,
                                                std::shared_ptr<const hideseek_game::MapSpec> map, EvaderKind evader,
@@ -81,4 +75,4 @@ ScriptedSummary summarize(const std::vector<ScriptedEpisode>& episodes) {
   return s;
 }
 
-}  // namespace hideseek_seeker
+}  // namespace hideseek_play

@@ -12,10 +12,13 @@
 #include "hideseek_game/arena.h"
 #include "hideseek_game/game_options.h"
 #include "hideseek_game/map.h"
-#include "hideseek_seeker/scripted_evader.h"
+#include "hideseek_hider/scripted_evader.h"
 #include "hideseek_seeker/seeker_policy.h"
 
-namespace hideseek_seeker {
+namespace hideseek_play {
+
+using hideseek_hider::EvaderKind;
+using hideseek_hider::EvaderOptions;
 
 struct ScriptedEpisode {
   uint32_t seed = 0;
@@ -33,9 +36,6 @@ struct ScriptedStep {
   hideseek_game::Action hider_action = hideseek_game::Action::kStay;
 };
 using ScriptedStepObserver = std::function<void(const ScriptedStep&)>;
-
-// The seeker of a variant, as the seeker node builds it.
-SeekerOptions seekerOptionsFor(const hideseek_game::VariantConfig& variant, double grid_resolution = 0.1);
 
 // Plays the episodes with seeds first_seed .. first_seed + episodes - 1, in seed order; `observe`,
 // when given, sees every decision (the state statistics of the scripted hiders).
@@ -55,4 +55,4 @@ struct ScriptedSummary {
 };
 ScriptedSummary summarize(const std::vector<ScriptedEpisode>& episodes);
 
-}  // namespace hideseek_seeker
+}  // namespace hideseek_play

@@ -1,4 +1,5 @@
-// Shortest collision-free paths for the seeker: A* on the map inflated by its radius.
+// Shortest collision-free paths on a map inflated by an agent's radius (A* and distance fields):
+// the scripted seeker plans with it, and so do the scripted evaders.
 #pragma once
 
 #include <cmath>
@@ -7,11 +8,7 @@
 
 #include "hideseek_game/free_space_grid.h"
 
-namespace hideseek_seeker {
-
-using hideseek_game::GridCell;
-using hideseek_game::Layout;
-using hideseek_game::Vec2;
+namespace hideseek_game {
 
 // Whether two layouts have the same arena and obstacle footprints: all a planner's grid depends on.
 bool sameFootprints(const Layout& a, const Layout& b);
@@ -31,7 +28,7 @@ class GridPlanner {
   // A uniformly drawn free cell centre reachable from `from`.
   Vec2 randomReachablePoint(Vec2 from, std::mt19937& rng) const;
   bool isFree(Vec2 p) const { return grid_.isFree(grid_.cellOf(p)); }
-  const hideseek_game::FreeSpaceGrid& grid() const { return grid_; }
+  const FreeSpaceGrid& grid() const { return grid_; }
 
  private:
   GridCell nearestFree(GridCell c) const;
@@ -40,7 +37,7 @@ class GridPlanner {
   template <typename Visit>
   void forEachNeighbour(GridCell c, Visit visit) const;
 
-  hideseek_game::FreeSpaceGrid grid_;
+  FreeSpaceGrid grid_;
 };
 
 template <typename Visit>
@@ -56,4 +53,4 @@ void GridPlanner::forEachNeighbour(GridCell c, Visit visit) const {
   }
 }
 
-}  // namespace hideseek_seeker
+}  // namespace hideseek_game

@@ -22,7 +22,7 @@
 #include "hideseek_game/game_loop.h"
 #include "hideseek_game/package_paths.h"
 #include "hideseek_hider/hider_policy.h"
-#include "hideseek_seeker/scripted_game.h"
+#include "hideseek_seeker/seeker_policy.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "hideseek_seeker/scripted_evader.h"
+#include "hideseek_hider/scripted_evader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "hideseek_game/hash_uniform.h"
 #include "hideseek_game/visibility.h"
 
-namespace hideseek_seeker {
+namespace hideseek_hider {
 
 using hideseek_game::Action;
 using hideseek_game::AgentState;
@@ -280,4 +280,4 @@ Action ScriptedEvader::follow(const AgentState& hider, bool backward) {
   return error > 0 ? Action::kTurnLeft : Action::kTurnRight;
 }
 
-}  // namespace hideseek_seeker
+}  // namespace hideseek_hider

@@ -12,10 +12,15 @@
 #include <string>
 
 #include "hideseek_game/arena.h"
-#include "hideseek_seeker/scripted_game.h"
+#include "hideseek_play/scripted_game.h"
 
-namespace hideseek_seeker {
+namespace hideseek_play {
 namespace {
+
+using hideseek_hider::evaderName;
+using hideseek_hider::kAllEvaders;
+using hideseek_seeker::seekerOptionsFor;
+using hideseek_seeker::SeekerPolicy;
 
 const std::string kConfig = HIDESEEK_CONFIG_DIR;
 
@@ -189,4 +194,4 @@ TEST(Calibration, SeekerCatchesAHiderThatStaysPutOnceItHasSeenIt) {
   }
 }
 
-}  // namespace hideseek_seeker
+}  // namespace hideseek_play

@@ -12,9 +12,12 @@
 
 #include "hideseek_game/agent.h"
 #include "hideseek_game/game_options.h"
-#include "hideseek_seeker/grid_planner.h"
+#include "hideseek_game/grid_planner.h"
 
-namespace hideseek_seeker {
+namespace hideseek_hider {
+
+using hideseek_game::GridPlanner;
+using hideseek_game::Vec2;
 
 enum class EvaderKind {
   kRandom,     // uniformly random actions, drawn from the episode seed and step (the paper's baseline)
@@ -96,4 +99,4 @@ class ScriptedEvader {
   int lap_sign_ = 0;  // lap's sense round the centre: +1 anticlockwise, -1 clockwise, 0 not chosen yet
 };
 
-}  // namespace hideseek_seeker
+}  // namespace hideseek_hider

@@ -1,0 +1,188 @@
+// The calibration table: every scripted hider (the random hider and the evaders) on every variant
+// (the files of config/variants/), over seeds 0..99 by default, beside the paper's random-hider
+// living steps (config/paper_reference.yaml).
+// Usage: calibration_table [--config DIR] [--game FILE] [--csv FILE] [--episodes N] [--first-seed S]
+//                          [--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE]
+//                          [VARIANT...]
+// --lap-radius: the ring the lap evader aims for (m from the centre; default 5.5, game v2's outer ring).
+// --game: the game file (default DIR/game.yaml; DIR/game_v1.yaml is the first game).
+// --episodes-csv writes one variant's episodes of one evader (seed,living_steps,outcome) as
+// evaluate.launch does.
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hideseek_game/config_error.h"
+#include "hideseek_game/package_paths.h"
+#include "hideseek_game/run_registry.h"
+#include "hideseek_play/scripted_game.h"
+
+namespace {
+
+namespace hh = hideseek_hider;
+
+constexpr double kTolerance = 0.20;  // the calibration target: the random hider within +-20 % of the paper
+
+int usage(const std::string& why) {
+  std::cerr << "calibration_table: " << why
+            << "\nusage: calibration_table [--config DIR] [--game FILE] [--csv FILE] [--episodes N] [--first-seed S] "
+               "[--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE] [VARIANT...]\n";
+  return 2;
+}
+
+struct Options {
+  std::string config_dir;  // --config DIR, else hideseek_game's installed config/
+  std::string game_file, csv_path, episodes_csv_path;
+  int episodes = 100;
+  long first_seed = 0;
+  std::vector<std::string> variants;
+  std::vector<hh::EvaderKind> evaders{std::begin(hh::kAllEvaders), std::end(hh::kAllEvaders)};
+  hh::EvaderOptions evader_options;
+};
+
+// The command line into `o`; an error names the bad option (the caller prints the usage).
+std::optional<std::string> parseArgs(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (a == "--config" && has_value) {
+      o.config_dir = argv[++i];
+    } else if (a == "--game" && has_value) {
+      o.game_file = argv[++i];
+    } else if (a == "--csv" && has_value) {
+      o.csv_path = argv[++i];
+    } else if (a == "--episodes-csv" && has_value) {
+      o.episodes_csv_path = argv[++i];
+    } else if (a == "--episodes" && has_value) {
+      o.episodes = std::atoi(argv[++i]);
+      if (o.episodes < 1) return "--episodes must be at least 1";
+    } else if (a == "--first-seed" && has_value) {
+      o.first_seed = std::atol(argv[++i]);
+      if (o.first_seed < 0) return "--first-seed must not be negative";
+    } else if (a == "--lap-radius" && has_value) {
+      o.evader_options.lap_radius = std::atof(argv[++i]);
+      if (!(o.evader_options.lap_radius > 0.0)) return "--lap-radius must be positive (m)";
+    } else if (a == "--evaders" && has_value) {
+      o.evaders.clear();
+      std::stringstream list(argv[++i]);
+      for (std::string name; std::getline(list, name, ',');) {
+        const auto kind = hh::evaderKind(name);
+        if (!kind) return "--evaders: unknown evader '" + name + "' (random, backpedal, flee, hide, lap)";
+        o.evaders.push_back(*kind);
+      }
+    } else if (!a.empty() && a[0] == '-') {
+      return "unknown option or missing value: " + a;
+    } else {
+      o.variants.push_back(a);
+    }
+  }
+  return std::nullopt;
+}
+
+// The defaults that need the config directory: the game file and every variant.
+void resolveDefaults(Options& o) {
+  if (o.config_dir.empty()) o.config_dir = hideseek_game::configDirectory();
+  if (o.game_file.empty()) o.game_file = o.config_dir + "/game.yaml";
+  if (o.variants.empty()) o.variants = hideseek_game::variantNames(o.config_dir + "/variants");
+}
+
+// One variant's episodes of one evader (seed,living_steps,outcome), as evaluate.launch writes them.
+bool writeEpisodesCsv(const std::string& path, const std::vector<hideseek_play::ScriptedEpisode>& played) {
+  std::ofstream rows(path);
+  rows << "seed,living_steps,outcome\n";
+  for (const auto& e : played)
+    rows << e.seed << ',' << e.living_steps << ',' << (e.survived ? "survived" : "captured") << '\n';
+  return static_cast<bool>(rows);
+}
+
+// One row of the table (stdout) and of the CSV, when one is written. `reference` is the paper's
+// random-hider living steps, NaN where the paper lacks the variant ("-" in the table, empty in the CSV).
+void writeRow(const std::string& variant, hh::EvaderKind evader, const hideseek_play::ScriptedSummary& s,
+              double reference, std::ofstream& csv) {
+  const bool has_reference = !std::isnan(reference);
+  const double ratio = s.avg_living_steps / reference;
+  char versus[64] = "", paper_column[16] = "-";
+  if (has_reference) std::snprintf(paper_column, sizeof paper_column, "%.0f", reference);
+  if (evader == hh::EvaderKind::kRandom && has_reference) {
+    std::snprintf(versus, sizeof versus, "%.2f (%s +-20 %%)", ratio,
+                  std::abs(ratio - 1.0) <= kTolerance ? "within" : "outside");
+  }
+  std::printf("| %s | %s | %.1f | %s | %s | %.0f %% | %.1f | %.0f %% |\n", variant.c_str(), hh::evaderName(evader),
+              s.avg_living_steps, paper_column, versus, 100.0 * s.success_rate, s.median_living_steps,
+              100.0 * s.seen_at_start_rate);
+  std::fflush(stdout);
+  if (!csv.is_open()) return;
+  csv << variant << ',' << hh::evaderName(evader) << ',' << s.episodes << ',' << s.avg_living_steps << ',';
+  if (has_reference)
+    csv << reference << ',' << ratio;
+  else
+    csv << ',';
+  csv << ',' << s.success_rate << ',' << s.median_living_steps << ',' << s.seen_at_start_rate << '\n';
+}
+
+// Every evader on every variant, into the table and the CSVs.
+int playTable(const Options& o) {
+  const YAML::Node paper = YAML::LoadFile(o.config_dir + "/paper_reference.yaml")["variants"];
+  std::ofstream csv;
+  if (!o.csv_path.empty()) {
+    csv.open(o.csv_path);
+    if (!csv) return usage("cannot write " + o.csv_path);
+    csv << "variant,evader,episodes,avg_living_steps,paper_random_living_steps,ratio_to_paper,success_rate,"
+           "median_living_steps,seen_at_step0\n";
+  }
+  std::printf("Scripted hiders, seeds %ld..%ld, at most the variant's max steps (game: %s)\n\n", o.first_seed,
+              o.first_seed + o.episodes - 1, std::filesystem::path(o.game_file).filename().c_str());
+  std::printf(
+      "| variant | evader | avg living steps | paper (random) | here / paper | success | median living steps | "
+      "seeker sees hider at step 0 |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  for (const auto& name : o.variants) {
+    const auto v = hideseek_game::loadVariantConfig(o.game_file, o.config_dir + "/variants/" + name + ".yaml");
+    const auto map = std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(v.map_file));
+    const double reference = paper[name] ? paper[name]["living_random"].as<double>() : NAN;
+    for (const hh::EvaderKind evader : o.evaders) {
+      const auto played = hideseek_play::playScriptedHider(v, map, evader, static_cast<uint32_t>(o.first_seed),
+                                                           o.episodes, {}, o.evader_options);
+      if (!o.episodes_csv_path.empty() && !writeEpisodesCsv(o.episodes_csv_path, played)) {
+        return usage("cannot write " + o.episodes_csv_path);
+      }
+      writeRow(name, evader, hideseek_play::summarize(played), reference, csv);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (const auto error = parseArgs(argc, argv, o)) return usage(*error);
+  try {
+    resolveDefaults(o);
+  } catch (const std::exception& e) {
+    std::cerr << "calibration_table: " << e.what() << " (or give --config DIR)\n";
+    return 2;
+  }
+  if (!o.episodes_csv_path.empty() && (o.variants.size() != 1 || o.evaders.size() != 1)) {
+    return usage("--episodes-csv needs exactly one variant and one evader");
+  }
+  try {
+    return playTable(o);
+  } catch (const hideseek_game::ConfigError& e) {
+    std::cerr << "calibration_table: " << e.what() << '\n';
+    return 1;
+  } catch (const YAML::Exception& e) {
+    std::cerr << "calibration_table: " << o.config_dir << "/paper_reference.yaml: " << e.what() << '\n';
+    return 1;
+  }
+}
