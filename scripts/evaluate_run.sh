@@ -42,12 +42,8 @@ for mode in $modes; do
   sed -i "s#$weights#$name#" "$out/evaluation.md" "$out/evaluation.csv"
   echo "evaluate_run: $name ($mode): $(tail -n 1 "$out/evaluation.csv" | cut -d, -f4,5 | tr , ' ') (living steps, success; $(($(date +%s) - start)) s)"
 done
-if [ "$game" != v2 ]; then
-  echo "evaluate_run: $name: no trajectories (play_episodes plays game v2 only)"
-  exit 0
-fi
-map=$(sed -n 's/^map: *\([^ ]*\).*/\1/p' "config/variants/$variant.yaml")
-devel/lib/hideseek_play/play_episodes "$variant" "$weights" 0 6 "/tmp/hideseek_traj_$name.csv" greedy > /dev/null
-/usr/bin/python3 src/hideseek_analysis/scripts/plot_trajectories.py "/tmp/hideseek_traj_$name.csv" "config/maps/$map" "$docs/trajectories.png" \
+map=$(devel/lib/hideseek_game/resolve --game "$game" "$variant" map_file)
+devel/lib/hideseek_play/play_episodes --game "$game" "$variant" "$weights" 0 6 "/tmp/hideseek_traj_$name.csv" greedy > /dev/null
+/usr/bin/python3 src/hideseek_analysis/scripts/plot_trajectories.py "/tmp/hideseek_traj_$name.csv" "$map" "$docs/trajectories.png" \
   "$name ($variant, game $game), greedy, seeds 0-5"
 echo "evaluate_run: $name: $docs/trajectories.png"

@@ -17,7 +17,6 @@
 #include "hideseek_game/params.h"
 #include "hideseek_game/run_registry.h"
 #include "hideseek_game/topic_names.h"
-#include "hideseek_game/world_node_options.h"
 #include "hideseek_hider/hider_net.h"
 
 namespace {

@@ -1,6 +1,7 @@
 // Analyses an existing recording (one made by analyze.launch, or any bag holding world/steps),
 // without a ROS master.
-// usage: analyze_bag VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]
+// usage: analyze_bag [--game GAME] VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]
+//   GAME: v2 (the default) or v1, the game the bag was played in.
 //   HIDESEEK_PIXEL_TOLERANCE (GRU policies): see analyze.launch's pixel_tolerance.
 #include <cstdio>
 #include <cstdlib>
@@ -9,19 +10,25 @@
 #include <string>
 
 #include "hideseek_analysis/analysis_job.h"
+#include "hideseek_game/game_selection.h"
 #include "hideseek_game/package_paths.h"
 
 int main(int argc, char** argv) {
+  std::string game = hideseek_game::kDefaultGame;
+  if (argc > 2 && std::string(argv[1]) == "--game") {
+    game = argv[2];
+    argv += 2;
+    argc -= 2;
+  }
   if (argc < 5 || argc > 6) {
     std::fprintf(stderr,
-                 "usage: analyze_bag VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]\n"
+                 "usage: analyze_bag [--game GAME] VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]\n"
                  "  writes the arrays to OUTPUT_DIR and the report to REPORT_DIR (default OUTPUT_DIR/report)\n");
     return 2;
   }
   try {
-    const std::string config = hideseek_game::configDirectory();
     hideseek_analysis::AnalysisJob job;
-    job.variant = hideseek_game::loadVariantConfig(config + "/game.yaml", config + "/variants/" + argv[1] + ".yaml");
+    job.variant = hideseek_game::selectGame(hideseek_game::configDirectory(), game, argv[1]).config;
     job.policy = argv[2];
     job.bag = argv[3];
     job.inputs_dir = argv[4];

@@ -8,7 +8,7 @@
 // balanced on S x H within each variant, and split into train and test by episode.
 //
 // usage:
-//   probe_set make OUT_DIR [--config DIR] [--game FILE] [--first-seed N] [--episodes N]
+//   probe_set make OUT_DIR [--config DIR] [--game GAME|FILE] [--first-seed N] [--episodes N]
 //                  [--every N] [--per-cell N] [--test-fraction F] [--seed N]
 //       plays every variant (config/variants) with each scripted hider (random, backpedal, flee,
 //       hide, lap) on its own seeds, first_seed + 1000 k.. for the k-th variant in name order
@@ -44,6 +44,7 @@
 #include "hideseek_analysis/analysis_inputs.h"
 #include "hideseek_game/arena.h"
 #include "hideseek_game/game_options.h"
+#include "hideseek_game/game_selection.h"
 #include "hideseek_game/map.h"
 #include "hideseek_game/package_paths.h"
 #include "hideseek_game/renderer.h"
@@ -81,7 +82,7 @@ struct MakeOptions {
 int usage(const std::string& why) {
   std::fprintf(stderr,
                "probe_set: %s\n"
-               "usage: probe_set make OUT_DIR [--config DIR] [--game FILE] [--first-seed N] [--episodes N] "
+               "usage: probe_set make OUT_DIR [--config DIR] [--game GAME|FILE] [--first-seed N] [--episodes N] "
                "[--every N] [--per-cell N] [--test-fraction F] [--seed N]\n"
                "       probe_set features PROBE_DIR OUT.npy (--policy CHECKPOINT | --random-init SEED "
                "[--network ff|gru])\n",
@@ -360,7 +361,7 @@ int main(int argc, char** argv) {
         }
       }
       if (o.config_dir.empty()) o.config_dir = hw::configDirectory();
-      if (o.game_file.empty()) o.game_file = o.config_dir + "/game.yaml";
+      o.game_file = hw::gameArgument(o.config_dir, o.game_file);
       return make(o);
     }
     if (command == "features") {

@@ -1,6 +1,10 @@
 #include "hideseek_game/params.h"
 
+#include <algorithm>
 #include <stdexcept>
+
+#include "hideseek_game/game_selection.h"
+#include "hideseek_game/package_paths.h"
 
 namespace hideseek_game {
 
@@ -59,6 +63,29 @@ bool readBool(const ros::NodeHandle& nh, const std::string& name, bool fallback)
   bool value = fallback;
   if (nh.hasParam(name) && !nh.getParam(name, value)) throw bad(nh, name, "must be true or false");
   return value;
+}
+
+VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
+  const std::string game_file = readString(nh, "game_config", ""), variant_file = readString(nh, "variant_config", "");
+  const std::string game = readString(nh, "game", kDefaultGame), variant = readString(nh, "variant", "");
+  if (!game_file.empty() && !variant_file.empty()) return loadVariantConfig(game_file, variant_file);
+  if (variant.empty() && variant_file.empty()) {
+    throw bad(
+        nh, "variant",
+        "is required (a variant's name, such as basic; or " + nh.resolveName("variant_config") + ", a variant file)");
+  }
+  const std::string config = configDirectory();
+  if (game_file.empty()) {
+    const std::vector<std::string> games = gameNames(config);
+    if (std::find(games.begin(), games.end(), game) == games.end()) {
+      std::string list;
+      for (const auto& g : games) list += (list.empty() ? "" : ", ") + g;
+      throw bad(nh, "game", "is '" + game + "', not a game in " + config + " (" + list + ")");
+    }
+  }
+  if (game_file.empty() && variant_file.empty()) return selectGame(config, game, variant).config;
+  return loadVariantConfig(game_file.empty() ? gameFile(config, game) : game_file,
+                           variant_file.empty() ? variantFile(config, variant) : variant_file);
 }
 
 }  // namespace hideseek_game

@@ -16,7 +16,6 @@
 #include "hideseek_game/params.h"
 #include "hideseek_game/run_registry.h"
 #include "hideseek_game/topic_names.h"
-#include "hideseek_game/world_node_options.h"
 #include "hideseek_hider/episode_tally.h"
 
 namespace {

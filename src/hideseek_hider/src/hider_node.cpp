@@ -7,12 +7,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hideseek_game/game_selection.h"
 #include "hideseek_game/msg_conversion.h"
 #include "hideseek_game/params.h"
 #include "hideseek_game/run_registry.h"
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/wall_throttle.h"
-#include "hideseek_game/world_node_options.h"
 #include "hideseek_hider/code_version.h"
 
 namespace hideseek_hider {
@@ -76,7 +76,8 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   t.total_steps = static_cast<int64_t>(hideseek_game::readDouble(pnh, "total_steps", 1e6, 1.0, 1e12));
   t.checkpoint_interval_s = hideseek_game::readDouble(pnh, "checkpoint_interval", 300.0, 1e-3, 1e6);
   o.ppo = loadPpoOptions(hideseek_game::requireString(pnh, "ppo_config", "a file path, in train mode"));
-  o.num_arenas = hideseek_game::readInt(pnh, "num_arenas", 16, 1, 64);
+  o.num_arenas =
+      hideseek_game::readInt(pnh, "num_arenas", hideseek_game::kWatchingArenas, 1, hideseek_game::kMaxArenas);
   o.seed = hideseek_game::readInt(pnh, "seed", 0, 0, hideseek_game::kMaxSeed);
   RendezvousOptions& r = o.rendezvous;
   r.world_size = hideseek_game::readInt(pnh, "world_size", 1, 1, 4096);

@@ -1,11 +1,11 @@
 // The calibration table: every scripted hider (the random hider and the evaders) on every variant
 // (the files of config/variants/), over seeds 0..99 by default, beside the paper's random-hider
 // living steps (config/paper_reference.yaml).
-// Usage: calibration_table [--config DIR] [--game FILE] [--csv FILE] [--episodes N] [--first-seed S]
+// Usage: calibration_table [--config DIR] [--game GAME|FILE] [--csv FILE] [--episodes N] [--first-seed S]
 //                          [--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE]
 //                          [VARIANT...]
 // --lap-radius: the ring the lap evader aims for (m from the centre; default 5.5, game v2's outer ring).
-// --game: the game file (default DIR/game.yaml; DIR/game_v1.yaml is the first game).
+// --game: the game: a name (v2, the default, or v1, the first game) or a game file of one's own.
 // --episodes-csv writes one variant's episodes of one evader (seed,living_steps,outcome) as
 // evaluate.launch does.
 #include <yaml-cpp/yaml.h>
@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "hideseek_game/config_error.h"
+#include "hideseek_game/game_selection.h"
 #include "hideseek_game/package_paths.h"
 #include "hideseek_game/run_registry.h"
 #include "hideseek_play/scripted_game.h"
@@ -34,9 +35,10 @@ namespace hh = hideseek_hider;
 constexpr double kTolerance = 0.20;  // the calibration target: the random hider within +-20 % of the paper
 
 int usage(const std::string& why) {
-  std::cerr << "calibration_table: " << why
-            << "\nusage: calibration_table [--config DIR] [--game FILE] [--csv FILE] [--episodes N] [--first-seed S] "
-               "[--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE] [VARIANT...]\n";
+  std::cerr
+      << "calibration_table: " << why
+      << "\nusage: calibration_table [--config DIR] [--game GAME|FILE] [--csv FILE] [--episodes N] [--first-seed S] "
+         "[--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE] [VARIANT...]\n";
   return 2;
 }
 
@@ -92,7 +94,7 @@ std::optional<std::string> parseArgs(int argc, char** argv, Options& o) {
 // The defaults that need the config directory: the game file and every variant.
 void resolveDefaults(Options& o) {
   if (o.config_dir.empty()) o.config_dir = hideseek_game::configDirectory();
-  if (o.game_file.empty()) o.game_file = o.config_dir + "/game.yaml";
+  o.game_file = hideseek_game::gameArgument(o.config_dir, o.game_file);
   if (o.variants.empty()) o.variants = hideseek_game::variantNames(o.config_dir + "/variants");
 }
 

@@ -1,7 +1,8 @@
 // Plays seeded episodes of a variant in process (world and seeker cores, the hider's policy on
 // rendered images) and writes every step of them to a CSV: the trajectories and distances that
 // show a policy's strategy. The same cores, draws and step order as the ROS graph in lockstep.
-// usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]
+// usage: play_episodes [--game GAME] VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]
+//   GAME: v2 (the default) or v1, resolved as the nodes resolve ~game (hideseek_game/game_selection.h).
 //   memoryless (GRU policies only, an ablation): every step starts from the zero state, so the
 //   trained GRU acts on the current image alone.
 //   POLICY: a checkpoint, "random", or scripted/EVADER (backpedal, flee, hide, lap). Columns:
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "hideseek_game/game_loop.h"
+#include "hideseek_game/game_selection.h"
 #include "hideseek_game/package_paths.h"
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_seeker/seeker_policy.h"
@@ -123,13 +125,22 @@ void playFirstEpisodes(hw::GameLoop& game, hideseek_hider::HiderPolicy& hider,
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 6 || argc > 8) {
-    std::fprintf(
-        stderr,
-        "usage: play_episodes VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]\n");
+  std::string game_name = hw::kDefaultGame;
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--game" && i + 1 < argc) {
+      game_name = argv[++i];
+    } else {
+      args.emplace_back(argv[i]);
+    }
+  }
+  if (args.size() < 5 || args.size() > 7) {
+    std::fprintf(stderr,
+                 "usage: play_episodes [--game GAME] VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] "
+                 "[memory|memoryless]\n");
     return 2;
   }
-  const std::string mode = argc > 6 ? argv[6] : "greedy", memory = argc > 7 ? argv[7] : "memory";
+  const std::string mode = args.size() > 5 ? args[5] : "greedy", memory = args.size() > 6 ? args[6] : "memory";
   if ((mode != "greedy" && mode != "sampled") || (memory != "memory" && memory != "memoryless")) {
     std::fprintf(
         stderr,
@@ -137,15 +148,14 @@ int main(int argc, char** argv) {
         mode.c_str(), memory.c_str());
     return 2;
   }
-  const std::string variant_name = argv[1], policy_path = argv[2];
-  const long first_seed = std::atol(argv[3]), count = std::atol(argv[4]);
+  const std::string variant_name = args[0], policy_path = args[1], csv_path = args[4];
+  const long first_seed = std::atol(args[2].c_str()), count = std::atol(args[3].c_str());
   if (first_seed < 0 || count < 1 || count > 64) {
     std::fprintf(stderr, "play_episodes: FIRST_SEED must be >= 0 and COUNT in [1, 64]\n");
     return 2;
   }
   try {
-    const std::string config = hw::configDirectory();
-    const auto variant = hw::loadVariantConfig(config + "/game.yaml", config + "/variants/" + variant_name + ".yaml");
+    const auto variant = hw::selectGame(hw::configDirectory(), game_name, variant_name).config;
     const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(variant.map_file));
     const int n = static_cast<int>(count);
     hw::GameLoopOptions loop_options;
@@ -159,9 +169,9 @@ int main(int argc, char** argv) {
       seekers.emplace_back(hideseek_seeker::seekerOptionsFor(variant));
       seekers.back().reset(world.arena(i).layout(), world.arena(i).seed());
     }
-    std::ofstream out(argv[5]);
-    if (!out) throw std::runtime_error(std::string("cannot write ") + argv[5]);
-    writeLayouts(world, argv[5], variant_name);
+    std::ofstream out(csv_path);
+    if (!out) throw std::runtime_error("cannot write " + csv_path);
+    writeLayouts(world, csv_path, variant_name);
     playFirstEpisodes(game, *hider, seekers, out);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "play_episodes: %s\n", e.what());

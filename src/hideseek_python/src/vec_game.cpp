@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "hideseek_game/game_selection.h"
 #include "hideseek_game/map.h"
 
 namespace hideseek_python {
@@ -10,12 +11,7 @@ namespace hideseek_python {
 namespace hg = hideseek_game;
 
 hg::VariantConfig loadVariant(const std::string& config_dir, const std::string& game, const std::string& variant) {
-  if (game != "v2" && game != "v1")
-    throw std::invalid_argument("game '" + game + "' is neither v2 (game.yaml) nor v1 (game_v1.yaml)");
-  if (variant.empty() || variant.find('/') != std::string::npos || variant.find("..") != std::string::npos)
-    throw std::invalid_argument("variant '" + variant + "' is not a variant name (config/variants/NAME.yaml)");
-  const std::string game_file = config_dir + (game == "v2" ? "/game.yaml" : "/game_v1.yaml");
-  return hg::loadVariantConfig(game_file, config_dir + "/variants/" + variant + ".yaml");
+  return hg::selectGame(config_dir, game, variant).config;
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "hideseek_game/config_error.h"
 #include "hideseek_game/map.h"
 #include "hideseek_play/scripted_game.h"
 
@@ -98,7 +99,7 @@ TEST(VecGame, BadInputIsRefusedAndChangesNothing) {
   EXPECT_EQ(game.info(1).seed, 1u);
   EXPECT_THROW(VecGame(variant("basic"), 0, 0, 1), std::invalid_argument);
   EXPECT_THROW(VecGame(variant("basic"), 65, 0, 1), std::invalid_argument);
-  EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v3", "basic"), std::invalid_argument);
-  EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v2", "../game"), std::invalid_argument);
-  EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v2", "nosuchvariant"), std::exception);
+  EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v3", "basic"), hideseek_game::ConfigError);
+  EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v2", "../game"), hideseek_game::ConfigError);
+  EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v2", "nosuchvariant"), hideseek_game::ConfigError);
 }

@@ -4,11 +4,11 @@
 
 #include <stdexcept>
 
+#include "hideseek_game/game_selection.h"
 #include "hideseek_game/msg_conversion.h"
 #include "hideseek_game/params.h"
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/wall_throttle.h"
-#include "hideseek_game/world_node_options.h"
 
 namespace hideseek_seeker {
 

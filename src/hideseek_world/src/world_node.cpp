@@ -21,19 +21,6 @@ using namespace hideseek_game;  // NOLINT(google-build-using-namespace): the nod
 
 namespace {
 
-hideseek_game::GameLoopOptions gameLoopOptions(const WorldNodeOptions& o) {
-  hideseek_game::GameLoopOptions g;
-  g.mode = o.mode;
-  g.num_arenas = o.num_arenas;
-  g.seed = o.seed;
-  g.seed_stride = o.seed_stride;
-  g.render = true;
-  g.render_threads = o.render_threads;
-  g.stale_action_timeout = o.stale_action_timeout;
-  g.resend_period = o.resend_period;
-  return g;
-}
-
 constexpr double kMapResolution = 0.05;  // m per cell of the published OccupancyGrid
 constexpr double kOwnerTimeout = 2.0;    // s a silent publisher keeps its topic
 constexpr double kSimTimeOrigin = 1.0;   // s; sim time 0 means "no time" to tf and rosbag
@@ -68,9 +55,9 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh),
       image_transport_(nh),
       options_(loadWorldNodeOptions(private_nh)),
-      game_(options_.variant.game, std::make_shared<const MapSpec>(options_.map), gameLoopOptions(options_)) {
+      game_(options_.variant.game, std::make_shared<const MapSpec>(options_.map), options_.loop) {
   const GameOptions& game = options_.variant.game;
-  const int n = options_.num_arenas;
+  const int n = options_.loop.num_arenas;
   seeker_image_.resize(game_.world().imageBytes());
   hider_.name = "hider";
   hider_.player = Player::kHider;
@@ -78,7 +65,7 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   seeker_.player = Player::kSeeker;
   camera_info_ = toCameraInfo(game.camera, options_.frame("hider/camera_optical_frame"));
 
-  const bool lockstep = options_.mode == ClockMode::kLockstep;
+  const bool lockstep = options_.loop.mode == ClockMode::kLockstep;
   hider_obs_pub_ = nh_.advertise<hideseek_msgs::ObservationBatch>(kHiderObservationsTopic, 2);
   seeker_obs_pub_ = nh_.advertise<hideseek_msgs::SeekerObservationBatch>(kSeekerObservationsTopic, 2);
   if (lockstep) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
@@ -135,7 +122,7 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     status_timer_ = nh_.createWallTimer(ros::WallDuration(options_.status_period), &WorldNode::printStatus, this);
   }
   ROS_INFO("world: variant '%s', map '%s', %d arena(s), %s mode, seed %u, images %dx%d", options_.variant.name.c_str(),
-           options_.map.name.c_str(), n, lockstep ? "lockstep" : "realtime", options_.seed, game.camera.width,
+           options_.map.name.c_str(), n, lockstep ? "lockstep" : "realtime", options_.loop.seed, game.camera.width,
            game.camera.height);
 }
 
@@ -144,7 +131,7 @@ bool WorldNode::reachedMaxDecisions() const {
 }
 
 ros::Time WorldNode::simTime(uint64_t decisions) const {
-  if (options_.mode == ClockMode::kRealtime) return ros::Time::now();
+  if (options_.loop.mode == ClockMode::kRealtime) return ros::Time::now();
   return ros::Time(kSimTimeOrigin + static_cast<double>(decisions) * options_.variant.game.stepDuration());
 }
 
@@ -186,7 +173,7 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_game::CheckedAc
     return;
   }
   const hideseek_msgs::ActionBatch& msg = checked.msg;
-  const size_t n = static_cast<size_t>(options_.num_arenas);
+  const size_t n = static_cast<size_t>(options_.loop.num_arenas);
   if (const std::string wrong = hideseek_game::checkActionBatchSize(msg, n); !wrong.empty()) {
     ++rejected_.wrong_arena_count;
     WallThrottle& throttle = throttles_.wrong_arena_count;
@@ -196,7 +183,7 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_game::CheckedAc
     }
     return;
   }
-  const bool lockstep = options_.mode == ClockMode::kLockstep;
+  const bool lockstep = options_.loop.mode == ClockMode::kLockstep;
   for (size_t i = 0; i < n; ++i) {
     const int arena = static_cast<int>(i);
     const uint32_t current = game_.expectedStepId(channel.player, arena);
@@ -312,7 +299,7 @@ void WorldNode::warnStale() {
     ROS_WARN(
         "world: no action for step %d (frame %d) within %.2f s (hider %s, seeker %s): the silent "
         "agent stands still this decision (%lu more like it since the last)",
-        game_.world().arena(0).stepCount(), game_.world().frameInStep(), options_.stale_action_timeout,
+        game_.world().arena(0).stepCount(), game_.world().frameInStep(), options_.loop.stale_action_timeout,
         game_.answered(Player::kHider, 0) ? "answered" : "silent",
         game_.answered(Player::kSeeker, 0) ? "answered" : "silent", static_cast<unsigned long>(throttle.suppressed()));
   }
@@ -357,7 +344,7 @@ void WorldNode::publishDecision(const Decision& decision) {
   last_finished_.reset();
   // Stamped with the time the step started, like its step record.
   const ros::Time stamp = simTime(decision.index);
-  for (int i = 0; i < options_.num_arenas; ++i) {
+  for (int i = 0; i < options_.loop.num_arenas; ++i) {
     if (const auto& finished = decision.steps[i].finished) {
       const EpisodeSummary& e = *finished;
       if (i == 0) last_finished_ = e;
@@ -399,7 +386,7 @@ void WorldNode::publishAgentTransforms(const ros::Time& stamp) {
 
 void WorldNode::publishObservations() {
   const ros::Time stamp = simNow();
-  if (options_.mode == ClockMode::kLockstep) {
+  if (options_.loop.mode == ClockMode::kLockstep) {
     rosgraph_msgs::Clock clock;
     clock.clock = stamp;
     clock_pub_.publish(clock);
@@ -416,7 +403,7 @@ void WorldNode::publishSeekerObservations() {
   std_msgs::Header header;
   header.stamp = simNow();
   header.frame_id = options_.frame_id;
-  publishSeekerObservations(header, std::vector<uint8_t>(options_.num_arenas, 0));
+  publishSeekerObservations(header, std::vector<uint8_t>(options_.loop.num_arenas, 0));
 }
 
 void WorldNode::publishSeekerObservations(const std_msgs::Header& header, const std::vector<uint8_t>& done) {
@@ -513,7 +500,7 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
   if (req.arena <= 0) startEpisodeVisuals();
   res.success = true;
   res.message = "reset " + (req.arena == -1 ? std::string("all arenas") : "arena " + std::to_string(req.arena));
-  if (started_ || options_.mode == ClockMode::kRealtime) {
+  if (started_ || options_.loop.mode == ClockMode::kRealtime) {
     publishObservations();
     publishArenaZero(true);
   }

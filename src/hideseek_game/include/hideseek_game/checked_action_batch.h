@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <string>
 
-#include "hideseek_game/world_node_options.h"  // kMaxArenas: the most a batch may carry
+#include "hideseek_game/game_selection.h"  // kMaxArenas: the most a batch may carry
 
 namespace hideseek_game {
 

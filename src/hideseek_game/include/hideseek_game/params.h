@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_game/game_options.h"
+
 namespace hideseek_game {
 
 // A non-empty string that has no default; `what` says what it is ("a file path").
@@ -19,5 +21,11 @@ std::string readChoice(const ros::NodeHandle& nh, const std::string& name, const
 int readInt(const ros::NodeHandle& nh, const std::string& name, int fallback, int min, int max);
 double readDouble(const ros::NodeHandle& nh, const std::string& name, double fallback, double min, double max);
 bool readBool(const ros::NodeHandle& nh, const std::string& name, bool fallback);
+
+// The game and variant a node plays, as game_selection.h resolves them: ~game (a game's name,
+// default v2) and ~variant (a variant's name) in the installed config/. A file of one's own
+// replaces either: ~game_config (a game file), ~variant_config (a variant file; tests). Throws
+// naming the parameter, or the file and field at fault.
+VariantConfig loadVariantParams(const ros::NodeHandle& private_nh);
 
 }  // namespace hideseek_game

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_game/game_options.h"
 #include "hideseek_game/wall_throttle.h"
-#include "hideseek_game/world_node_options.h"
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_hider/training_run.h"
 

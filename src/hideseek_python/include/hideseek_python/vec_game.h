@@ -19,9 +19,9 @@
 
 namespace hideseek_python {
 
-// The files of a game and variant under a config folder (the hideseek_game package's config/):
-// game "v2" reads game.yaml, "v1" game_v1.yaml; the variant is variants/VARIANT.yaml. Throws
-// std::invalid_argument naming the bad game or variant, hideseek_game::ConfigError for a bad file.
+// A game and variant under a config folder (the hideseek_game package's config/), resolved as
+// every node resolves them (hideseek_game::selectGame). Throws hideseek_game::ConfigError naming
+// the unknown game or variant (with those there), or the bad file and field.
 hideseek_game::VariantConfig loadVariant(const std::string& config_dir, const std::string& game,
                                          const std::string& variant);
 

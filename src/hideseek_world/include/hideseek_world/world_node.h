@@ -26,7 +26,7 @@
 #include "hideseek_game/msg_conversion.h"
 #include "hideseek_game/wall_throttle.h"
 #include "hideseek_game/world.h"
-#include "hideseek_game/world_node_options.h"
+#include "hideseek_world/world_node_options.h"
 
 namespace hideseek_world {
 
@@ -40,7 +40,6 @@ using hideseek_game::GameLoop;
 using hideseek_game::Player;
 using hideseek_game::WallThrottle;
 using hideseek_game::World;
-using hideseek_game::WorldNodeOptions;
 
 // Counts of rejected input, published on /diagnostics.
 struct RejectionCounts {

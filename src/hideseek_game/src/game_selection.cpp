@@ -1,0 +1,86 @@
+#include "hideseek_game/game_selection.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+
+#include "hideseek_game/config_error.h"
+#include "hideseek_game/run_registry.h"
+
+namespace hideseek_game {
+
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out.empty() ? "none" : out;
+}
+
+}  // namespace
+
+std::vector<std::string> gameNames(const std::string& config_dir) {
+  std::vector<std::string> names;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(config_dir, error)) {
+    const std::string file = entry.path().filename().string();
+    if (file == "game.yaml") {
+      names.push_back(kDefaultGame);
+    } else if (file.size() > 10 && file.compare(0, 5, "game_") == 0 && entry.path().extension() == ".yaml") {
+      names.push_back(file.substr(5, file.size() - 10));
+    }
+  }
+  std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
+    if ((a == kDefaultGame) != (b == kDefaultGame)) return a == kDefaultGame;
+    return a < b;
+  });
+  return names;
+}
+
+std::string gameFile(const std::string& config_dir, const std::string& game) {
+  const std::string file = config_dir + (game == kDefaultGame ? "/game.yaml" : "/game_" + game + ".yaml");
+  const bool plain = !game.empty() && game.find('/') == std::string::npos;
+  if (!plain || !std::filesystem::is_regular_file(file)) {
+    throw ConfigError(config_dir, "game", "'" + game + "' is not a game here (" + joined(gameNames(config_dir)) + ")");
+  }
+  return file;
+}
+
+std::string gameArgument(const std::string& config_dir, const std::string& value) {
+  if (value.empty()) return gameFile(config_dir, kDefaultGame);
+  const bool file =
+      value.find('/') != std::string::npos || (value.size() > 5 && value.compare(value.size() - 5, 5, ".yaml") == 0);
+  return file ? value : gameFile(config_dir, value);
+}
+
+std::string variantFile(const std::string& config_dir, const std::string& variant) {
+  const std::string file = config_dir + "/variants/" + variant + ".yaml";
+  const bool plain = !variant.empty() && variant.find('/') == std::string::npos;
+  if (!plain || !std::filesystem::is_regular_file(file)) {
+    throw ConfigError(
+        config_dir + "/variants", "variant",
+        "'" + variant + "' is not a variant here (" + joined(variantNames(config_dir + "/variants")) + ")");
+  }
+  return file;
+}
+
+GameSelection selectGame(const std::string& config_dir, const std::string& game, const std::string& variant) {
+  GameSelection s;
+  s.game = game;
+  s.variant = variant;
+  s.game_file = gameFile(config_dir, game);
+  s.variant_file = variantFile(config_dir, variant);
+  s.config = loadVariantConfig(s.game_file, s.variant_file);
+  if (s.config.game.name != game) {
+    throw ConfigError(s.game_file, "game",
+                      "is '" + s.config.game.name + "', but the file was selected as game '" + game + "'");
+  }
+  return s;
+}
+
+std::string shippedPolicy(const std::string& registry_file, const GameSelection& selection,
+                          const std::string& network) {
+  return shippedPolicyFile(registry_file, selection.variant, network, selection.game);
+}
+
+}  // namespace hideseek_game

@@ -1,0 +1,82 @@
+// The one resolver of game and variant names (game_selection.h): what the nodes, tools and scripts
+// all get for `game:=`, `variant:=` and `--game`.
+#include "hideseek_game/game_selection.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "hideseek_game/config_error.h"
+
+namespace hideseek_game {
+namespace {
+
+const std::string kConfig = HIDESEEK_CONFIG_DIR;
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(GameSelection, NamesResolveToTheirFiles) {
+  EXPECT_EQ(gameFile(kConfig, "v2"), kConfig + "/game.yaml");
+  EXPECT_EQ(gameFile(kConfig, "v1"), kConfig + "/game_v1.yaml");
+  EXPECT_EQ(variantFile(kConfig, "basic"), kConfig + "/variants/basic.yaml");
+  EXPECT_EQ(gameNames(kConfig), (std::vector<std::string>{"v2", "v1"}));
+}
+
+TEST(GameSelection, AVariantOfTheFirstGamePlaysTheFirstGamesMap) {
+  const GameSelection v1 = selectGame(kConfig, "v1", "basic");
+  EXPECT_EQ(v1.config.game.name, "v1");
+  EXPECT_NE(v1.config.map_file.find("maps/v1/"), std::string::npos) << v1.config.map_file;
+  const GameSelection v2 = selectGame(kConfig, kDefaultGame, "basic");
+  EXPECT_EQ(v2.config.game.name, "v2");
+  EXPECT_EQ(v2.config.map_file.find("maps/v1/"), std::string::npos) << v2.config.map_file;
+}
+
+TEST(GameSelection, AnUnknownNameIsRefusedWithTheNamesThere) {
+  const std::string game = errorOf([] { gameFile(kConfig, "v3"); });
+  EXPECT_NE(game.find("'v3' is not a game here (v2, v1)"), std::string::npos) << game;
+  const std::string variant = errorOf([] { variantFile(kConfig, "nosuch"); });
+  EXPECT_NE(variant.find("'nosuch' is not a variant here (basic, "), std::string::npos) << variant;
+  // A path is no name: the resolver never reads outside config/.
+  EXPECT_NE(errorOf([] { variantFile(kConfig, "../game"); }), "");
+  EXPECT_NE(errorOf([] { gameFile(kConfig, "../config/game"); }), "");
+  EXPECT_NE(errorOf([] { gameFile(kConfig, ""); }), "");
+}
+
+TEST(GameSelection, AToolsGameArgumentIsANameOrAFile) {
+  EXPECT_EQ(gameArgument(kConfig, ""), kConfig + "/game.yaml");
+  EXPECT_EQ(gameArgument(kConfig, "v1"), kConfig + "/game_v1.yaml");
+  EXPECT_EQ(gameArgument(kConfig, "/somewhere/mine.yaml"), "/somewhere/mine.yaml");
+  EXPECT_EQ(gameArgument(kConfig, "mine.yaml"), "mine.yaml");
+  EXPECT_NE(errorOf([] { gameArgument(kConfig, "v3"); }), "");
+}
+
+// A game file selected under one name that calls itself another is refused: the run registry
+// records the game's own name beside each policy.
+TEST(GameSelection, AGameFileMustCallItselfByItsName) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("hideseek_selection_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "variants");
+  std::filesystem::copy(kConfig + "/maps", dir / "maps", std::filesystem::copy_options::recursive);
+  std::filesystem::copy_file(kConfig + "/game.yaml", dir / "game.yaml");
+  std::filesystem::copy_file(kConfig + "/variants/basic.yaml", dir / "variants" / "basic.yaml");
+  std::ofstream(dir / "game_v9.yaml") << "extends: game.yaml\n";  // still calls itself v2
+  EXPECT_EQ(gameNames(dir.string()), (std::vector<std::string>{"v2", "v9"}));
+  const std::string e = errorOf([&] { selectGame(dir.string(), "v9", "basic"); });
+  EXPECT_NE(e.find("is 'v2', but the file was selected as game 'v9'"), std::string::npos) << e;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace hideseek_game
