@@ -16,6 +16,8 @@ namespace hideseek_game {
 
 namespace {
 
+using test::errorOf;
+
 std::vector<std::string> filesIn(const std::string& dir, const std::string& suffix) {
   std::vector<std::string> out;
   DIR* d = opendir(dir.c_str());
@@ -34,15 +36,6 @@ std::string writeTemp(const std::string& name, const std::string& text) {
   const std::string path = testing::TempDir() + name;
   std::ofstream(path) << text;
   return path;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 }  // namespace

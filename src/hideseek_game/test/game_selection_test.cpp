@@ -11,20 +11,13 @@
 #include <vector>
 
 #include "hideseek_game/config_error.h"
+#include "test_util.h"
 
 namespace hideseek_game {
 namespace {
 
 const std::string kConfig = HIDESEEK_CONFIG_DIR;
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::errorOf;
 
 TEST(GameSelection, NamesResolveToTheirFiles) {
   EXPECT_EQ(gameFile(kConfig, "v2"), kConfig + "/game.yaml");

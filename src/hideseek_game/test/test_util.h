@@ -1,10 +1,13 @@
 // Helpers shared by the world core tests.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 
+#include "hideseek_game/config_error.h"
 #include "hideseek_game/game_options.h"
+#include "hideseek_game/game_selection.h"
 #include "hideseek_game/map.h"
 #include "hideseek_game/renderer.h"
 
@@ -12,8 +15,19 @@ namespace hideseek_game::test {
 
 inline std::string configPath(const std::string& relative) { return std::string(HIDESEEK_CONFIG_DIR) + "/" + relative; }
 
+// A variant of the default game, as the nodes resolve it.
 inline VariantConfig loadVariant(const std::string& name) {
-  return loadVariantConfig(configPath("game.yaml"), configPath("variants/" + name + ".yaml"));
+  return selectGame(HIDESEEK_CONFIG_DIR, kDefaultGame, name).config;
+}
+
+// What the ConfigError that f throws says, or "" when it throws none.
+inline std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 inline std::shared_ptr<const MapSpec> loadMap(const std::string& name) {
