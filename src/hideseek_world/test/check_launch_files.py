@@ -35,10 +35,14 @@ def variant_problems(path, config):
     if not os.path.isfile(os.path.join(package, "config", "variants", variant + ".yaml")):
         return []
     problems = []
-    played = {k: v.value for k, v in config.params.items() if k.endswith("/variant_config")}
-    if not played or any(os.path.basename(v) != variant + ".yaml" for v in played.values()):
-        problems.append("plays %s, not config/variants/%s.yaml" % (sorted(set(played.values())) or "no variant",
-                                                                   variant))
+    # The nodes resolve ~variant (a name) through hideseek_game's resolver; a variant's launch file
+    # names its variant and overrides no file.
+    played = {k: v.value for k, v in config.params.items() if k.endswith("/variant")}
+    if not played or any(v != variant for v in played.values()):
+        problems.append("plays %s, not the variant %s" % (sorted(set(played.values())) or "no variant", variant))
+    files = sorted(k for k in config.params if k.endswith("/variant_config") or k.endswith("/game_config"))
+    if files:
+        problems.append("overrides the resolver with files: %s" % ", ".join(files))
     policy = [v.value for k, v in config.params.items() if k.endswith("/hider/policy")]
     if policy != ["shipped"]:
         problems.append("the hider's policy defaults to %s, not 'shipped' (the registry's shipped policy, else "

@@ -23,7 +23,7 @@ struct WorldNodeOptions {
   std::string tf_prefix;
   // A frame name with the prefix applied.
   std::string frame(const std::string& name) const { return tf_prefix.empty() ? name : tf_prefix + "/" + name; }
-  double publish_rate = 30.0;         // Hz of wall time for rviz outputs (markers, paths, images) in lockstep
+  double publish_rate = 30.0;  // Hz of wall time for rviz outputs (markers, paths, images) in lockstep
   // s of wall time between two status lines of arena 0 on the console (its step, the distance,
   // who sees whom; 0: none): a headless game that is not silent between episodes.
   double status_period = 0.0;
@@ -40,8 +40,8 @@ struct WorldNodeOptions {
   int64_t max_decisions = 0;
 };
 
-// Reads ~game and ~variant (or ~game_config, ~variant_config: hideseek_game::loadVariantParams), ~mode, ~num_arenas, ~seed, ... Throws std::runtime_error
-// (or ConfigError for files) naming the parameter or file field at fault.
+// Reads ~game and ~variant (or ~game_config, ~variant_config: hideseek_game::loadVariantParams), ~mode, ~num_arenas,
+// ~seed, ... Throws std::runtime_error (or ConfigError for files) naming the parameter or file field at fault.
 WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& private_nh);
 
 }  // namespace hideseek_world
