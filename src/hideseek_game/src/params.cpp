@@ -1,8 +1,8 @@
 #include "hideseek_game/params.h"
 
-#include <algorithm>
 #include <stdexcept>
 
+#include "hideseek_game/config_error.h"
 #include "hideseek_game/game_selection.h"
 #include "hideseek_game/package_paths.h"
 
@@ -76,11 +76,10 @@ VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
   }
   const std::string config = configDirectory();
   if (game_file.empty()) {
-    const std::vector<std::string> games = gameNames(config);
-    if (std::find(games.begin(), games.end(), game) == games.end()) {
-      std::string list;
-      for (const auto& g : games) list += (list.empty() ? "" : ", ") + g;
-      throw bad(nh, "game", "is '" + game + "', not a game in " + config + " (" + list + ")");
+    try {
+      gameFile(config, game);  // the resolver's refusal, under the parameter's name
+    } catch (const ConfigError& e) {
+      throw bad(nh, "game", "names no game: " + std::string(e.what()));
     }
   }
   if (game_file.empty() && variant_file.empty()) return selectGame(config, game, variant).config;
