@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # The per-run analysis, small outputs committed so that a run's weights may go afterwards: its
-# probes on the shared probe set (scripts/probe_set.sh; the results, not the features) and its
+# probes on the shared probe set (scripts/probe_set.sh; the results, not the features), the t-SNE
+# of its features on the probe set's test images (coordinates and neighbourhood scores) and its
 # behaviour on 100 rollouts (play_episodes, seeds 10000-10099, greedy: states, transitions,
 # distance over time, how often it walks backward, keeps the seeker in view, breaks the line of
 # sight), into docs/runs/<run>/analysis/.
 # usage: scripts/analyze_run.sh RUN WEIGHTS          (RUN as in policies/policies.yaml)
+#        scripts/analyze_run.sh --tsne-only RUN WEIGHTS   (the t-SNE alone: for a run analysed
+#                                                           before the per-run t-SNE existed)
 #        scripts/analyze_run.sh --baseline VARIANT POLICY   (random or scripted/EVADER: behaviour
 #                                                            only, into docs/analysis/baselines/<variant>/<policy>/;
 #                                                            the random hider's: ROLLOUT_EPISODES=1000, about 43,000 steps)
@@ -12,6 +15,8 @@
 #   ROLLOUT_EPISODES (default 100), ROLLOUT_SEED (default 10000).
 set -euo pipefail
 [ -z "${RECORD_ROOT:-}" ] || RECORD_ROOT=$(realpath "$RECORD_ROOT")
+tsne_only=0
+if [ "${1:-}" = --tsne-only ]; then tsne_only=1; shift; fi
 if [ "${1:-}" = --baseline ]; then
   baseline=1; variant=$2; policy=$3; name=${variant}_${policy//\//_}
 else
@@ -33,8 +38,13 @@ print(r.runs(sys.argv[2])[sys.argv[1]]["variant"])' "$name" "$records/policies/p
   probe=$(scripts/probe_set.sh)
   devel/lib/hideseek_analysis/probe_set features "$probe" "$tmp/trained.npy" --policy "$policy" > /dev/null
   mkdir -p "$out"
-  /usr/bin/python3 src/hideseek_analysis/scripts/probes.py run "$probe" "$tmp/trained.npy" docs/probe_set/baselines.csv \
-    "$out/probes.csv" --run "$name"
+  if [ $tsne_only = 0 ]; then
+    /usr/bin/python3 src/hideseek_analysis/scripts/probes.py run "$probe" "$tmp/trained.npy" docs/probe_set/baselines.csv \
+      "$out/probes.csv" --run "$name"
+  fi
+  /usr/bin/python3 src/hideseek_analysis/scripts/probes.py tsne "$probe" "$tmp/trained.npy" "$out" --run "$name" \
+    --baselines docs/probe_set/tsne_baselines.csv
+  if [ $tsne_only = 1 ]; then echo "analyze_run: $name: t-SNE into $out"; exit 0; fi
 fi
 mkdir -p "$out"
 # play_episodes plays at most 64 episodes at once: chunks of 50, one CSV.

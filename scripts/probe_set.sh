@@ -2,8 +2,9 @@
 # The shared probe set on this machine: makes it (probe_set make, about a minute) into PROBE_SET
 # (default ~/.cache/hideseek/probe_set) when it is missing, checks it against the committed
 # definition (docs/probe_set/labels.csv and images.sha256: the same images on every machine), and
-# probes the baselines (five random-init networks and the pixels) into docs/probe_set/baselines.csv
-# when that is missing. Prints the probe set's folder.
+# probes the baselines (five random-init networks and the pixels) into docs/probe_set/baselines.csv,
+# and their t-SNE neighbourhood scores into docs/probe_set/tsne_baselines.csv, when those are
+# missing. Prints the probe set's folder.
 # usage: scripts/probe_set.sh [--fix]   --fix (re)writes docs/probe_set/ from a new probe set: the
 #        probe set is fixed once, before any sweep run is analysed; do not move it after.
 set -euo pipefail
@@ -26,7 +27,7 @@ if [ "$fix" = --fix ]; then
   mkdir -p "$docs"
   cp "$dir/labels.csv" "$dir/composition.md" "$docs/"
   echo "$sha  images.npy" > "$docs/images.sha256"
-  rm -f "$docs/baselines.csv"
+  rm -f "$docs/baselines.csv" "$docs/tsne_baselines.csv"
   echo "probe_set.sh: the probe set is fixed in $docs (images.npy $sha)" >&2
 elif [ -s "$docs/labels.csv" ]; then
   cmp -s "$dir/labels.csv" "$docs/labels.csv" || { echo "probe_set.sh: $dir/labels.csv differs from the committed $docs/labels.csv: remove $dir to make it again" >&2; exit 1; }
@@ -35,11 +36,19 @@ else
   echo "probe_set.sh: no committed probe set in $docs: fix one first (scripts/probe_set.sh --fix)" >&2
   exit 1
 fi
-if [ ! -s "$docs/baselines.csv" ]; then
-  echo "probe_set.sh: probing the baselines (5 random-init networks, pixels)" >&2
+random_init() {
   for s in 0 1 2 3 4; do
     [ -s "$dir/random_init_$s.npy" ] || "$bin" features "$dir" "$dir/random_init_$s.npy" --random-init "$s" >&2
   done
+}
+if [ ! -s "$docs/baselines.csv" ]; then
+  echo "probe_set.sh: probing the baselines (5 random-init networks, pixels)" >&2
+  random_init
   /usr/bin/python3 src/hideseek_analysis/scripts/probes.py baselines "$dir" "$dir" "$docs/baselines.csv" >&2
+fi
+if [ ! -s "$docs/tsne_baselines.csv" ]; then
+  echo "probe_set.sh: the t-SNE of the baselines (5 random-init networks, pixels)" >&2
+  random_init
+  /usr/bin/python3 src/hideseek_analysis/scripts/probes.py tsne-baselines "$dir" "$dir" "$docs/tsne_baselines.csv" >&2
 fi
 echo "$dir"

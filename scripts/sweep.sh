@@ -10,7 +10,7 @@
 #   run      the queue in the foreground (what start runs)
 #   build    only create and build the worktree at the pin
 #   analyze  the per-run analysis (scripts/analyze_run.sh) of every done run that lacks it and
-#            whose weights are on this machine
+#            whose weights are on this machine (the t-SNE alone where only that is missing)
 #   ship     ship every variant's median sweep run into policies/ (the queue does it as each run
 #            ends), where its weights are on this machine
 #   status   the pin, and every run in queue order: done (with its evaluations, whether it is
@@ -105,6 +105,7 @@ is_done() {
     && [ -s "$records/docs/runs/$1/sampled/evaluation.csv" ] && [ -s "$records/docs/runs/$1/trajectories.png" ]
 }
 analysed() { [ -s "$records/docs/runs/$1/analysis/behaviour.csv" ]; }
+has_tsne() { [ -s "$records/docs/runs/$1/analysis/tsne_neighbours.csv" ]; }
 
 # The process tree under a PID (itself first).
 tree_pids() {
@@ -208,6 +209,15 @@ analyze_all() {
   while read -r name _ _; do
     if is_done "$name" && ! analysed "$name"; then
       analyze "$name" && n=$((n + 1))
+    elif is_done "$name" && ! has_tsne "$name" && [ -s "$runs/$name/policy.pt" ]; then
+      # analysed before the per-run t-SNE existed: that part alone, while the weights are here
+      if RECORD_ROOT=$records "$records/scripts/analyze_run.sh" --tsne-only "$name" "$runs/$name/policy.pt" \
+        >> "$dir/logs/$name.analysis.log" 2>&1; then
+        say "$name: t-SNE into $records/docs/runs/$name/analysis"
+        n=$((n + 1))
+      else
+        say "$name: the t-SNE failed; see $dir/logs/$name.analysis.log"
+      fi
     fi
   done < <(queue)
   say "$n runs analysed"

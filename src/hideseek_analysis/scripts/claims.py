@@ -351,7 +351,11 @@ def write(out_dir, rows, header):
         md.append("| %s | **%s**%s | %s | %s | %s | %s |" % (r["claim"], r["result"],
                                                             (" (" + r["note"] + ")") if r["note"] else "", eff,
                                                             r["runs"], r["measure"], r["departure"]))
-    md.append("")
+    md += ["", "Beside this table (`scripts/reproduce.sh`): Table 2 across seeds in [table2_seeds/](table2_seeds/table2.md), "
+           "and Figures 4-7 and the t-SNE across seeds: [states](state_frequencies_seeds.png), "
+           "[transitions](transitions_seeds.png), [distance](distance_seeds.png), "
+           "[survival against representation](survival_representation.png), [t-SNE](tsne_seeds.png) "
+           "(each with its numbers in the .csv of the same name).", ""]
     with open(os.path.join(out_dir, "claims.md"), "w") as f:
         f.write("\n".join(md))
 

@@ -15,6 +15,18 @@ usage:
       the random-init networks (FEATURES_DIR/random_init_<seed>.npy, seeds 0-4) and the pixels
   probes.py run PROBE_DIR FEATURES.npy BASELINES.csv OUT.csv [--run NAME]
       one run's trained features, with its gain over the mean of the random-init networks
+  probes.py tsne PROBE_DIR FEATURES.npy OUT_DIR [--run NAME] [--baselines TSNE_BASELINES.csv]
+      the t-SNE of one run's features on the probe set's test images: OUT_DIR/tsne.csv (each
+      image's 2-D coordinates) and OUT_DIR/tsne_neighbours.csv (how well the embedding's
+      neighbourhoods separate S and H: leave-one-out 10-nearest-neighbour balanced accuracy)
+  probes.py tsne-baselines PROBE_DIR FEATURES_DIR OUT.csv
+      the same neighbourhood scores for the random-init networks and the pixels, and the
+      coordinates of random-init network 0 (tsne_random_init_0.csv beside OUT.csv)
+
+The t-SNE is drawn on the test images only (the held-out 30 % of episodes, about 180 images per
+variant): the same images for every run, few enough to draw, and the coordinates (not the
+features) are what is committed. Features are reduced to 50 principal components first; the
+t-SNE uses perplexity 30, PCA initialisation and seed 0.
 """
 import argparse
 import csv
@@ -149,6 +161,98 @@ def run(probe_dir, features, baselines_csv, out, name):
             name, r["target"], r["balanced_accuracy"], r["random_init_mean"], r["gain_over_random_init"], r["C"]))
 
 
+TSNE_TARGETS = ("S", "H")
+TSNE_NEIGHBOURS = 10
+
+
+def tsne_embed(features, seed=0):
+    """2-D t-SNE of the rows of features (50 principal components first), deterministic in seed."""
+    from sklearn.decomposition import PCA
+    from sklearn.manifold import TSNE
+    x = np.asarray(features, dtype=np.float64)
+    x = x - x.mean(axis=0)
+    keep = min(50, x.shape[0] - 1, x.shape[1])
+    if keep < x.shape[1]:
+        x = PCA(n_components=keep, random_state=seed).fit_transform(x)
+    perplexity = min(30.0, (x.shape[0] - 1) / 3.0)
+    return TSNE(n_components=2, init="pca", random_state=seed, perplexity=perplexity).fit_transform(x)
+
+
+def neighbour_score(points, y, k=TSNE_NEIGHBOURS):
+    """Leave-one-out k-nearest-neighbour balanced accuracy of the 0/1 labels y in the embedding:
+    0.5 where the neighbourhoods ignore the label, 1 where every neighbourhood is pure."""
+    from sklearn.neighbors import NearestNeighbors
+    y = np.asarray(y)
+    if len(np.unique(y)) < 2:
+        raise ValueError("neighbour score: the labels hold one class only")
+    k = min(k, len(y) - 1)
+    _, idx = NearestNeighbors(n_neighbors=k + 1).fit(points).kneighbors(points)
+    votes = y[idx[:, 1:]].mean(axis=1)  # the point itself (distance 0) is left out
+    rng = np.random.default_rng(0)
+    predicted = np.where(votes == 0.5, rng.integers(0, 2, len(y)), votes > 0.5).astype(int)
+    return round(float(balanced_accuracy_score(y, predicted)), 4)
+
+
+def tsne_scores(points, labels, test):
+    return {t: neighbour_score(points, labels[t][test]) for t in TSNE_TARGETS}
+
+
+def write_coordinates(path, images, points):
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["image", "x", "y"])
+        for i, (a, b) in zip(images, points):
+            w.writerow([int(i), round(float(a), 2), round(float(b), 2)])
+
+
+def tsne_run(probe_dir, features, out_dir, name, baselines_csv=None):
+    labels = load_labels(probe_dir)
+    f = np.load(features)
+    if f.shape[0] != len(labels["S"]):
+        raise SystemExit("probes: %s holds %d rows, the probe set %d images" % (features, f.shape[0], len(labels["S"])))
+    test = np.flatnonzero(labels["test"])
+    points = tsne_embed(f[test])
+    write_coordinates(os.path.join(out_dir, "tsne.csv"), test, points)
+    scores = tsne_scores(points, labels, test)
+    base = []
+    if baselines_csv and os.path.exists(baselines_csv):
+        with open(baselines_csv) as fh:
+            base = list(csv.DictReader(fh))
+    rows = []
+    for t in TSNE_TARGETS:
+        rand = [float(b["neighbour_balanced_accuracy"]) for b in base
+                if b["target"] == t and b["representation"].startswith("random_init_")]
+        pix = [b["neighbour_balanced_accuracy"] for b in base if b["target"] == t and b["representation"] == "pixels"]
+        rows.append({"run": name, "target": t, "images": len(test), "neighbours": TSNE_NEIGHBOURS,
+                     "neighbour_balanced_accuracy": scores[t],
+                     "random_init_mean": round(float(np.mean(rand)), 4) if rand else "",
+                     "pixels": pix[0] if pix else ""})
+        print("probes: %s t-SNE %s: %d-neighbour balanced accuracy %.3f%s" % (
+            name, t, TSNE_NEIGHBOURS, scores[t], " (random init %.3f)" % np.mean(rand) if rand else ""))
+    write_rows(os.path.join(out_dir, "tsne_neighbours.csv"), rows,
+               ["run", "target", "images", "neighbours", "neighbour_balanced_accuracy", "random_init_mean", "pixels"])
+
+
+def tsne_baselines(probe_dir, features_dir, out):
+    labels = load_labels(probe_dir)
+    test = np.flatnonzero(labels["test"])
+    reps = [("random_init_%d" % s, np.load(os.path.join(features_dir, "random_init_%d.npy" % s))[test])
+            for s in RANDOM_INIT_SEEDS]
+    reps.append(("pixels", pixel_features(np.load(os.path.join(probe_dir, "images.npy"))[test])))
+    rows = []
+    for name, f in reps:
+        points = tsne_embed(f)
+        if name == "random_init_0":  # drawn beside the runs' embeddings (seed_figures.py)
+            write_coordinates(os.path.join(os.path.dirname(os.path.abspath(out)), "tsne_random_init_0.csv"), test, points)
+        scores = tsne_scores(points, labels, test)
+        rows += [{"representation": name, "target": t, "images": len(test), "neighbours": TSNE_NEIGHBOURS,
+                  "neighbour_balanced_accuracy": scores[t]} for t in TSNE_TARGETS]
+        print("probes: t-SNE of %s done" % name, flush=True)
+    write_rows(out, rows, ["representation", "target", "images", "neighbours", "neighbour_balanced_accuracy"])
+    print("probes: t-SNE baselines into %s" % out)
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     sub = p.add_subparsers(dest="command", required=True)
@@ -162,9 +266,23 @@ def main(argv=None):
     r.add_argument("baselines")
     r.add_argument("out")
     r.add_argument("--run", default="")
+    t = sub.add_parser("tsne")
+    t.add_argument("probe_dir")
+    t.add_argument("features")
+    t.add_argument("out_dir")
+    t.add_argument("--run", default="")
+    t.add_argument("--baselines", default=None)
+    tb = sub.add_parser("tsne-baselines")
+    tb.add_argument("probe_dir")
+    tb.add_argument("features_dir")
+    tb.add_argument("out")
     args = p.parse_args(argv)
     if args.command == "baselines":
         baselines(args.probe_dir, args.features_dir, args.out)
+    elif args.command == "tsne":
+        tsne_run(args.probe_dir, args.features, args.out_dir, args.run, args.baselines)
+    elif args.command == "tsne-baselines":
+        tsne_baselines(args.probe_dir, args.features_dir, args.out)
     else:
         run(args.probe_dir, args.features, args.baselines, args.out, args.run)
     return 0

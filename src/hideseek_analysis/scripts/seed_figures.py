@@ -15,6 +15,11 @@ Writes into OUT (default ROOT/docs/report):
 - survival_representation.png/.csv (Figure 7): probe gain (mean of S and H, over the 5 random-init
   networks) against living steps, one point per run, with the quadratic fit of the claims table
   (the runs of the paper's seven variants; a variant of our own is drawn hollow and not fitted).
+- tsne_seeds.png/.csv: the t-SNE of every analysed run's features on the probe set's test images
+  (docs/runs/<run>/analysis/tsne.csv; a row per variant, a column per training seed, random-init
+  network 0 in the first row), coloured by the (S, H) cell, and per variant how well the
+  embedding's neighbourhoods separate S and H (10-nearest-neighbour balanced accuracy, mean over
+  runs with a 95 % interval over runs) against the random-init networks and the pixels.
 An interval over one run is no interval: variants with one run are drawn without one.
 """
 import argparse
@@ -26,7 +31,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sweep_stats as st  # noqa: E402
-from claims import PAPER_VARIANTS, Runs, probe_value, transition_prob  # noqa: E402
+from claims import PAPER_VARIANTS, Runs, probe_value, read_csv, transition_prob  # noqa: E402
 from hideseek_analysis import STATE_NAMES  # noqa: E402
 from sweep_table2 import load_episodes, sweep_runs  # noqa: E402
 
@@ -51,14 +56,84 @@ def ci_over_runs(values, rng, reps):
     return float(values.mean()), st.interval(boot)
 
 
-def save(fig, out, name, rows=None):
-    """A figure as OUT/NAME.png and, with rows, its numbers as OUT/NAME.csv."""
+def save(fig, out, name, rows=None, rect=(0, 0, 1, 1)):
+    """A figure as OUT/NAME.png and, with rows, its numbers as OUT/NAME.csv; rect: the part of the
+    figure the panels fill (room for a legend below them)."""
     import matplotlib.pyplot as plt
-    fig.tight_layout()
+    fig.tight_layout(rect=rect)
     fig.savefig(os.path.join(out, name + ".png"), dpi=110)
     plt.close(fig)
     if rows:
         st.write_rows(os.path.join(out, name + ".csv"), rows)
+
+
+CELL_COLOURS = {(0, 0): ("#b0b0b0", "S0 H0: neither sees"), (1, 0): ("#1f77b4", "S1 H0: hider sees, unseen"),
+                (0, 1): ("#ff7f0e", "S0 H1: seen, not seeing"), (1, 1): ("#d62728", "S1 H1: both see")}
+
+
+def tsne_figure(root, out, R, variants, rng, reps):
+    """The t-SNE across training seeds: the committed coordinates of every analysed run, one row per
+    variant, and the neighbourhood scores with intervals over runs (tsne_seeds.csv)."""
+    import matplotlib.pyplot as plt
+    probe = os.path.join(root, "docs", "probe_set")
+    labels = {int(r["image"]): (int(r["S"]), int(r["H"])) for r in read_csv(os.path.join(probe, "labels.csv"))}
+    rows_of = {v: [(n, read_csv(os.path.join(root, "docs", "runs", n, "analysis", "tsne.csv")))
+                   for n, _ in R.analysed(v, "tsne_neighbours")] for v in variants}
+    rows_of = {v: r for v, r in rows_of.items() if r}
+    if not rows_of:
+        print("seed_figures: no run has a t-SNE yet; tsne_seeds not drawn")
+        return
+    base = read_csv(os.path.join(probe, "tsne_baselines.csv"))
+
+    def base_mean(prefix, target):
+        vals = [float(b["neighbour_balanced_accuracy"]) for b in base
+                if b["target"] == target and b["representation"].startswith(prefix)]
+        return round(float(np.mean(vals)), 4) if vals else ""
+
+    table = []
+    for v in rows_of:
+        scores = R.analysed(v, "tsne_neighbours")
+        for target in ("S", "H"):
+            vals = [float(r["neighbour_balanced_accuracy"]) for _, rows in scores for r in rows if r["target"] == target]
+            m, ci = ci_over_runs(vals, rng, reps)
+            table.append({"variant": v, "target": target, "runs": len(vals), "neighbour_balanced_accuracy": round(m, 4),
+                          "ci_low": "" if np.isnan(ci[0]) else round(ci[0], 4),
+                          "ci_high": "" if np.isnan(ci[1]) else round(ci[1], 4),
+                          "random_init_mean": base_mean("random_init_", target), "pixels": base_mean("pixels", target)})
+    random0 = read_csv(os.path.join(probe, "tsne_random_init_0.csv"))
+    panels = []  # (title, coordinates): random-init network 0, then every run, variant by variant
+    if random0:
+        panels.append(("random-init network 0\nS %.2f, H %.2f" % tuple(
+            float(b["neighbour_balanced_accuracy"]) for t in ("S", "H") for b in base
+            if b["representation"] == "random_init_0" and b["target"] == t), random0))
+    for v, runs in rows_of.items():
+        scores = dict((n, {r["target"]: float(r["neighbour_balanced_accuracy"]) for r in rows})
+                      for n, rows in R.analysed(v, "tsne_neighbours"))
+        panels += [("%s\nS %.2f, H %.2f" % (n, scores[n]["S"], scores[n]["H"]), coords) for n, coords in runs]
+    cols = min(4, len(panels))
+    nrows = -(-len(panels) // cols)
+    fig, axes = plt.subplots(nrows, cols, figsize=(2.6 * cols, 2.5 * nrows + 0.9), squeeze=False)
+    for k, ax in enumerate(axes.flat):
+        if k >= len(panels):
+            ax.axis("off")
+            continue
+        title, coords = panels[k]
+        pts = np.array([[float(r["x"]), float(r["y"])] for r in coords])
+        cells = [labels[int(r["image"])] for r in coords]
+        for cell, (colour, _) in CELL_COLOURS.items():
+            pick = np.array([c == cell for c in cells])
+            if pick.any():
+                ax.scatter(pts[pick, 0], pts[pick, 1], s=2, color=colour, rasterized=True)
+        ax.set_title(title, fontsize=8)
+        ax.set_xticks([])
+        ax.set_yticks([])
+    handles = [plt.Line2D([], [], marker="o", ls="", color=c, label=l) for c, l in CELL_COLOURS.values()]
+    fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=8, frameon=False)
+    fig.suptitle("t-SNE of the features, probe set's %d test images; under each name: 10-nearest-neighbour\n"
+                 "balanced accuracy of S and H in the embedding (random init: %.2f, %.2f; pixels: %.2f, %.2f)" % (
+                     len(panels[0][1]), base_mean("random_init_", "S") or np.nan, base_mean("random_init_", "H") or np.nan,
+                     base_mean("pixels", "S") or np.nan, base_mean("pixels", "H") or np.nan), fontsize=9)
+    save(fig, out, "tsne_seeds", table, rect=(0, 0.9 / (2.5 * nrows + 0.9), 1, 1))
 
 
 def main(argv=None):
@@ -191,6 +266,7 @@ def main(argv=None):
         ax.set_title("Representation against survival, one point per run")
         ax.legend(fontsize=7)
         save(fig, out, "survival_representation", pts)
+    tsne_figure(root, out, R, order(root, found), rng, args.reps)
     print("seed_figures: %d variants, %d analysed runs into %s" % (len(variants), sum(len(R.analysed(v, "states"))
                                                                                       for v in variants), out))
     return 0

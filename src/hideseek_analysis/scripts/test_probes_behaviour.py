@@ -102,3 +102,53 @@ def test_behaviour_counts_states_transitions_and_behaviour(tmp_path):
         d = list(csv.DictReader(f))
     assert float(d[0]["mean_distance"]) == pytest.approx((5 + 5.5 + 6 + 6.5 + 2 + 1) / 6, abs=1e-3)
     assert d[0]["episodes_running"] == "2" and d[1]["mean_distance"] == ""
+
+
+def test_neighbour_score_is_one_for_separated_labels_and_a_half_for_mixed_ones():
+    rng = np.random.default_rng(3)
+    y = np.repeat([0, 1], 100)
+    apart = np.c_[rng.normal(size=200) + 20 * y, rng.normal(size=200)]
+    mixed = rng.normal(size=(200, 2))
+    assert probes.neighbour_score(apart, y) == pytest.approx(1.0)
+    assert abs(probes.neighbour_score(mixed, y) - 0.5) < 0.12
+    with pytest.raises(ValueError):
+        probes.neighbour_score(mixed, np.zeros(200, dtype=int))
+
+
+def write_probe_labels(path, labels):
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["image", "variant", "S", "H", "episode", "split"])
+        for i in range(len(labels["S"])):
+            w.writerow([i, labels["variant"][i], labels["S"][i], labels["H"][i], labels["episode"][i],
+                        "test" if labels["test"][i] else "train"])
+
+
+def test_tsne_of_a_run_embeds_the_test_images_and_scores_what_the_features_encode(tmp_path):
+    labels = synthetic_labels(n_episodes=40, per_episode=20)
+    write_probe_labels(tmp_path / "labels.csv", labels)
+    rng = np.random.default_rng(4)
+    n = len(labels["S"])
+    f = rng.normal(size=(n, 64)).astype(np.float32)
+    f[:, :8] += 6.0 * labels["S"][:, None]  # S written large in the features, H not at all
+    np.save(tmp_path / "trained.npy", f)
+    with open(tmp_path / "tsne_baselines.csv", "w") as fh:
+        fh.write("representation,target,images,neighbours,neighbour_balanced_accuracy\n"
+                 "random_init_0,S,240,10,0.60\nrandom_init_1,S,240,10,0.62\nrandom_init_0,H,240,10,0.5\n"
+                 "random_init_1,H,240,10,0.5\npixels,S,240,10,0.55\npixels,H,240,10,0.51\n")
+    out = tmp_path / "out"
+    assert probes.main(["tsne", str(tmp_path), str(tmp_path / "trained.npy"), str(out), "--run", "r",
+                        "--baselines", str(tmp_path / "tsne_baselines.csv")]) == 0
+    with open(out / "tsne.csv") as fh:
+        coords = list(csv.DictReader(fh))
+    # exactly the held-out test images, in order, each with finite coordinates
+    assert [int(r["image"]) for r in coords] == list(np.flatnonzero(labels["test"]))
+    assert all(np.isfinite(float(r["x"])) and np.isfinite(float(r["y"])) for r in coords)
+    with open(out / "tsne_neighbours.csv") as fh:
+        scores = {r["target"]: r for r in csv.DictReader(fh)}
+    assert float(scores["S"]["neighbour_balanced_accuracy"]) > 0.9
+    assert abs(float(scores["H"]["neighbour_balanced_accuracy"]) - 0.5) < 0.12
+    assert float(scores["S"]["random_init_mean"]) == pytest.approx(0.61) and scores["S"]["pixels"] == "0.55"
+    # the embedding is the same on a second call: the committed coordinates can be made again
+    assert probes.main(["tsne", str(tmp_path), str(tmp_path / "trained.npy"), str(tmp_path / "again")]) == 0
+    assert (tmp_path / "again" / "tsne.csv").read_text() == (out / "tsne.csv").read_text()

@@ -309,6 +309,50 @@ def test_claims_are_decided_only_with_two_runs_and_by_their_interval(tmp_path):
     assert c["slowerhider uses obstacles (not S, not H, O)"]["ci_low"] == ""
 
 
+def test_seed_figures_draw_the_tsne_of_every_run_with_intervals_over_runs(tmp_path):
+    rec = make_records(tmp_path, {"basic_seed%d" % s: ("basic", s, 2048, [100] * 20, [90] * 20) for s in range(3)})
+    probe = rec / "docs" / "probe_set"
+    probe.mkdir(parents=True)
+    cells = [(i % 2, i // 2 % 2) for i in range(40)]
+    with open(probe / "labels.csv", "w") as f:
+        f.write("image,variant,S,H,episode,split\n")
+        f.writelines("%d,basic,%d,%d,%d,test\n" % (i, s_, h, i) for i, (s_, h) in enumerate(cells))
+    with open(probe / "tsne_baselines.csv", "w") as f:
+        f.write("representation,target,images,neighbours,neighbour_balanced_accuracy\n"
+                "random_init_0,S,40,10,0.6\nrandom_init_0,H,40,10,0.55\npixels,S,40,10,0.62\npixels,H,40,10,0.5\n")
+    with open(probe / "tsne_random_init_0.csv", "w") as f:
+        f.write("image,x,y\n" + "".join("%d,%d,%d\n" % (i, i, -i) for i in range(40)))
+    for s, (score_s, score_h) in enumerate(((0.80, 0.70), (0.90, 0.72), (0.85, 0.74))):
+        name = "basic_seed%d" % s
+        add_analysis(rec, name, 0.1, 0.1)
+        d = rec / "docs" / "runs" / name / "analysis"
+        with open(d / "tsne.csv", "w") as f:
+            f.write("image,x,y\n" + "".join("%d,%.2f,%.2f\n" % (i, c[0] * 10 + s, c[1] * 10) for i, c in enumerate(cells)))
+        with open(d / "tsne_neighbours.csv", "w") as f:
+            f.write("run,target,images,neighbours,neighbour_balanced_accuracy,random_init_mean,pixels\n"
+                    "%s,S,40,10,%.2f,0.6,0.62\n%s,H,40,10,%.2f,0.55,0.5\n" % (name, score_s, name, score_h))
+    shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
+    out = tmp_path / "report"
+    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "seed_figures.py"), "--root", str(rec), "--out", str(out),
+                        "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    with open(out / "tsne_seeds.csv") as f:
+        rows = {x["target"]: x for x in csv.DictReader(f) if x["variant"] == "basic"}
+    assert rows["S"]["runs"] == "3" and float(rows["S"]["neighbour_balanced_accuracy"]) == pytest.approx(0.85)
+    assert 0.8 <= float(rows["S"]["ci_low"]) < 0.85 < float(rows["S"]["ci_high"]) <= 0.9
+    assert float(rows["H"]["random_init_mean"]) == pytest.approx(0.55) and float(rows["H"]["pixels"]) == 0.5
+    assert (out / "tsne_seeds.png").stat().st_size > 20000
+    # a run without a t-SNE (analysed before it existed) is left out, not an error
+    for name in ("basic_seed1", "basic_seed2"):
+        os.remove(rec / "docs" / "runs" / name / "analysis" / "tsne_neighbours.csv")
+    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "seed_figures.py"), "--root", str(rec), "--out", str(out),
+                        "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    with open(out / "tsne_seeds.csv") as f:
+        rows = {x["target"]: x for x in csv.DictReader(f) if x["variant"] == "basic"}
+    assert rows["S"]["runs"] == "1" and rows["S"]["ci_low"] == ""
+
+
 def test_hold_runs_a_command_with_the_sweep_paused_and_resumes_it(tmp_path):
     rec = make_records(tmp_path, {})
     state = tmp_path / "sweep" / "state"
