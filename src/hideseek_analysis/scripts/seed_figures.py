@@ -15,6 +15,10 @@ Writes into OUT (default ROOT/docs/report):
 - survival_representation.png/.csv (Figure 7): probe gain (mean of S and H, over the 5 random-init
   networks) against living steps, one point per run, with the quadratic fit of the claims table
   (the runs of the paper's seven variants; a variant of our own is drawn hollow and not fitted).
+- table3_seeds.md/.csv (Table 3): each variant's probe balanced accuracy on the shared probe set
+  for S, H, H where S = 1 and H where S = 0, trained (mean over runs, 95 % interval over runs),
+  the random-init networks' mean and the pixels, and the gain with its interval, beside the
+  paper's accuracies (on its own rollouts, so beside ours, not comparable one to one);
 - tsne_seeds.png/.csv: the t-SNE of every analysed run's features on the probe set's test images
   (docs/runs/<run>/analysis/tsne.csv; a row per variant, a column per training seed, random-init
   network 0 in the first row), coloured by the (S, H) cell, and per variant how well the
@@ -65,6 +69,61 @@ def save(fig, out, name, rows=None, rect=(0, 0, 1, 1)):
     plt.close(fig)
     if rows:
         st.write_rows(os.path.join(out, name + ".csv"), rows)
+
+
+def table3(root, out, R, variants, rng, reps):
+    """Table 3 across training seeds (table3_seeds.md/.csv), from every run's probes.csv."""
+    import yaml
+    with open(os.path.join(root, "config", "paper_reference.yaml")) as f:
+        paper = (yaml.safe_load(f) or {}).get("variants") or {}
+    rows, md = [], []
+    for v in variants:
+        analysed = R.analysed(v, "probes")
+        if not analysed:
+            continue
+        for target in ("S", "H", "H|S=1", "H|S=0"):
+            trained = [probe_value(r, target, "balanced_accuracy") for _, r in analysed]
+            gains = [probe_value(r, target) for _, r in analysed]
+            m, ci = ci_over_runs(trained, rng, reps)
+            g, gci = ci_over_runs(gains, rng, reps)
+            first = analysed[0][1]
+            ref = paper.get(v, {})
+            key = {"S": "S", "H": "H"}.get(target)
+            row = {"variant": v, "target": target, "runs": len(trained), "trained": round(m, 4),
+                   "trained_ci_low": "" if np.isnan(ci[0]) else round(ci[0], 4),
+                   "trained_ci_high": "" if np.isnan(ci[1]) else round(ci[1], 4),
+                   "random_init_mean": round(probe_value(first, target, "random_init_mean"), 4),
+                   "pixels": round(probe_value(first, target, "pixels"), 4), "gain": round(g, 4),
+                   "gain_ci_low": "" if np.isnan(gci[0]) else round(gci[0], 4),
+                   "gain_ci_high": "" if np.isnan(gci[1]) else round(gci[1], 4),
+                   "paper_trained": ref.get("probe_%s_trained" % key, "") if key else "",
+                   "paper_random": ref.get("probe_%s_random" % key, "") if key else ""}
+            rows.append(row)
+
+            def pct(x, lo, hi):
+                return "%.1f" % (100 * x) + ("" if lo == "" else " [%.1f, %.1f]" % (100 * lo, 100 * hi))
+            md.append("| %s | %s | %d | %s | %.1f / %.1f | %s | %s |" % (
+                v, target.replace("|", "\\|"), len(trained), pct(row["trained"], row["trained_ci_low"], row["trained_ci_high"]),
+                100 * row["random_init_mean"], 100 * row["pixels"],
+                ("%+.1f" % (100 * g)) + ("" if row["gain_ci_low"] == "" else " [%+.1f, %+.1f]" % (
+                    100 * row["gain_ci_low"], 100 * row["gain_ci_high"])),
+                "%.1f / %.1f" % (row["paper_trained"], row["paper_random"]) if row["paper_trained"] != "" else "-"))
+    if not rows:
+        return
+    st.write_rows(os.path.join(out, "table3_seeds.csv"), rows)
+    text = ["# Table 3 across training seeds: what the features say about S and H", "",
+            "Balanced accuracy (%) of a linear probe on the shared probe set's held-out episodes "
+            "([docs/analysis.md](../analysis.md)): the trained network of each run, mean over the variant's runs "
+            "with a 95 % bootstrap interval over runs (none with one run); the mean of five random-init networks "
+            "and the raw pixels, the same images for every variant; the gain, trained minus random init, per run "
+            "and then over runs. S: the hider sees the seeker; H: the seeker sees the hider; H|S=1 and H|S=0: H "
+            "among the images where S is 1 or 0. The paper's figures are accuracies on each policy's own "
+            "rollouts, whose label priors differ from variant to variant: they stand beside ours, not as the "
+            "same measurement.", "",
+            "| variant | target | runs | trained [95 % CI] | random init / pixels | gain [95 % CI] | paper: trained / random |",
+            "| --- | --- | --- | --- | --- | --- | --- |"] + md + [""]
+    with open(os.path.join(out, "table3_seeds.md"), "w") as f:
+        f.write("\n".join(text))
 
 
 CELL_COLOURS = {(0, 0): ("#b0b0b0", "S0 H0: neither sees"), (1, 0): ("#1f77b4", "S1 H0: hider sees, unseen"),
@@ -266,6 +325,7 @@ def main(argv=None):
         ax.set_title("Representation against survival, one point per run")
         ax.legend(fontsize=7)
         save(fig, out, "survival_representation", pts)
+    table3(root, out, R, order(root, found), rng, args.reps)
     tsne_figure(root, out, R, order(root, found), rng, args.reps)
     print("seed_figures: %d variants, %d analysed runs into %s" % (len(variants), sum(len(R.analysed(v, "states"))
                                                                                       for v in variants), out))

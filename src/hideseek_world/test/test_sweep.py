@@ -342,6 +342,13 @@ def test_seed_figures_draw_the_tsne_of_every_run_with_intervals_over_runs(tmp_pa
     assert 0.8 <= float(rows["S"]["ci_low"]) < 0.85 < float(rows["S"]["ci_high"]) <= 0.9
     assert float(rows["H"]["random_init_mean"]) == pytest.approx(0.55) and float(rows["H"]["pixels"]) == 0.5
     assert (out / "tsne_seeds.png").stat().st_size > 20000
+    # Table 3 across seeds, from the same runs' probes (add_analysis: gain 0.1, random init 0.7)
+    with open(out / "table3_seeds.csv") as f:
+        t3 = {x["target"]: x for x in csv.DictReader(f) if x["variant"] == "basic"}
+    assert t3["S"]["runs"] == "3" and float(t3["S"]["gain"]) == pytest.approx(0.1)
+    assert float(t3["S"]["trained"]) == pytest.approx(0.8) and float(t3["S"]["random_init_mean"]) == pytest.approx(0.7)
+    assert float(t3["S"]["paper_trained"]) == pytest.approx(90.83)
+    assert "| basic | H\\|S=1 | 3 |" in (out / "table3_seeds.md").read_text()  # a markdown row, not split at the |
     # a run without a t-SNE (analysed before it existed) is left out, not an error
     for name in ("basic_seed1", "basic_seed2"):
         os.remove(rec / "docs" / "runs" / name / "analysis" / "tsne_neighbours.csv")
