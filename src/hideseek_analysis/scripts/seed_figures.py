@@ -19,6 +19,9 @@ Writes into OUT (default ROOT/docs/report):
   for S, H, H where S = 1 and H where S = 0, trained (mean over runs, 95 % interval over runs),
   the random-init networks' mean and the pixels, and the gain with its interval, beside the
   paper's accuracies (on its own rollouts, so beside ours, not comparable one to one);
+- behaviour_seeds.md/.csv: how often each variant's hider walks backward, sees the seeker, is
+  seen, breaks the line of sight, loses the seeker from view and turns the distance round (mean
+  over runs with a 95 % interval over runs), beside the random hider of the same variant;
 - tsne_seeds.png/.csv: the t-SNE of every analysed run's features on the probe set's test images
   (docs/runs/<run>/analysis/tsne.csv; a row per variant, a column per training seed, random-init
   network 0 in the first row), coloured by the (S, H) cell, and per variant how well the
@@ -123,6 +126,51 @@ def table3(root, out, R, variants, rng, reps):
             "| variant | target | runs | trained [95 % CI] | random init / pixels | gain [95 % CI] | paper: trained / random |",
             "| --- | --- | --- | --- | --- | --- | --- |"] + md + [""]
     with open(os.path.join(out, "table3_seeds.md"), "w") as f:
+        f.write("\n".join(text))
+
+
+BEHAVIOUR = (("backward_share", "walks backward (share of steps)"),
+             ("sees_seeker_share", "sees the seeker (share of steps)"),
+             ("seen_share", "is seen (share of steps)"),
+             ("line_of_sight_breaks_per_100", "breaks the line of sight (per 100 steps)"),
+             ("seeker_lost_per_100", "loses the seeker from view (per 100 steps)"),
+             ("distance_turns_per_100", "turns the distance round (per 100 steps)"))
+
+
+def behaviour_table(out, R, variants, rng, reps):
+    """behaviour_seeds.md/.csv: each behaviour measure per variant, mean [95 % CI over runs], and
+    the random hider's."""
+    rows, md = [], []
+    for v in variants:
+        analysed = R.analysed(v, "behaviour")
+        if not analysed:
+            continue
+        base = R.baseline(v, "behaviour")
+        cells = []
+        for key, _ in BEHAVIOUR:
+            m, ci = ci_over_runs([float(r[0][key]) for _, r in analysed], rng, reps)
+            rnd = float(base[0][key]) if base else np.nan
+            rows.append({"variant": v, "measure": key, "runs": len(analysed), "trained": round(m, 4),
+                         "ci_low": "" if np.isnan(ci[0]) else round(ci[0], 4),
+                         "ci_high": "" if np.isnan(ci[1]) else round(ci[1], 4),
+                         "random": "" if np.isnan(rnd) else round(rnd, 4)})
+            digits = 2 if m < 10 else 1
+            f = "%%.%df" % digits
+            cells.append((f % m) + ("" if np.isnan(ci[0]) else (" [" + f + ", " + f + "]") % ci)
+                         + " (" + ("-" if np.isnan(rnd) else f % rnd) + ")")
+        md.append("| %s | %d | %s |" % (v, len(analysed), " | ".join(cells)))
+    if not rows:
+        return
+    st.write_rows(os.path.join(out, "behaviour_seeds.csv"), rows)
+    text = ["# Behaviour across training seeds", "",
+            "Each run's 100 greedy rollouts on seeds 10000-10099 (`scripts/analyze_run.sh`); per variant the mean over "
+            "its runs with a 95 % bootstrap interval over runs (none with one run), and in brackets the random "
+            "hider of the same variant (1000 episodes). Walking backward: the hider's action moves it backward; "
+            "breaking the line of sight: H goes from 1 to 0; losing the seeker: S goes from 1 to 0; turns of the "
+            "distance: sign changes of its 5-step average's slope.", "",
+            "| variant | runs | " + " | ".join(label for _, label in BEHAVIOUR) + " |",
+            "| --- | --- |" + " --- |" * len(BEHAVIOUR)] + md + [""]
+    with open(os.path.join(out, "behaviour_seeds.md"), "w") as f:
         f.write("\n".join(text))
 
 
@@ -326,6 +374,7 @@ def main(argv=None):
         ax.legend(fontsize=7)
         save(fig, out, "survival_representation", pts)
     table3(root, out, R, order(root, found), rng, args.reps)
+    behaviour_table(out, R, order(root, found), rng, args.reps)
     tsne_figure(root, out, R, order(root, found), rng, args.reps)
     print("seed_figures: %d variants, %d analysed runs into %s" % (len(variants), sum(len(R.analysed(v, "states"))
                                                                                       for v in variants), out))

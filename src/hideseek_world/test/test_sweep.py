@@ -309,7 +309,7 @@ def test_claims_are_decided_only_with_two_runs_and_by_their_interval(tmp_path):
     assert c["slowerhider uses obstacles (not S, not H, O)"]["ci_low"] == ""
 
 
-def test_seed_figures_draw_the_tsne_of_every_run_with_intervals_over_runs(tmp_path):
+def test_seed_figures_tsne_table3_and_behaviour_with_intervals_over_runs(tmp_path):
     rec = make_records(tmp_path, {"basic_seed%d" % s: ("basic", s, 2048, [100] * 20, [90] * 20) for s in range(3)})
     probe = rec / "docs" / "probe_set"
     probe.mkdir(parents=True)
@@ -328,14 +328,29 @@ def test_seed_figures_draw_the_tsne_of_every_run_with_intervals_over_runs(tmp_pa
         d = rec / "docs" / "runs" / name / "analysis"
         with open(d / "tsne.csv", "w") as f:
             f.write("image,x,y\n" + "".join("%d,%.2f,%.2f\n" % (i, c[0] * 10 + s, c[1] * 10) for i, c in enumerate(cells)))
+        with open(d / "behaviour.csv", "w") as f:
+            f.write("run,episodes,steps,mean_living_steps,success_rate,backward_share,sees_seeker_share,seen_share,"
+                    "line_of_sight_breaks_per_100,seeker_lost_per_100,distance_turns_per_100\n"
+                    "%s,100,10000,100,0,%.2f,0.5,0.5,1,1,%d\n" % (name, 0.5 + 0.1 * s, 10 * s))
         with open(d / "tsne_neighbours.csv", "w") as f:
             f.write("run,target,images,neighbours,neighbour_balanced_accuracy,random_init_mean,pixels\n"
                     "%s,S,40,10,%.2f,0.6,0.62\n%s,H,40,10,%.2f,0.55,0.5\n" % (name, score_s, name, score_h))
+    base = rec / "docs" / "analysis" / "baselines" / "basic" / "random"
+    base.mkdir(parents=True)
+    (base / "behaviour.csv").write_text((d / "behaviour.csv").read_text().replace("basic_seed2,", "random,")
+                                        .replace(",0.70,", ",0.20,"))
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
     out = tmp_path / "report"
     r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "seed_figures.py"), "--root", str(rec), "--out", str(out),
                         "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
+    # how each run behaves: the mean over runs with its interval, beside the random hider
+    with open(out / "behaviour_seeds.csv") as f:
+        b = {x["measure"]: x for x in csv.DictReader(f) if x["variant"] == "basic"}
+    assert b["backward_share"]["runs"] == "3" and float(b["backward_share"]["trained"]) == pytest.approx(0.6)
+    assert 0.5 <= float(b["backward_share"]["ci_low"]) < 0.6 < float(b["backward_share"]["ci_high"]) <= 0.7
+    assert float(b["backward_share"]["random"]) == pytest.approx(0.2)
+    assert float(b["distance_turns_per_100"]["trained"]) == pytest.approx(10)
     with open(out / "tsne_seeds.csv") as f:
         rows = {x["target"]: x for x in csv.DictReader(f) if x["variant"] == "basic"}
     assert rows["S"]["runs"] == "3" and float(rows["S"]["neighbour_balanced_accuracy"]) == pytest.approx(0.85)
