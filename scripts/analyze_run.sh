@@ -17,6 +17,11 @@ set -euo pipefail
 [ -z "${RECORD_ROOT:-}" ] || RECORD_ROOT=$(realpath "$RECORD_ROOT")
 tsne_only=0
 if [ "${1:-}" = --tsne-only ]; then tsne_only=1; shift; fi
+case " $* " in *" --tsne-only "*) tsne_only=2 ;; esac
+if [ $tsne_only = 2 ] || { [ $tsne_only = 1 ] && [ "${1:-}" = --baseline ]; }; then
+  echo "analyze_run.sh: --tsne-only comes first and goes with a run (RUN WEIGHTS), not with --baseline" >&2
+  exit 2
+fi
 if [ "${1:-}" = --baseline ]; then
   baseline=1; variant=$2; policy=$3; name=${variant}_${policy//\//_}
 else
@@ -38,13 +43,13 @@ print(r.runs(sys.argv[2])[sys.argv[1]]["variant"])' "$name" "$records/policies/p
   probe=$(scripts/probe_set.sh)
   devel/lib/hideseek_analysis/probe_set features "$probe" "$tmp/trained.npy" --policy "$policy" > /dev/null
   mkdir -p "$out"
-  if [ $tsne_only = 0 ]; then
-    /usr/bin/python3 src/hideseek_analysis/scripts/probes.py run "$probe" "$tmp/trained.npy" docs/probe_set/baselines.csv \
-      "$out/probes.csv" --run "$name"
-  fi
-  /usr/bin/python3 src/hideseek_analysis/scripts/probes.py tsne "$probe" "$tmp/trained.npy" "$out" --run "$name" \
-    --baselines docs/probe_set/tsne_baselines.csv
-  if [ $tsne_only = 1 ]; then echo "analyze_run: $name: t-SNE into $out"; exit 0; fi
+  tsne() {
+    /usr/bin/python3 src/hideseek_analysis/scripts/probes.py tsne "$probe" "$tmp/trained.npy" "$out" --run "$name" \
+      --baselines docs/probe_set/tsne_baselines.csv
+  }
+  if [ $tsne_only = 1 ]; then tsne; echo "analyze_run: $name: t-SNE into $out"; exit 0; fi
+  /usr/bin/python3 src/hideseek_analysis/scripts/probes.py run "$probe" "$tmp/trained.npy" docs/probe_set/baselines.csv \
+    "$out/probes.csv" --run "$name"
 fi
 mkdir -p "$out"
 # play_episodes plays at most 64 episodes at once: chunks of 50, one CSV.
@@ -54,4 +59,6 @@ for ((at = 0; at < episodes; at += 50)); do
   if [ $at = 0 ]; then cp "$tmp/chunk.csv" "$tmp/steps.csv"; else tail -n +2 "$tmp/chunk.csv" >> "$tmp/steps.csv"; fi
 done
 /usr/bin/python3 src/hideseek_analysis/scripts/behaviour.py "$tmp/steps.csv" "$out" --run "$name"
+# The t-SNE last: its failure must not cost the probes and the behaviour above.
+[ $baseline = 1 ] || tsne
 echo "analyze_run: $name: $out"

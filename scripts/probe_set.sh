@@ -27,7 +27,7 @@ if [ "$fix" = --fix ]; then
   mkdir -p "$docs"
   cp "$dir/labels.csv" "$dir/composition.md" "$docs/"
   echo "$sha  images.npy" > "$docs/images.sha256"
-  rm -f "$docs/baselines.csv" "$docs/tsne_baselines.csv"
+  rm -f "$docs/baselines.csv" "$docs/tsne_baselines.csv" "$docs/tsne_random_init_0.csv"
   echo "probe_set.sh: the probe set is fixed in $docs (images.npy $sha)" >&2
 elif [ -s "$docs/labels.csv" ]; then
   cmp -s "$dir/labels.csv" "$docs/labels.csv" || { echo "probe_set.sh: $dir/labels.csv differs from the committed $docs/labels.csv: remove $dir to make it again" >&2; exit 1; }

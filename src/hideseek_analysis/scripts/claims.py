@@ -22,6 +22,7 @@ from the paper and could cause it (docs/game_rules.md).
 import argparse
 import csv
 import os
+import re
 import sys
 
 import numpy as np
@@ -333,6 +334,18 @@ def build(root, found, rng, reps, calib):
     return out
 
 
+SOUND_RUNS = 3
+
+
+def mark_provisional(r):
+    """A claim decided while a variant it involves has fewer than SOUND_RUNS runs is marked
+    provisional: a bootstrap over two runs can only return their range, whose coverage is well
+    under 95 %; the verdict then says that both runs agree."""
+    counts = [int(n) for n in re.findall(r"[a-z_]+ (\d+)(?=,|$)", r["runs"])]
+    if r["result"] in ("supported", "contradicted") and counts and min(counts) < SOUND_RUNS:
+        r["note"] = "provisional: with %d runs of a variant its interval is their range" % min(counts)
+
+
 def effect_text(r):
     """A claim's effect with its interval, where it has one: 0.123 [0.100, 0.150]."""
     if r["effect"] == "":
@@ -371,11 +384,15 @@ def main(argv=None):
     for r in read_csv(os.path.join(root, "docs", "calibration_table.csv")) or []:
         calib.setdefault(r["variant"], []).append(r)
     rows = build(root, found, np.random.default_rng(args.seed), args.reps, calib)
+    for r in rows:
+        mark_provisional(r)
     n = sum(len(x) for x in found.values())
     header = ("Decided on %d run(s) of the sweep (%s). Intervals: 95 %% bootstrap over each variant's training seeds "
               "(%d resamples); a claim needs at least %d runs of every variant it involves to be decided. "
               "Supported: the interval lies on the paper's side of zero; contradicted: on the other side; "
-              "inconclusive: otherwise." % (n, ", ".join("%s %d" % (v, len(x)) for v, x in found.items()) or "none",
+              "inconclusive: otherwise. With two runs of a variant the bootstrap over its runs can only return "
+              "the two runs' range, whose coverage is well under 95 %%: a claim decided on two runs of a variant is "
+              "marked provisional (both runs agree), until its third run arrives." % (n, ", ".join("%s %d" % (v, len(x)) for v, x in found.items()) or "none",
                                             args.reps, MIN_RUNS))
     write(args.out or os.path.join(root, "docs", "report"), rows, header)
     for r in rows:

@@ -17,16 +17,19 @@ usage:
       one run's trained features, with its gain over the mean of the random-init networks
   probes.py tsne PROBE_DIR FEATURES.npy OUT_DIR [--run NAME] [--baselines TSNE_BASELINES.csv]
       the t-SNE of one run's features on the probe set's test images: OUT_DIR/tsne.csv (each
-      image's 2-D coordinates) and OUT_DIR/tsne_neighbours.csv (how well the embedding's
-      neighbourhoods separate S and H: leave-one-out 10-nearest-neighbour balanced accuracy)
+      image's 2-D coordinates, for the picture) and OUT_DIR/tsne_neighbours.csv (how well the
+      features' neighbourhoods separate S and H: 11-nearest-neighbour balanced accuracy in the 50
+      principal components, neighbours from the image's own episode left out)
   probes.py tsne-baselines PROBE_DIR FEATURES_DIR OUT.csv
       the same neighbourhood scores for the random-init networks and the pixels, and the
       coordinates of random-init network 0 (tsne_random_init_0.csv beside OUT.csv)
 
 The t-SNE is drawn on the test images only (the held-out 30 % of episodes, about 180 images per
 variant): the same images for every run, few enough to draw, and the coordinates (not the
-features) are what is committed. Features are reduced to 50 principal components first; the
-t-SNE uses perplexity 30, PCA initialisation and seed 0.
+features) are what is committed. Features are standardised and reduced to 50 principal
+components; the neighbourhood score is taken there, not in the 2-D embedding (which depends on
+the t-SNE's perplexity and seed); the t-SNE (perplexity 30, PCA initialisation, seed 0) is for the
+picture.
 """
 import argparse
 import csv
@@ -61,6 +64,7 @@ def load_labels(probe_dir):
         "episode": np.array([int(r["episode"]) for r in rows]),
         "test": np.array([r["split"] == "test" for r in rows]),
         "variant": np.array([r["variant"] for r in rows]),
+        "image": np.array([int(r["image"]) for r in rows]),
     }
 
 
@@ -162,39 +166,55 @@ def run(probe_dir, features, baselines_csv, out, name):
 
 
 TSNE_TARGETS = ("S", "H")
-TSNE_NEIGHBOURS = 10
+TSNE_NEIGHBOURS = 11  # odd: a vote between two classes has no tie
+TSNE_COMPONENTS = 50
 
 
-def tsne_embed(features, seed=0):
-    """2-D t-SNE of the rows of features (50 principal components first), deterministic in seed."""
+def principal_components(features, seed=0):
+    """The features standardised (as the probes see them), then their first 50 principal components."""
     from sklearn.decomposition import PCA
+    x = StandardScaler().fit_transform(np.asarray(features, dtype=np.float64))
+    keep = min(TSNE_COMPONENTS, x.shape[0] - 1, x.shape[1])
+    return PCA(n_components=keep, random_state=seed).fit_transform(x) if keep < x.shape[1] else x
+
+
+def tsne_embed(components, seed=0):
+    """2-D t-SNE of principal components, deterministic in seed (for the picture only)."""
     from sklearn.manifold import TSNE
-    x = np.asarray(features, dtype=np.float64)
-    x = x - x.mean(axis=0)
-    keep = min(50, x.shape[0] - 1, x.shape[1])
-    if keep < x.shape[1]:
-        x = PCA(n_components=keep, random_state=seed).fit_transform(x)
-    perplexity = min(30.0, (x.shape[0] - 1) / 3.0)
-    return TSNE(n_components=2, init="pca", random_state=seed, perplexity=perplexity).fit_transform(x)
+    perplexity = min(30.0, (components.shape[0] - 1) / 3.0)
+    return TSNE(n_components=2, init="pca", random_state=seed, perplexity=perplexity).fit_transform(components)
 
 
-def neighbour_score(points, y, k=TSNE_NEIGHBOURS):
-    """Leave-one-out k-nearest-neighbour balanced accuracy of the 0/1 labels y in the embedding:
-    0.5 where the neighbourhoods ignore the label, 1 where every neighbourhood is pure."""
-    from sklearn.neighbors import NearestNeighbors
+def neighbour_score(points, y, groups=None, k=TSNE_NEIGHBOURS):
+    """k-nearest-neighbour balanced accuracy of the 0/1 labels y, each point voted on by its k
+    nearest other points outside its own group (its episode: neighbouring frames of one episode
+    would make any representation look good): 0.5 where neighbourhoods ignore the label, 1 where
+    every neighbourhood is pure. k is odd, so no vote ties."""
     y = np.asarray(y)
     if len(np.unique(y)) < 2:
         raise ValueError("neighbour score: the labels hold one class only")
-    k = min(k, len(y) - 1)
-    _, idx = NearestNeighbors(n_neighbors=k + 1).fit(points).kneighbors(points)
-    votes = y[idx[:, 1:]].mean(axis=1)  # the point itself (distance 0) is left out
-    rng = np.random.default_rng(0)
-    predicted = np.where(votes == 0.5, rng.integers(0, 2, len(y)), votes > 0.5).astype(int)
+    x = np.asarray(points, dtype=np.float64)
+    g = np.arange(len(y)) if groups is None else np.asarray(groups)
+    sq = (x * x).sum(axis=1)
+    d = sq[:, None] + sq[None, :] - 2.0 * x @ x.T
+    d[g[:, None] == g[None, :]] = np.inf  # the point itself and its own episode
+    k = min(k, int(np.isfinite(d).sum(axis=1).min()))
+    if k < 1:
+        raise ValueError("neighbour score: a point has no neighbour outside its own group")
+    nearest = np.argpartition(d, k - 1, axis=1)[:, :k]
+    predicted = (y[nearest].mean(axis=1) > 0.5).astype(int)
     return round(float(balanced_accuracy_score(y, predicted)), 4)
 
 
-def tsne_scores(points, labels, test):
-    return {t: neighbour_score(points, labels[t][test]) for t in TSNE_TARGETS}
+def episode_groups(labels, rows):
+    """One group per (variant, episode): episode numbers repeat across variants."""
+    keys = ["%s/%d" % (v, e) for v, e in zip(labels["variant"][rows], labels["episode"][rows])]
+    return np.unique(keys, return_inverse=True)[1]
+
+
+def neighbour_scores(components, labels, rows):
+    groups = episode_groups(labels, rows)
+    return {t: neighbour_score(components, labels[t][rows], groups) for t in TSNE_TARGETS}
 
 
 def write_coordinates(path, images, points):
@@ -212,9 +232,9 @@ def tsne_run(probe_dir, features, out_dir, name, baselines_csv=None):
     if f.shape[0] != len(labels["S"]):
         raise SystemExit("probes: %s holds %d rows, the probe set %d images" % (features, f.shape[0], len(labels["S"])))
     test = np.flatnonzero(labels["test"])
-    points = tsne_embed(f[test])
-    write_coordinates(os.path.join(out_dir, "tsne.csv"), test, points)
-    scores = tsne_scores(points, labels, test)
+    components = principal_components(f[test])
+    write_coordinates(os.path.join(out_dir, "tsne.csv"), labels["image"][test], tsne_embed(components))
+    scores = neighbour_scores(components, labels, test)
     base = []
     if baselines_csv and os.path.exists(baselines_csv):
         with open(baselines_csv) as fh:
@@ -227,11 +247,15 @@ def tsne_run(probe_dir, features, out_dir, name, baselines_csv=None):
         rows.append({"run": name, "target": t, "images": len(test), "neighbours": TSNE_NEIGHBOURS,
                      "neighbour_balanced_accuracy": scores[t],
                      "random_init_mean": round(float(np.mean(rand)), 4) if rand else "",
+                     "random_init_min": round(float(np.min(rand)), 4) if rand else "",
+                     "random_init_max": round(float(np.max(rand)), 4) if rand else "",
                      "pixels": pix[0] if pix else ""})
-        print("probes: %s t-SNE %s: %d-neighbour balanced accuracy %.3f%s" % (
-            name, t, TSNE_NEIGHBOURS, scores[t], " (random init %.3f)" % np.mean(rand) if rand else ""))
+        print("probes: %s %s: %d-neighbour balanced accuracy %.3f%s" % (
+            name, t, TSNE_NEIGHBOURS, scores[t],
+            " (random init %.3f, %.3f to %.3f)" % (np.mean(rand), min(rand), max(rand)) if rand else ""))
     write_rows(os.path.join(out_dir, "tsne_neighbours.csv"), rows,
-               ["run", "target", "images", "neighbours", "neighbour_balanced_accuracy", "random_init_mean", "pixels"])
+               ["run", "target", "images", "neighbours", "neighbour_balanced_accuracy", "random_init_mean",
+                "random_init_min", "random_init_max", "pixels"])
 
 
 def tsne_baselines(probe_dir, features_dir, out):
@@ -242,15 +266,16 @@ def tsne_baselines(probe_dir, features_dir, out):
     reps.append(("pixels", pixel_features(np.load(os.path.join(probe_dir, "images.npy"))[test])))
     rows = []
     for name, f in reps:
-        points = tsne_embed(f)
+        components = principal_components(f)
         if name == "random_init_0":  # drawn beside the runs' embeddings (seed_figures.py)
-            write_coordinates(os.path.join(os.path.dirname(os.path.abspath(out)), "tsne_random_init_0.csv"), test, points)
-        scores = tsne_scores(points, labels, test)
+            write_coordinates(os.path.join(os.path.dirname(os.path.abspath(out)), "tsne_random_init_0.csv"),
+                              labels["image"][test], tsne_embed(components))
+        scores = neighbour_scores(components, labels, test)
         rows += [{"representation": name, "target": t, "images": len(test), "neighbours": TSNE_NEIGHBOURS,
                   "neighbour_balanced_accuracy": scores[t]} for t in TSNE_TARGETS]
-        print("probes: t-SNE of %s done" % name, flush=True)
+        print("probes: neighbourhoods of %s done" % name, flush=True)
     write_rows(out, rows, ["representation", "target", "images", "neighbours", "neighbour_balanced_accuracy"])
-    print("probes: t-SNE baselines into %s" % out)
+    print("probes: neighbourhood baselines into %s" % out)
 
 
 def main(argv=None):

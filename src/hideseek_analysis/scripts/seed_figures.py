@@ -22,12 +22,15 @@ Writes into OUT (default ROOT/docs/report):
 - behaviour_seeds.md/.csv: how often each variant's hider walks backward, sees the seeker, is
   seen, breaks the line of sight, loses the seeker from view and turns the distance round (mean
   over runs with a 95 % interval over runs), beside the random hider of the same variant;
-- tsne_seeds.png/.csv: the t-SNE of every analysed run's features on the probe set's test images
-  (docs/runs/<run>/analysis/tsne.csv; a row per variant, a column per training seed, random-init
-  network 0 in the first row), coloured by the (S, H) cell, and per variant how well the
-  embedding's neighbourhoods separate S and H (10-nearest-neighbour balanced accuracy, mean over
-  runs with a 95 % interval over runs) against the random-init networks and the pixels.
-An interval over one run is no interval: variants with one run are drawn without one.
+- tsne_seeds.png/.csv: the t-SNE of the features on the probe set's test images of every run
+  that has one (docs/runs/<run>/analysis/tsne.csv: the runs whose weights were at hand when the
+  per-run t-SNE was added, and every run after), panels variant by variant after random-init
+  network 0, coloured by the (S, H) cell; and per variant how well the features' neighbourhoods
+  separate S and H (11-nearest-neighbour balanced accuracy in 50 principal components, the image's
+  own episode left out; mean over runs with its interval) against the random-init networks (mean
+  and range) and the pixels.
+An interval over one run is no interval: variants with one run are drawn without one. With two
+runs a bootstrap over runs returns their range: the tables say "range of 2 runs" there.
 """
 import argparse
 import os
@@ -55,6 +58,14 @@ def order(root, found):
     return [v for v in paper if v in found] + sorted(v for v in found if v not in paper)
 
 
+def interval_text(lo, hi, runs, fmt):
+    """ [lo, hi] for a bootstrap interval over 3 or more runs; (range of 2 runs: lo to hi) for two,
+    where the bootstrap over runs can only return their range."""
+    if runs == 2:
+        return (" (range of 2 runs: " + fmt + " to " + fmt + ")") % (lo, hi)
+    return (" [" + fmt + ", " + fmt + "]") % (lo, hi)
+
+
 def ci_over_runs(values, rng, reps):
     values = np.asarray(values, dtype=float)
     if len(values) < 2:
@@ -79,6 +90,13 @@ def table3(root, out, R, variants, rng, reps):
     import yaml
     with open(os.path.join(root, "config", "paper_reference.yaml")) as f:
         paper = (yaml.safe_load(f) or {}).get("variants") or {}
+    base = read_csv(os.path.join(root, "docs", "probe_set", "baselines.csv")) or []
+
+    def random_range(target):
+        vals = [float(b["balanced_accuracy"]) for b in base
+                if b["target"] == target and b["representation"].startswith("random_init_")]
+        return (round(min(vals), 4), round(max(vals), 4)) if vals else ("", "")
+
     rows, md = [], []
     for v in variants:
         analysed = R.analysed(v, "probes")
@@ -96,6 +114,7 @@ def table3(root, out, R, variants, rng, reps):
                    "trained_ci_low": "" if np.isnan(ci[0]) else round(ci[0], 4),
                    "trained_ci_high": "" if np.isnan(ci[1]) else round(ci[1], 4),
                    "random_init_mean": round(probe_value(first, target, "random_init_mean"), 4),
+                   "random_init_min": random_range(target)[0], "random_init_max": random_range(target)[1],
                    "pixels": round(probe_value(first, target, "pixels"), 4), "gain": round(g, 4),
                    "gain_ci_low": "" if np.isnan(gci[0]) else round(gci[0], 4),
                    "gain_ci_high": "" if np.isnan(gci[1]) else round(gci[1], 4),
@@ -104,26 +123,30 @@ def table3(root, out, R, variants, rng, reps):
             rows.append(row)
 
             def pct(x, lo, hi):
-                return "%.1f" % (100 * x) + ("" if lo == "" else " [%.1f, %.1f]" % (100 * lo, 100 * hi))
-            md.append("| %s | %s | %d | %s | %.1f / %.1f | %s | %s |" % (
+                return "%.1f" % (100 * x) + ("" if lo == "" else interval_text(lo * 100, hi * 100, len(trained), "%.1f"))
+            spread = "" if row["random_init_min"] == "" else " (%.1f to %.1f)" % (
+                100 * row["random_init_min"], 100 * row["random_init_max"])
+            md.append("| %s | %s | %d | %s | %.1f%s / %.1f | %s | %s |" % (
                 v, target.replace("|", "\\|"), len(trained), pct(row["trained"], row["trained_ci_low"], row["trained_ci_high"]),
-                100 * row["random_init_mean"], 100 * row["pixels"],
-                ("%+.1f" % (100 * g)) + ("" if row["gain_ci_low"] == "" else " [%+.1f, %+.1f]" % (
-                    100 * row["gain_ci_low"], 100 * row["gain_ci_high"])),
-                "%.1f / %.1f" % (row["paper_trained"], row["paper_random"]) if row["paper_trained"] != "" else "-"))
+                100 * row["random_init_mean"], spread, 100 * row["pixels"],
+                ("%+.1f" % (100 * g)) + ("" if row["gain_ci_low"] == "" else interval_text(
+                    100 * row["gain_ci_low"], 100 * row["gain_ci_high"], len(trained), "%+.1f")),
+                "%s / %s" % (row["paper_trained"] or "-", row["paper_random"] or "-") if row["paper_trained"] != "" else "-"))
     if not rows:
         return
     st.write_rows(os.path.join(out, "table3_seeds.csv"), rows)
     text = ["# Table 3 across training seeds: what the features say about S and H", "",
             "Balanced accuracy (%) of a linear probe on the shared probe set's held-out episodes "
             "([docs/analysis.md](../analysis.md)): the trained network of each run, mean over the variant's runs "
-            "with a 95 % bootstrap interval over runs (none with one run); the mean of five random-init networks "
+            "with a 95 % bootstrap interval over runs (none with one run; with two runs the bootstrap returns their "
+            "range, and the table says so); the mean of five random-init networks "
             "and the raw pixels, the same images for every variant; the gain, trained minus random init, per run "
             "and then over runs. S: the hider sees the seeker; H: the seeker sees the hider; H|S=1 and H|S=0: H "
             "among the images where S is 1 or 0. The paper's figures are accuracies on each policy's own "
             "rollouts, whose label priors differ from variant to variant: they stand beside ours, not as the "
             "same measurement.", "",
-            "| variant | target | runs | trained [95 % CI] | random init / pixels | gain [95 % CI] | paper: trained / random |",
+            "| variant | target | runs | trained [95 % CI] | random init: mean (range of 5) / pixels | gain [95 % CI] | "
+            "paper: trained / random |",
             "| --- | --- | --- | --- | --- | --- | --- |"] + md + [""]
     with open(os.path.join(out, "table3_seeds.md"), "w") as f:
         f.write("\n".join(text))
@@ -146,7 +169,7 @@ def behaviour_table(out, R, variants, rng, reps):
         if not analysed:
             continue
         base = R.baseline(v, "behaviour")
-        cells = []
+        cells, random_cells = [], []
         for key, _ in BEHAVIOUR:
             m, ci = ci_over_runs([float(r[0][key]) for _, r in analysed], rng, reps)
             rnd = float(base[0][key]) if base else np.nan
@@ -156,15 +179,17 @@ def behaviour_table(out, R, variants, rng, reps):
                          "random": "" if np.isnan(rnd) else round(rnd, 4)})
             digits = 2 if m < 10 else 1
             f = "%%.%df" % digits
-            cells.append((f % m) + ("" if np.isnan(ci[0]) else (" [" + f + ", " + f + "]") % ci)
-                         + " (" + ("-" if np.isnan(rnd) else f % rnd) + ")")
+            cells.append((f % m) + ("" if np.isnan(ci[0]) else interval_text(ci[0], ci[1], len(analysed), f)))
+            random_cells.append("-" if np.isnan(rnd) else f % rnd)
         md.append("| %s | %d | %s |" % (v, len(analysed), " | ".join(cells)))
+        md.append("| %s, random hider | | %s |" % (v, " | ".join(random_cells)))
     if not rows:
         return
     st.write_rows(os.path.join(out, "behaviour_seeds.csv"), rows)
     text = ["# Behaviour across training seeds", "",
             "Each run's 100 greedy rollouts on seeds 10000-10099 (`scripts/analyze_run.sh`); per variant the mean over "
-            "its runs with a 95 % bootstrap interval over runs (none with one run), and in brackets the random "
+            "its runs with a 95 % bootstrap interval over runs (none with one run; with two runs the bootstrap returns "
+            "their range, and the table says so), and below it the random "
             "hider of the same variant (1000 episodes). Walking backward: the hider's action moves it backward; "
             "breaking the line of sight: H goes from 1 to 0; losing the seeker: S goes from 1 to 0; turns of the "
             "distance: sign changes of its 5-step average's slope.", "",
@@ -192,10 +217,10 @@ def tsne_figure(root, out, R, variants, rng, reps):
         return
     base = read_csv(os.path.join(probe, "tsne_baselines.csv"))
 
-    def base_mean(prefix, target):
+    def base_mean(prefix, target, how=np.mean):
         vals = [float(b["neighbour_balanced_accuracy"]) for b in base
                 if b["target"] == target and b["representation"].startswith(prefix)]
-        return round(float(np.mean(vals)), 4) if vals else ""
+        return round(float(how(vals)), 4) if vals else ""
 
     table = []
     for v in rows_of:
@@ -206,7 +231,10 @@ def tsne_figure(root, out, R, variants, rng, reps):
             table.append({"variant": v, "target": target, "runs": len(vals), "neighbour_balanced_accuracy": round(m, 4),
                           "ci_low": "" if np.isnan(ci[0]) else round(ci[0], 4),
                           "ci_high": "" if np.isnan(ci[1]) else round(ci[1], 4),
-                          "random_init_mean": base_mean("random_init_", target), "pixels": base_mean("pixels", target)})
+                          "random_init_mean": base_mean("random_init_", target),
+                          "random_init_min": base_mean("random_init_", target, np.min),
+                          "random_init_max": base_mean("random_init_", target, np.max),
+                          "pixels": base_mean("pixels", target)})
     random0 = read_csv(os.path.join(probe, "tsne_random_init_0.csv"))
     panels = []  # (title, coordinates): random-init network 0, then every run, variant by variant
     if random0:
@@ -236,9 +264,11 @@ def tsne_figure(root, out, R, variants, rng, reps):
         ax.set_yticks([])
     handles = [plt.Line2D([], [], marker="o", ls="", color=c, label=l) for c, l in CELL_COLOURS.values()]
     fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=8, frameon=False)
-    fig.suptitle("t-SNE of the features, probe set's %d test images; under each name: 10-nearest-neighbour\n"
-                 "balanced accuracy of S and H in the embedding (random init: %.2f, %.2f; pixels: %.2f, %.2f)" % (
-                     len(panels[0][1]), base_mean("random_init_", "S") or np.nan, base_mean("random_init_", "H") or np.nan,
+    fig.suptitle("t-SNE of the features on the probe set's %d test images. Under each name: how well the features'\n"
+                 "neighbourhoods separate S and H (11-NN balanced accuracy in 50 principal components, own episode left "
+                 "out;\n5 random-init networks: S %.2f to %.2f, H %.2f to %.2f; pixels: S %.2f, H %.2f)" % (
+                     len(panels[0][1]), *(base_mean("random_init_", t, how) or np.nan for t in ("S", "H")
+                                          for how in (np.min, np.max)),
                      base_mean("pixels", "S") or np.nan, base_mean("pixels", "H") or np.nan), fontsize=9)
     save(fig, out, "tsne_seeds", table, rect=(0, 0.9 / (2.5 * nrows + 0.9), 1, 1))
 
@@ -287,7 +317,8 @@ def main(argv=None):
     ax.set_xticks(np.arange(8))
     ax.set_xticklabels(STATE_NAMES)
     ax.set_ylabel("frequency, trained minus random hider")
-    ax.set_title("States (S: hider sees seeker, H: seeker sees hider, O: obstacle in view); bars: 95 % CI over runs")
+    ax.set_title("States (S: hider sees seeker, H: seeker sees hider, O: obstacle in view); bars: 95 % CI over runs\n"
+                 "(with 2 runs of a variant, the bootstrap gives their range)", fontsize=10)
     ax.legend(fontsize=7, ncol=2)
     save(fig, out, "state_frequencies_seeds", rows)
 
@@ -316,7 +347,7 @@ def main(argv=None):
         ax.set_title(title)
         ax.set_ylabel("P(to | a change out of from)")
         ax.legend(fontsize=8)
-    fig.suptitle("Transitions, trained (95 % CI over runs) and random hider")
+    fig.suptitle("Transitions, trained (95 % CI over runs; with 2 runs of a variant, their range) and random hider")
     save(fig, out, "transitions_seeds", trows)
 
     # Figure 6: distance over the episode.

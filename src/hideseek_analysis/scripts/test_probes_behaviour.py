@@ -115,6 +115,17 @@ def test_neighbour_score_is_one_for_separated_labels_and_a_half_for_mixed_ones()
         probes.neighbour_score(mixed, np.zeros(200, dtype=int))
 
 
+def test_neighbour_score_leaves_out_the_images_own_episode():
+    # 40 episodes of 10 nearly identical frames; the label is one per episode and says nothing
+    # about where the episode lies: only the frames of its own episode would predict it
+    rng = np.random.default_rng(5)
+    episode = np.repeat(np.arange(40), 10)
+    y = np.repeat(rng.permutation(np.repeat([0, 1], 20)), 10)
+    x = rng.normal(size=(40, 2))[episode] + 0.001 * rng.normal(size=(400, 2))
+    assert probes.neighbour_score(x, y) > 0.95  # each frame's own episode answers for it
+    assert abs(probes.neighbour_score(x, y, groups=episode) - 0.5) < 0.15
+
+
 def write_probe_labels(path, labels):
     with open(path, "w", newline="") as f:
         w = csv.writer(f)

@@ -324,7 +324,7 @@ def test_seed_figures_tsne_table3_and_behaviour_with_intervals_over_runs(tmp_pat
         f.write("image,x,y\n" + "".join("%d,%d,%d\n" % (i, i, -i) for i in range(40)))
     for s, (score_s, score_h) in enumerate(((0.80, 0.70), (0.90, 0.72), (0.85, 0.74))):
         name = "basic_seed%d" % s
-        add_analysis(rec, name, 0.1, 0.1)
+        add_analysis(rec, name, 0.08 + 0.02 * s, 0.1)
         d = rec / "docs" / "runs" / name / "analysis"
         with open(d / "tsne.csv", "w") as f:
             f.write("image,x,y\n" + "".join("%d,%.2f,%.2f\n" % (i, c[0] * 10 + s, c[1] * 10) for i, c in enumerate(cells)))
@@ -361,6 +361,7 @@ def test_seed_figures_tsne_table3_and_behaviour_with_intervals_over_runs(tmp_pat
     with open(out / "table3_seeds.csv") as f:
         t3 = {x["target"]: x for x in csv.DictReader(f) if x["variant"] == "basic"}
     assert t3["S"]["runs"] == "3" and float(t3["S"]["gain"]) == pytest.approx(0.1)
+    assert 0.08 <= float(t3["S"]["gain_ci_low"]) < 0.1 < float(t3["S"]["gain_ci_high"]) <= 0.12
     assert float(t3["S"]["trained"]) == pytest.approx(0.8) and float(t3["S"]["random_init_mean"]) == pytest.approx(0.7)
     assert float(t3["S"]["paper_trained"]) == pytest.approx(90.83)
     assert "| basic | H\\|S=1 | 3 |" in (out / "table3_seeds.md").read_text()  # a markdown row, not split at the |
@@ -373,6 +374,22 @@ def test_seed_figures_tsne_table3_and_behaviour_with_intervals_over_runs(tmp_pat
     with open(out / "tsne_seeds.csv") as f:
         rows = {x["target"]: x for x in csv.DictReader(f) if x["variant"] == "basic"}
     assert rows["S"]["runs"] == "1" and rows["S"]["ci_low"] == ""
+    # two runs: a bootstrap over them returns their range, and the tables say so instead of "95 % CI"
+    shutil.rmtree(rec / "docs" / "runs" / "basic_seed2" / "analysis")
+    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "seed_figures.py"), "--root", str(rec), "--out", str(out),
+                        "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert "| basic | S | 2 | 79.0 (range of 2 runs: 78.0 to 80.0) |" in (out / "table3_seeds.md").read_text()
+
+
+def test_a_claim_decided_on_two_runs_of_a_variant_is_marked_provisional():
+    import claims
+    two = {"result": "contradicted", "runs": "fasterhider 2, visibilityreward_faster 3, basic 3", "note": ""}
+    three = {"result": "supported", "runs": "basic 3, slowerhider 4", "note": ""}
+    undecided = {"result": "inconclusive", "runs": "basic 2", "note": "needs more"}
+    for r in (two, three, undecided):
+        claims.mark_provisional(r)
+    assert two["note"].startswith("provisional") and three["note"] == "" and undecided["note"] == "needs more"
 
 
 def test_hold_runs_a_command_with_the_sweep_paused_and_resumes_it(tmp_path):
