@@ -134,7 +134,9 @@ def main(argv=None):
           "Mean and interquartile mean (IQM) over the pooled episodes of a variant's runs, each with its 95 %% "
           "interval from a two-level bootstrap (%d resamples: the runs, then the episodes within each run). "
           "The interval covers the spread between training seeds and between evaluation episodes; with three "
-          "training seeds it is wide, and it cannot cover a behaviour none of the runs showed; for a "
+          "training seeds it is wide, and it cannot cover a behaviour none of the runs showed; with two runs "
+          "its run level can only draw one run twice or both, so it is about their range widened by the episodes' "
+          "spread, and its coverage is below 95 %%; for a "
           "variant with one run so far it covers only the spread between that run's evaluation episodes. "
           "The IQM of success, a 0/1 outcome, is clip((p - 0.25) / 0.5, 0, 1) of the success rate p: it is "
           "given because the protocol asks for it, and the mean is the figure to read." % args.reps, "",
