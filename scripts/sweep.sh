@@ -13,9 +13,15 @@
 #            whose weights are on this machine (the t-SNE alone where only that is missing)
 #   ship     ship every variant's median sweep run into policies/ (the queue does it as each run
 #            ends), where its weights are on this machine
+#   retrain RUN ...  train again, after every other run of the queue, done runs whose weights are
+#            not on this machine (lost with a change of machine): the run a variant must ship
+#            (scripts/sweep.sh ship names it). The new run replaces the old one's records; from
+#            the same pin on a CPU with native bf16 they should come out the same, which git
+#            shows
 #   status   the pin, and every run in queue order: done (with its evaluations, whether it is
 #            analysed and whether its weights are on this machine), training (its steps),
-#            partial (a checkpoint) or missing
+#            partial (a checkpoint) or missing; then the runs queued for retraining and the
+#            order in which the queue starts what is left
 #   pause    SIGSTOP every training run (for make bench, timing work, make test); the paused time
 #            is recorded apart from the run's wall time
 #   resume   SIGCONT them
@@ -43,7 +49,7 @@ dir=$(realpath -m "${SWEEP_DIR:-$HOME/hideseek_sweep}")
 tree=$dir/tree
 runs=$dir/runs
 state=$dir/state
-case "${1:-start}" in start|run|build|analyze|pause|stop) mkdir -p "$runs" "$state" "$dir/logs" ;; esac
+case "${1:-start}" in start|run|build|analyze|pause|stop|retrain) mkdir -p "$runs" "$state" "$dir/logs" ;; esac
 
 say() { echo "sweep $(date +%H:%M:%S): $*"; }
 die() { echo "sweep: $*" >&2; exit 2; }
@@ -88,6 +94,28 @@ run_name() { if [ "$network" = ff ]; then echo "${1}_seed$2"; else echo "${1}_${
 queue() {
   local s v
   for s in $seeds; do for v in $variants; do echo "$(run_name "$v" "$s") $v $s"; done; done
+}
+
+# The runs queued for retraining (scripts/sweep.sh retrain), as "NAME VARIANT SEED" lines, and
+# whether one still wants it: its weights are not here.
+retrain_queue() {
+  local name variant seed
+  [ -s "$state/retrain" ] || return 0
+  while read -r name variant seed; do
+    grep -qx "$name" "$state/retrain" && echo "$name $variant $seed retrain"
+  done < <(queue)
+}
+wants_retrain() { grep -qx "$1" "$state/retrain" 2> /dev/null && [ ! -s "$runs/$1/policy.pt" ]; }
+
+# The runs the queue would start, in order: every run not done, seed-major, then every run queued
+# for retraining. "NAME VARIANT SEED" lines.
+to_train() {
+  local name variant seed kind
+  while read -r name variant seed kind; do
+    if [ "$kind" = retrain ]; then wants_retrain "$name" || continue
+    else is_done "$name" && continue; fi
+    echo "$name $variant $seed"
+  done < <(queue; retrain_queue)
 }
 
 # A run is done when this checkout records it as a sweep run (its note, which the queue writes
@@ -243,7 +271,6 @@ run_queue() {
       flock 8
       [ ! -e "$state/paused" ] && while read -r name variant seed; do
         [ -z "${slot_of[$name]:-}" ] && [ -z "${failed[$name]:-}" ] || continue
-        is_done "$name" && continue
         for ((slot = 0; slot < jobs; slot++)); do
           free=1
           for n in "${!slot_of[@]}"; do [ "${slot_of[$n]}" != "$slot" ] || free=0; done
@@ -254,7 +281,7 @@ run_queue() {
         slot_of[$name]=$slot
         started=1
         break
-      done < <(queue)
+      done < <(to_train)
       flock -u 8
     fi
     [ $started = 1 ] && continue
@@ -262,6 +289,7 @@ run_queue() {
       if [ ! -e "$state/paused" ]; then
         local left=0
         while read -r name _ _; do is_done "$name" || left=$((left + 1)); done < <(queue)
+        while read -r name _ _ _; do wants_retrain "$name" && left=$((left + 1)); done < <(retrain_queue)
         if [ $left = 0 ]; then say "every run of the queue is done"; else say "nothing left to start: $left runs failed (see the logs); start again to retry them"; fi
         break
       fi
@@ -286,21 +314,42 @@ status() {
   echo "sweep: queue $(if [ -n "$(queue_pid)" ]; then echo "running (pid $(queue_pid))"; else echo "not running"; fi)$([ -e "$state/paused" ] && echo ", PAUSED since $(date -d @"$(cat "$state/paused")" +%H:%M:%S)")"
   native_bf16 || echo "sweep: this CPU has no native bf16: the queue will not train here"
   while read -r name variant seed; do
-    if is_done "$name"; then
+    if [ -e "$state/job.$name" ] && alive "$(cat "$state/job.$name")"; then
+      steps_now=$(tail -n 1 "$runs/$name/training_log.csv" 2> /dev/null | cut -d, -f2,3 || true)
+      printf '%-34s training  %s steps of %s, %s s%s\n' "$name" "${steps_now%,*}" "$steps" "${steps_now#*,}" \
+        "$(wants_retrain "$name" && echo " (retraining)")"
+    elif is_done "$name"; then
       printf '%-34s done      greedy %s, sampled %s (living steps, success); %s; %s\n' "$name" \
         "$(tail -n 1 "$records/docs/runs/$name/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
         "$(tail -n 1 "$records/docs/runs/$name/sampled/evaluation.csv" | cut -d, -f4,5 | tr , /)" \
         "$(analysed "$name" && echo analysed || echo "NOT analysed")" \
         "$([ -s "$runs/$name/policy.pt" ] && echo "weights in $runs/$name" || echo "weights not on this machine")"
-    elif [ -e "$state/job.$name" ] && alive "$(cat "$state/job.$name")"; then
-      steps_now=$(tail -n 1 "$runs/$name/training_log.csv" 2> /dev/null | cut -d, -f2,3 || true)
-      printf '%-34s training  %s steps of %s, %s s\n' "$name" "${steps_now%,*}" "$steps" "${steps_now#*,}"
     elif [ -s "$runs/$name/checkpoint.pt" ]; then
       printf '%-34s partial   checkpoint in %s (resumes at the next start)\n' "$name" "$runs/$name"
     else
       printf '%-34s missing\n' "$name"
     fi
   done < <(queue)
+  local queued=() order=()
+  while read -r name _ _ _; do wants_retrain "$name" && queued+=("$name"); done < <(retrain_queue)
+  [ ${#queued[@]} = 0 ] || echo "sweep: queued for retraining (weights lost; after every other run): ${queued[*]}"
+  while read -r name _ _; do order+=("$name"); done < <(to_train)
+  echo "sweep: left to train, in order: ${order[*]:-nothing}"
+}
+
+# Queues done runs whose weights are not on this machine for retraining after every other run.
+retrain() {
+  [ $# -gt 0 ] || die "retrain: name the runs to train again (scripts/sweep.sh ship names the ones a variant needs)"
+  local name found
+  for name in "$@"; do
+    found=$(queue | awk -v n="$name" '$1 == n' || true)
+    [ -n "$found" ] || die "retrain: '$name' is not a run of the queue (scripts/sweep.sh status lists them)"
+    is_done "$name" || die "retrain: '$name' is not done: the queue trains it anyway"
+    if [ -s "$runs/$name/policy.pt" ]; then echo "sweep: $name: its weights are here ($runs/$name/policy.pt); nothing to retrain"; continue; fi
+    grep -qx "$name" "$state/retrain" 2> /dev/null || echo "$name" >> "$state/retrain"
+    echo "sweep: $name queued for retraining, after every other run of the queue"
+  done
+  [ -z "$(queue_pid)" ] || echo "sweep: the running queue takes it up when a slot frees (one started before 'retrain' existed: at its next start)"
 }
 
 pause() {
@@ -370,6 +419,7 @@ case "${1:-start}" in
   pause) pause ;;
   resume) resume ;;
   stop) stop ;;
+  retrain) shift; retrain "$@" ;;
   hold)
     shift
     [ $# -gt 0 ] || die "hold: name the command to run while the sweep is paused"
@@ -381,5 +431,5 @@ case "${1:-start}" in
     "$@" || rc=$?
     exit $rc
     ;;
-  *) die "unknown command '$1' (start, run, build, analyze, status, pause, resume, stop, hold)" ;;
+  *) die "unknown command '$1' (start, run, build, analyze, ship, status, pause, resume, stop, retrain, hold)" ;;
 esac

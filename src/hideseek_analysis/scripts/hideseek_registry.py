@@ -284,7 +284,7 @@ def ship_median(variant, weights_dir, network="ff", game="v2", registry=REGISTRY
     weights = os.path.join(weights_dir, name, "policy.pt")
     if not os.path.isfile(weights):
         raise WeightsMissing("the median run of %s is %s, but its weights %s are not on this machine; %s "
-                            "(retrain %s to ship it)" % (variant, name, weights,
+                            "(scripts/sweep.sh retrain %s to ship it)" % (variant, name, weights,
                                                          "%s stays shipped" % current if current else "no run is shipped",
                                                          name))
     with _locked(registry):

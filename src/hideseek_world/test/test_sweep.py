@@ -98,6 +98,29 @@ def test_an_unknown_variant_or_bad_number_is_refused_by_name(tmp_path):
     assert r.returncode == 2 and "unknown command 'frobnicate'" in r.stderr
 
 
+def test_retrain_queues_a_done_run_without_weights_after_every_other_run(tmp_path):
+    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2048, [30, 1000], [20, 40])})
+    r = sweep(tmp_path, rec, "retrain", "basic_seed9")
+    assert r.returncode == 2 and "'basic_seed9' is not a run of the queue" in r.stderr
+    r = sweep(tmp_path, rec, "retrain", "slowerhider_seed0")
+    assert r.returncode == 2 and "is not done" in r.stderr
+    r = sweep(tmp_path, rec, "retrain", "basic_seed0")
+    assert r.returncode == 0 and "basic_seed0 queued for retraining" in r.stdout, r.stderr
+    status = sweep(tmp_path, rec, "status").stdout
+    assert "queued for retraining (weights lost; after every other run): basic_seed0" in status
+    # the missing runs first, seed-major, then the retraining
+    assert "left to train, in order: slowerhider_seed0 basic_seed1 slowerhider_seed1 basic_seed0" in status
+    # once its weights are here (the retrained run, or the old ones found), it is not trained again
+    w = tmp_path / "sweep" / "runs" / "basic_seed0"
+    w.mkdir(parents=True)
+    (w / "policy.pt").write_bytes(b"weights")
+    status = sweep(tmp_path, rec, "status").stdout
+    assert "queued for retraining" not in status
+    assert "left to train, in order: slowerhider_seed0 basic_seed1 slowerhider_seed1\n" in status
+    r = sweep(tmp_path, rec, "retrain", "basic_seed0")
+    assert r.returncode == 0 and "nothing to retrain" in r.stdout
+
+
 def proc_state(pid, want=None, wait=10.0):
     """A process's state letter; with `want`, waits (a signal lands asynchronously) until it is one of them."""
     end = time.time() + wait
