@@ -58,6 +58,16 @@ def order(root, found):
     return [v for v in paper if v in found] + sorted(v for v in found if v not in paper)
 
 
+def write_table(out, name, rows, title, intro, columns, md_rows):
+    """OUT/NAME.csv (rows) and OUT/NAME.md (title, intro, a markdown table); nothing without rows."""
+    if not rows:
+        return
+    st.write_rows(os.path.join(out, name + ".csv"), rows)
+    text = ["# " + title, "", intro, "", "| " + " | ".join(columns) + " |", "|" + " --- |" * len(columns)] + md_rows
+    with open(os.path.join(out, name + ".md"), "w") as f:
+        f.write("\n".join(text + [""]))
+
+
 def interval_text(lo, hi, runs, fmt):
     """ [lo, hi] for a bootstrap interval over 3 or more runs; (range of 2 runs: lo to hi) for two,
     where the bootstrap over runs can only return their range."""
@@ -132,24 +142,18 @@ def table3(root, out, R, variants, rng, reps):
                 ("%+.1f" % (100 * g)) + ("" if row["gain_ci_low"] == "" else interval_text(
                     100 * row["gain_ci_low"], 100 * row["gain_ci_high"], len(trained), "%+.1f")),
                 "%s / %s" % (row["paper_trained"] or "-", row["paper_random"] or "-") if row["paper_trained"] != "" else "-"))
-    if not rows:
-        return
-    st.write_rows(os.path.join(out, "table3_seeds.csv"), rows)
-    text = ["# Table 3 across training seeds: what the features say about S and H", "",
-            "Balanced accuracy (%) of a linear probe on the shared probe set's held-out episodes "
-            "([docs/analysis.md](../analysis.md)): the trained network of each run, mean over the variant's runs "
-            "with a 95 % bootstrap interval over runs (none with one run; with two runs the bootstrap returns their "
-            "range, and the table says so); the mean of five random-init networks "
-            "and the raw pixels, the same images for every variant; the gain, trained minus random init, per run "
-            "and then over runs. S: the hider sees the seeker; H: the seeker sees the hider; H|S=1 and H|S=0: H "
-            "among the images where S is 1 or 0. The paper's figures are accuracies on each policy's own "
-            "rollouts, whose label priors differ from variant to variant: they stand beside ours, not as the "
-            "same measurement.", "",
-            "| variant | target | runs | trained [95 % CI] | random init: mean (range of 5) / pixels | gain [95 % CI] | "
-            "paper: trained / random |",
-            "| --- | --- | --- | --- | --- | --- | --- |"] + md + [""]
-    with open(os.path.join(out, "table3_seeds.md"), "w") as f:
-        f.write("\n".join(text))
+    write_table(out, "table3_seeds", rows, "Table 3 across training seeds: what the features say about S and H",
+                ("Balanced accuracy (%) of a linear probe on the shared probe set's held-out episodes "
+                 "([docs/analysis.md](../analysis.md)): the trained network of each run, mean over the variant's runs "
+                 "with a 95 % bootstrap interval over runs (none with one run; with two runs the bootstrap returns their "
+                 "range, and the table says so); the mean of five random-init networks "
+                 "and the raw pixels, the same images for every variant; the gain, trained minus random init, per run "
+                 "and then over runs. S: the hider sees the seeker; H: the seeker sees the hider; H|S=1 and H|S=0: H "
+                 "among the images where S is 1 or 0. The paper's figures are accuracies on each policy's own "
+                 "rollouts, whose label priors differ from variant to variant: they stand beside ours, not as the "
+                 "same measurement."),
+                ["variant", "target", "runs", "trained [95 % CI]", "random init: mean (range of 5) / pixels",
+                 "gain [95 % CI]", "paper: trained / random"], md)
 
 
 BEHAVIOUR = (("backward_share", "walks backward (share of steps)"),
@@ -183,20 +187,14 @@ def behaviour_table(out, R, variants, rng, reps):
             random_cells.append("-" if np.isnan(rnd) else f % rnd)
         md.append("| %s | %d | %s |" % (v, len(analysed), " | ".join(cells)))
         md.append("| %s, random hider | | %s |" % (v, " | ".join(random_cells)))
-    if not rows:
-        return
-    st.write_rows(os.path.join(out, "behaviour_seeds.csv"), rows)
-    text = ["# Behaviour across training seeds", "",
-            "Each run's 100 greedy rollouts on seeds 10000-10099 (`scripts/analyze_run.sh`); per variant the mean over "
-            "its runs with a 95 % bootstrap interval over runs (none with one run; with two runs the bootstrap returns "
-            "their range, and the table says so), and below it the random "
-            "hider of the same variant (1000 episodes). Walking backward: the hider's action moves it backward; "
-            "breaking the line of sight: H goes from 1 to 0; losing the seeker: S goes from 1 to 0; turns of the "
-            "distance: sign changes of its 5-step average's slope.", "",
-            "| variant | runs | " + " | ".join(label for _, label in BEHAVIOUR) + " |",
-            "| --- | --- |" + " --- |" * len(BEHAVIOUR)] + md + [""]
-    with open(os.path.join(out, "behaviour_seeds.md"), "w") as f:
-        f.write("\n".join(text))
+    write_table(out, "behaviour_seeds", rows, "Behaviour across training seeds",
+                ("Each run's 100 greedy rollouts on seeds 10000-10099 (`scripts/analyze_run.sh`); per variant the mean over "
+                 "its runs with a 95 % bootstrap interval over runs (none with one run; with two runs the bootstrap returns "
+                 "their range, and the table says so), and below it the random "
+                 "hider of the same variant (1000 episodes). Walking backward: the hider's action moves it backward; "
+                 "breaking the line of sight: H goes from 1 to 0; losing the seeker: S goes from 1 to 0; turns of the "
+                 "distance: sign changes of its 5-step average's slope."),
+                ["variant", "runs"] + [label for _, label in BEHAVIOUR], md)
 
 
 CELL_COLOURS = {(0, 0): ("#b0b0b0", "S0 H0: neither sees"), (1, 0): ("#1f77b4", "S1 H0: hider sees, unseen"),

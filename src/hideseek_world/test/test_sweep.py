@@ -226,6 +226,14 @@ def test_rank_correlation_follows_the_reference_order():
     assert rho == pytest.approx(-1.0)
 
 
+def run_analysis(script, rec, out):
+    """One of the analysis scripts across training seeds on the made-up checkout `rec`, into `out`."""
+    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, script), "--root", str(rec), "--out", str(out),
+                        "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    return r
+
+
 def test_sweep_table2_reads_the_sweep_runs_and_writes_the_tables(tmp_path):
     rec = make_records(tmp_path, {
         "basic_seed0": ("basic", 0, 2048, [100] * 10 + [1000] * 10, [50] * 20),
@@ -240,9 +248,7 @@ def test_sweep_table2_reads_the_sweep_runs_and_writes_the_tables(tmp_path):
     drop_note(rec, "stochasticmaps_seed0")
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
     out = tmp_path / "t2"
-    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "sweep_table2.py"), "--root", str(rec), "--out", str(out),
-                        "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
-    assert r.returncode == 0, r.stderr
+    run_analysis("sweep_table2.py", rec, out)
     with open(out / "table2.csv") as f:
         rows = {(x["variant"], x["mode"]): x for x in csv.DictReader(f)}
     b = rows[("basic", "greedy")]
@@ -288,9 +294,7 @@ def run_claims(tmp_path, rec):
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config", dirs_exist_ok=True)
     shutil.copy(os.path.join(ROOT, "docs", "calibration_table.csv"), rec / "docs" / "calibration_table.csv")
     out = tmp_path / "report"
-    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "claims.py"), "--root", str(rec), "--out", str(out),
-                        "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
-    assert r.returncode == 0, r.stderr
+    run_analysis("claims.py", rec, out)
     with open(out / "claims.csv") as f:
         return {x["claim"]: x for x in csv.DictReader(f)}
 
@@ -364,9 +368,7 @@ def test_seed_figures_tsne_table3_and_behaviour_with_intervals_over_runs(tmp_pat
                                         .replace(",0.70,", ",0.20,"))
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
     out = tmp_path / "report"
-    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "seed_figures.py"), "--root", str(rec), "--out", str(out),
-                        "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
-    assert r.returncode == 0, r.stderr
+    run_analysis("seed_figures.py", rec, out)
     # how each run behaves: the mean over runs with its interval, beside the random hider
     with open(out / "behaviour_seeds.csv") as f:
         b = {x["measure"]: x for x in csv.DictReader(f) if x["variant"] == "basic"}
@@ -391,17 +393,13 @@ def test_seed_figures_tsne_table3_and_behaviour_with_intervals_over_runs(tmp_pat
     # a run without a t-SNE (analysed before it existed) is left out, not an error
     for name in ("basic_seed1", "basic_seed2"):
         os.remove(rec / "docs" / "runs" / name / "analysis" / "tsne_neighbours.csv")
-    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "seed_figures.py"), "--root", str(rec), "--out", str(out),
-                        "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
-    assert r.returncode == 0, r.stderr
+    run_analysis("seed_figures.py", rec, out)
     with open(out / "tsne_seeds.csv") as f:
         rows = {x["target"]: x for x in csv.DictReader(f) if x["variant"] == "basic"}
     assert rows["S"]["runs"] == "1" and rows["S"]["ci_low"] == ""
     # two runs: a bootstrap over them returns their range, and the tables say so instead of "95 % CI"
     shutil.rmtree(rec / "docs" / "runs" / "basic_seed2" / "analysis")
-    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "seed_figures.py"), "--root", str(rec), "--out", str(out),
-                        "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
-    assert r.returncode == 0, r.stderr
+    run_analysis("seed_figures.py", rec, out)
     assert "| basic | S | 2 | 79.0 (range of 2 runs: 78.0 to 80.0) |" in (out / "table3_seeds.md").read_text()
 
 
