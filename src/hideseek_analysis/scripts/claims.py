@@ -148,11 +148,13 @@ def probe_value(rows, target, key="gain_over_random_init"):
     return np.nan
 
 
-def build(root, found, rng, reps, calib):
+def build(root, found, seed, reps, calib):
+    """The claims' rows; each claim bootstraps with its own generator (sweep_stats.keyed_rng)."""
     R = Runs(root, found)
     out = []
 
     # 1. Table 2's ordering.
+    rng = st.keyed_rng(seed, "rho")  # the key Table 2 uses: the same interval in both
     living = {v: R.episodes(v) for v in PAPER_VARIANTS if R.episodes(v)}
     if len(living) >= 3:
         import yaml
@@ -175,7 +177,8 @@ def build(root, found, rng, reps, calib):
         rnd = [float(r["avg_living_steps"]) for r in calib.get(v, []) if r["evader"] == "random"]
         if not rnd:
             continue
-        point, ci = st.pooled_statistic(runs, st.mean, rng, reps)
+        # The key of Table 2's greedy mean: the same interval in both.
+        point, ci = st.pooled_statistic(runs, st.mean, st.keyed_rng(seed, v, "greedy", "living_mean"), reps)
         diffs[v] = (point - rnd[0], (ci[0] - rnd[0], ci[1] - rnd[0]), len(runs))
     if diffs:
         lows = {v: d[1][0] for v, d in diffs.items()}
@@ -195,6 +198,7 @@ def build(root, found, rng, reps, calib):
 
     # 3. Trained features beat random-init ones, on S and on H.
     for target, label in (("S", "S (the hider sees the seeker)"), ("H", "H (the seeker sees the hider)")):
+        rng = st.keyed_rng(seed, "features", target)
         gains = {v: [probe_value(rows, target) for _, rows in R.analysed(v, "probes")] for v in PAPER_VARIANTS}
         gains = {v: x for v, x in gains.items() if x}
         if gains:
@@ -209,6 +213,7 @@ def build(root, found, rng, reps, calib):
                              "balanced accuracy gain on the shared probe set", note="no run analysed yet"))
 
     # 4. visibilityreward_faster is worst at perception.
+    rng = st.keyed_rng(seed, "worst at perception")
     acc = {v: [(probe_value(rows, "S", "balanced_accuracy") + probe_value(rows, "H", "balanced_accuracy")) / 2
                for _, rows in R.analysed(v, "probes")] for v in PAPER_VARIANTS}
     acc = {v: x for v, x in acc.items() if x}
@@ -227,6 +232,7 @@ def build(root, found, rng, reps, calib):
                          note="needs visibilityreward_faster and another variant analysed"))
 
     # 5. Survival and representation: a concave curve.
+    rng = st.keyed_rng(seed, "concave curve")
     pts = []
     for v in PAPER_VARIANTS:
         for name, rows in R.analysed(v, "probes"):
@@ -282,7 +288,8 @@ def build(root, found, rng, reps, calib):
         if not per:
             return claim(label, paper_text, "trained minus the random hider", runs="none",
                          note="no analysed run (or no random-hider baseline) of %s" % ", ".join(variants))
-        point, ci = boot_runs(per, lambda s: np.mean([x.mean() for x in s.values()]), rng, reps)
+        point, ci = boot_runs(per, lambda s: np.mean([x.mean() for x in s.values()]), st.keyed_rng(seed, label),
+                              reps)
         n_min = min(len(x) for x in per.values()) if len(per) == len(variants) else 0
         return claim(label, paper_text, "trained minus the random hider of the same variant", point, ci,
                      runs_text(per), verdict(ci, n_min), missing(per, variants), departure)
@@ -313,6 +320,7 @@ def build(root, found, rng, reps, calib):
                   "Figure 5's second highlighted transition (this project's reading)", DEPARTURES["map"])
     out += [t1, t2]
     # The faster hiders' distance oscillates: more turns of the distance than basic's.
+    rng = st.keyed_rng(seed, "oscillates")
     osc = {v: [float(rows[0]["distance_turns_per_100"]) for _, rows in R.analysed(v, "behaviour")]
            for v in FASTER + ("basic",)}
     osc = {v: x for v, x in osc.items() if x}
@@ -383,7 +391,7 @@ def main(argv=None):
     calib = {}
     for r in read_csv(os.path.join(root, "docs", "calibration_table.csv")) or []:
         calib.setdefault(r["variant"], []).append(r)
-    rows = build(root, found, np.random.default_rng(args.seed), args.reps, calib)
+    rows = build(root, found, args.seed, args.reps, calib)
     for r in rows:
         mark_provisional(r)
     n = sum(len(x) for x in found.values())

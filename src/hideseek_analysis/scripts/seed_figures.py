@@ -76,7 +76,9 @@ def interval_text(lo, hi, runs, fmt):
     return (" [" + fmt + ", " + fmt + "]") % (lo, hi)
 
 
-def ci_over_runs(values, rng, reps):
+def ci_over_runs(values, seed, reps, *key):
+    """Mean over runs and its bootstrap interval, drawn from the generator of `key` (sweep_stats.keyed_rng)."""
+    rng = st.keyed_rng(seed, *key)
     values = np.asarray(values, dtype=float)
     if len(values) < 2:
         return float(values.mean()), (np.nan, np.nan)
@@ -95,7 +97,7 @@ def save(fig, out, name, rows=None, rect=(0, 0, 1, 1)):
         st.write_rows(os.path.join(out, name + ".csv"), rows)
 
 
-def table3(root, out, R, variants, rng, reps):
+def table3(root, out, R, variants, seed, reps):
     """Table 3 across training seeds (table3_seeds.md/.csv), from every run's probes.csv."""
     import yaml
     with open(os.path.join(root, "config", "paper_reference.yaml")) as f:
@@ -115,8 +117,8 @@ def table3(root, out, R, variants, rng, reps):
         for target in ("S", "H", "H|S=1", "H|S=0"):
             trained = [probe_value(r, target, "balanced_accuracy") for _, r in analysed]
             gains = [probe_value(r, target) for _, r in analysed]
-            m, ci = ci_over_runs(trained, rng, reps)
-            g, gci = ci_over_runs(gains, rng, reps)
+            m, ci = ci_over_runs(trained, seed, reps, "table3", v, target, "trained")
+            g, gci = ci_over_runs(gains, seed, reps, "table3", v, target, "gain")
             first = analysed[0][1]
             ref = paper.get(v, {})
             key = {"S": "S", "H": "H"}.get(target)
@@ -164,7 +166,7 @@ BEHAVIOUR = (("backward_share", "walks backward (share of steps)"),
              ("distance_turns_per_100", "turns the distance round (per 100 steps)"))
 
 
-def behaviour_table(out, R, variants, rng, reps):
+def behaviour_table(out, R, variants, seed, reps):
     """behaviour_seeds.md/.csv: each behaviour measure per variant, mean [95 % CI over runs], and
     the random hider's."""
     rows, md = [], []
@@ -175,7 +177,7 @@ def behaviour_table(out, R, variants, rng, reps):
         base = R.baseline(v, "behaviour")
         cells, random_cells = [], []
         for key, _ in BEHAVIOUR:
-            m, ci = ci_over_runs([float(r[0][key]) for _, r in analysed], rng, reps)
+            m, ci = ci_over_runs([float(r[0][key]) for _, r in analysed], seed, reps, "behaviour", v, key)
             rnd = float(base[0][key]) if base else np.nan
             rows.append({"variant": v, "measure": key, "runs": len(analysed), "trained": round(m, 4),
                          "ci_low": "" if np.isnan(ci[0]) else round(ci[0], 4),
@@ -201,7 +203,7 @@ CELL_COLOURS = {(0, 0): ("#b0b0b0", "S0 H0: neither sees"), (1, 0): ("#1f77b4", 
                 (0, 1): ("#ff7f0e", "S0 H1: seen, not seeing"), (1, 1): ("#d62728", "S1 H1: both see")}
 
 
-def tsne_figure(root, out, R, variants, rng, reps):
+def tsne_figure(root, out, R, variants, seed, reps):
     """The t-SNE across training seeds: the committed coordinates of every analysed run, one row per
     variant, and the neighbourhood scores with intervals over runs (tsne_seeds.csv)."""
     import matplotlib.pyplot as plt
@@ -225,7 +227,7 @@ def tsne_figure(root, out, R, variants, rng, reps):
         scores = R.analysed(v, "tsne_neighbours")
         for target in ("S", "H"):
             vals = [float(r["neighbour_balanced_accuracy"]) for _, rows in scores for r in rows if r["target"] == target]
-            m, ci = ci_over_runs(vals, rng, reps)
+            m, ci = ci_over_runs(vals, seed, reps, "tsne", v, target)
             table.append({"variant": v, "target": target, "runs": len(vals), "neighbour_balanced_accuracy": round(m, 4),
                           "ci_low": "" if np.isnan(ci[0]) else round(ci[0], 4),
                           "ci_high": "" if np.isnan(ci[1]) else round(ci[1], 4),
@@ -278,7 +280,6 @@ def main(argv=None):
     root = os.path.abspath(args.root)
     out = args.out or os.path.join(root, "docs", "report")
     os.makedirs(out, exist_ok=True)
-    rng = np.random.default_rng(args.seed)
     found = sweep_runs(root, args.steps, set(args.extra))
     R = Runs(root, found)
     variants = [v for v in order(root, found) if R.analysed(v, "states")]
@@ -301,7 +302,7 @@ def main(argv=None):
         runs = [np.array([float(r["frequency"]) for r in rows_]) - b for _, rows_ in R.analysed(v, "states")]
         means, lo, hi = [], [], []
         for i in range(8):
-            m, ci = ci_over_runs([r[i] for r in runs], rng, args.reps)
+            m, ci = ci_over_runs([r[i] for r in runs], args.seed, args.reps, "states", v, i)
             means.append(m)
             lo.append(ci[0])
             hi.append(ci[1])
@@ -332,7 +333,7 @@ def main(argv=None):
             rnd = transition_prob(base, src, dst) if base else np.nan
             if not vals:
                 continue
-            m, ci = ci_over_runs(vals, rng, args.reps)
+            m, ci = ci_over_runs(vals, args.seed, args.reps, "transition", title, v)
             err = None if np.isnan(ci[0]) else [[m - ci[0]], [ci[1] - m]]
             ax.errorbar([k], [m], yerr=err, fmt="o", capsize=3, color="C0", label="trained" if k == 0 else None)
             ax.plot([k], [rnd], "x", color="C3", label="random hider" if k == 0 else None)
@@ -402,9 +403,9 @@ def main(argv=None):
         ax.set_title("Representation against survival, one point per run")
         ax.legend(fontsize=7)
         save(fig, out, "survival_representation", pts)
-    table3(root, out, R, order(root, found), rng, args.reps)
-    behaviour_table(out, R, order(root, found), rng, args.reps)
-    tsne_figure(root, out, R, order(root, found), rng, args.reps)
+    table3(root, out, R, order(root, found), args.seed, args.reps)
+    behaviour_table(out, R, order(root, found), args.seed, args.reps)
+    tsne_figure(root, out, R, order(root, found), args.seed, args.reps)
     print("seed_figures: %d variants, %d analysed runs into %s" % (len(variants), sum(len(R.analysed(v, "states"))
                                                                                       for v in variants), out))
     return 0

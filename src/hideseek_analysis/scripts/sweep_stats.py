@@ -11,6 +11,7 @@ draws of the training seed allow (it does not cover seeds whose behaviour none o
 """
 import csv
 import os
+import zlib
 
 import numpy as np
 from scipy import stats
@@ -26,6 +27,13 @@ def iqm(values):
 
 def mean(values):
     return float(np.mean(values))
+
+
+def keyed_rng(seed, *key):
+    """A generator of its own for one estimate, seeded from `seed` and a stable key (a variant, a
+    claim): an interval then depends only on its own data and the seed, so a run added to one
+    variant leaves every other variant's interval as it was."""
+    return np.random.default_rng([int(seed)] + [zlib.crc32(str(k).encode()) for k in key])
 
 
 def two_level_samples(runs, rng, reps=BOOTSTRAP):

@@ -96,7 +96,6 @@ def main(argv=None):
     variant_files = sorted(n[:-5] for n in os.listdir(os.path.join(root, "config", "variants")) if n.endswith(".yaml"))
     order = [v for v in paper if v in variant_files] + [v for v in variant_files if v not in paper]
 
-    rng = np.random.default_rng(args.seed)
     rows, data = [], {}
     for v in order:
         for mode, sub in MODES:
@@ -116,7 +115,7 @@ def main(argv=None):
                    "per_run_success": " ".join("%.0f" % (100 * x.mean()) for x in success)}
             for key, values, stat in (("living_mean", living, st.mean), ("living_iqm", living, st.iqm),
                                       ("success_mean", success, st.mean), ("success_iqm", success, st.iqm)):
-                point, ci = st.pooled_statistic(values, stat, rng, args.reps)
+                point, ci = st.pooled_statistic(values, stat, st.keyed_rng(args.seed, v, mode, key), args.reps)
                 row[key], row[key + "_lo"], row[key + "_hi"] = point, ci[0], ci[1]
             rows.append(row)
 
@@ -171,7 +170,8 @@ def main(argv=None):
     present = [v for v in order if (v, "greedy") in data]
     for better, worse in paper_orderings(present, paper):
         if (better, "greedy") in data and (worse, "greedy") in data:
-            poi = st.probability_of_improvement(data[(better, "greedy")], data[(worse, "greedy")], rng, args.reps)
+            poi = st.probability_of_improvement(data[(better, "greedy")], data[(worse, "greedy")],
+                                                st.keyed_rng(args.seed, "improvement", better, worse), args.reps)
             orow.append({"better": better, "worse": worse,
                          "runs": "%d vs %d" % (len(data[(better, "greedy")]), len(data[(worse, "greedy")])),
                          "poi_runs": poi["runs"][0], "poi_runs_lo": poi["runs"][1][0], "poi_runs_hi": poi["runs"][1][1],
@@ -181,7 +181,8 @@ def main(argv=None):
     rho = None
     if len(in_paper) >= 3:
         rho = st.rank_correlation([data[(v, "greedy")] for v in in_paper],
-                                  [paper[v]["living_trained"] for v in in_paper], rng, args.reps)
+                                  [paper[v]["living_trained"] for v in in_paper],
+                                  st.keyed_rng(args.seed, "rho"), args.reps)
     ofields = ["better", "worse", "runs", "poi_runs", "poi_runs_lo", "poi_runs_hi", "poi_episodes", "poi_episodes_lo",
                "poi_episodes_hi"]
     with open(os.path.join(out, "orderings.csv"), "w", newline="") as f:
@@ -223,7 +224,8 @@ def main(argv=None):
         taus = np.arange(0, 1001, 10)
         fig, ax = plt.subplots(figsize=(8, 5))
         for v in present:
-            prof, lo, hi = st.performance_profile(data[(v, "greedy")], taus, rng, max(200, args.reps // 4))
+            prof, lo, hi = st.performance_profile(data[(v, "greedy")], taus, st.keyed_rng(args.seed, "profile", v),
+                                                  max(200, args.reps // 4))
             n = len(data[(v, "greedy")])
             line, = ax.plot(taus, prof, label="%s (%d run%s)" % (v, n, "" if n == 1 else "s"))
             ax.fill_between(taus, lo, hi, color=line.get_color(), alpha=0.15)

@@ -268,6 +268,26 @@ def test_sweep_table2_reads_the_sweep_runs_and_writes_the_tables(tmp_path):
     assert "two-level bootstrap" in text and "| basic | paper, trained (8M steps) | 1 | 500 |" in text
 
 
+def test_a_run_added_to_one_variant_leaves_the_other_variants_intervals_as_they_were(tmp_path):
+    """Each estimate draws from its own generator: a new run of basic (the table's first row) must not
+    move slowerhider's interval (it did while one generator served every row in turn)."""
+    base = {"basic_seed0": ("basic", 0, 2048, [100] * 10 + [1000] * 10, [50] * 20),
+            "basic_seed1": ("basic", 1, 2048, [200] * 15 + [700] * 5, [60] * 20),
+            "slowerhider_seed0": ("slowerhider", 0, 2048, [40] * 10 + [90] * 10, [40] * 20),
+            "slowerhider_seed1": ("slowerhider", 1, 2048, [60] * 10 + [30] * 10, [45] * 20)}
+    rows = []
+    for k, extra in enumerate(({}, {"basic_seed2": ("basic", 2, 2048, [300] * 20, [70] * 20)})):
+        rec = make_records(tmp_path / str(k), dict(base, **extra))
+        shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
+        run_analysis("sweep_table2.py", rec, tmp_path / str(k) / "t2")
+        with open(tmp_path / str(k) / "t2" / "table2.csv") as f:
+            rows.append({(x["variant"], x["mode"]): x for x in csv.DictReader(f)})
+    assert rows[1][("basic", "greedy")]["runs"] == "3"
+    for key in ("living_mean_lo", "living_mean_hi", "living_iqm_lo", "living_iqm_hi"):
+        assert rows[0][("slowerhider", "greedy")][key] == rows[1][("slowerhider", "greedy")][key], key
+    assert rows[0][("basic", "greedy")]["living_mean_hi"] != rows[1][("basic", "greedy")]["living_mean_hi"]
+
+
 def add_analysis(rec, name, gain_s, gain_h, s0h0o1=0.1):
     """A run's per-run analysis outputs as analyze_run.sh writes them (the parts the claims read)."""
     d = rec / "docs" / "runs" / name / "analysis"
