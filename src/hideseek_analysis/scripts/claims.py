@@ -258,14 +258,15 @@ def build(root, found, seed, reps, calib):
                 train, test = groups != g, groups == g
                 if len(np.unique(x[train])) > deg:
                     e.extend((np.polyval(np.polyfit(x[train], y[train], deg), x[test]) - y[test]) ** 2)
-            err[deg] = float(np.mean(e))
+            err[deg] = float(np.sqrt(np.mean(e)))
         per_variant = min(int((groups == g).sum()) for g in variants_in)
         res = verdict(ci, per_variant if len(variants_in) == len(PAPER_VARIANTS) else 0, -1.0)
         if res == "supported" and err[2] >= err[1]:
             res = "inconclusive"
         out.append(claim("Survival and representation follow a concave curve", "Figure 7: an inverted U",
                          "quadratic coefficient of probe gain (mean of S, H) against living steps / 1000, one point per "
-                         "run; leave-one-variant-out error linear %.4f, quadratic %.4f" % (err[1], err[2]),
+                         "run; leave-one-variant-out RMSE linear %.4f, quadratic %.4f (%s predicts better)"
+                         % (err[1], err[2], "the quadratic" if err[2] < err[1] else "the linear"),
                          quad, ci, "%d runs of %d variants" % (len(pts), len(variants_in)), res, "",
                          DEPARTURES["steps"]))
     else:
