@@ -349,7 +349,7 @@ retrain() {
     grep -qx "$name" "$state/retrain" 2> /dev/null || echo "$name" >> "$state/retrain"
     echo "sweep: $name queued for retraining, after every other run of the queue"
   done
-  [ -z "$(queue_pid)" ] || echo "sweep: the running queue takes it up when a slot frees (one started before 'retrain' existed: at its next start)"
+  [ -z "$(queue_pid)" ] || echo "sweep: the running queue takes it up when a slot frees"
 }
 
 pause() {
