@@ -104,6 +104,15 @@ def probability_of_improvement(runs_x, runs_y, rng, reps=BOOTSTRAP):
     }
 
 
+def mean_difference(runs_x, runs_y, rng, reps=BOOTSTRAP):
+    """The difference of the pooled means, X minus Y, with the two-level bootstrap interval (each
+    side's runs, then episodes within them, resampled on their own). Returns (d, (lo, hi))."""
+    point = float(np.mean(np.concatenate(runs_x)) - np.mean(np.concatenate(runs_y)))
+    boot = [np.mean(np.concatenate(sx)) - np.mean(np.concatenate(sy))
+            for sx, sy in zip(two_level_samples(runs_x, rng, reps), two_level_samples(runs_y, rng, reps))]
+    return point, interval(boot)
+
+
 def rank_correlation(runs_by_variant, reference, rng, reps=BOOTSTRAP):
     """Spearman's rho between the variants' mean scores (pooled episodes) and `reference` (the
     paper's figures, same order), with a two-level bootstrap interval (each variant resampled on its

@@ -16,6 +16,11 @@ Writes into OUT (default ROOT/docs/report/table2_seeds; make reproduce writes it
   living steps and of success over the pooled episodes, each with its interval;
 - orderings.md / orderings.csv: the probability of improvement for each ordering the paper reports,
   at the level of runs and of episodes, and Spearman's rank correlation with the paper's ordering;
+- readings.md / readings.csv: the two readings of the paper's stochastic seeker side by side
+  (stochasticseeker, whose seeker starts knowing the spawn point, and stochasticseeker_explore, whose
+  seeker explores until it sees the hider): the difference of their means with its interval, the
+  probability of improvement, and which is closer to the paper's figure. Not one of the paper's
+  orderings, and not in the rank correlation;
 - performance_profile.png: the fraction of episodes living longer than tau, per variant, with bands.
 """
 import argparse
@@ -32,6 +37,10 @@ import sweep_stats as st  # noqa: E402
 
 MODES = (("greedy", ""), ("sampled", "sampled"))
 NAME = re.compile(r"^(?P<variant>.+)_seed(?P<seed>\d+)$")
+# Two readings of one variant of the paper: (the paper's variant, our reading, its reading, the other
+# reading's variant, its reading). The paper's figure is the first's.
+READINGS = [("stochasticseeker", "its seeker starts knowing the hider's spawn point",
+             "stochasticseeker_explore", "its seeker explores until it sees the hider (the paper's text, literally)")]
 SWEEP_NOTE = "sweep run"  # scripts/sweep.sh notes each run it trained (a same-named run from elsewhere is not one)
 
 
@@ -96,7 +105,7 @@ def main(argv=None):
     variant_files = sorted(n[:-5] for n in os.listdir(os.path.join(root, "config", "variants")) if n.endswith(".yaml"))
     order = [v for v in paper if v in variant_files] + [v for v in variant_files if v not in paper]
 
-    rows, data = [], {}
+    rows, data, succ = [], {}, {}
     for v in order:
         for mode, sub in MODES:
             runs = []
@@ -109,6 +118,7 @@ def main(argv=None):
             living = [r[1][0] for r in runs]
             success = [r[1][1] for r in runs]
             data[(v, mode)] = living
+            succ[(v, mode)] = success
             row = {"variant": v, "mode": mode, "runs": len(runs), "run_names": " ".join(r[0] for r in runs),
                    "episodes": sum(len(x) for x in living),
                    "per_run_living": " ".join("%.1f" % x.mean() for x in living),
@@ -212,10 +222,71 @@ def main(argv=None):
         omd.append("Rank correlation with the paper: needs at least three of the paper's variants evaluated "
                    "(%d so far)." % len(in_paper))
     omd.append("")
+    if any((x, "greedy") in data for r in READINGS for x in (r[0], r[2])):
+        omd += ["The two readings of the paper's stochastic seeker, side by side: [readings.md](readings.md).", ""]
     with open(os.path.join(out, "table2.md"), "w") as f:
         f.write("\n".join(md + omd))
     with open(os.path.join(out, "orderings.md"), "w") as f:
         f.write("\n".join(omd))
+
+    readings_rows, rmd = [], ["# Two readings of the paper's stochastic seeker", "",
+                              "Greedy evaluations, seeds 0-99. Differences are the first reading minus the second, "
+                              "pooled means with their 95 % two-level bootstrap interval (each variant's runs, then "
+                              "episodes within them, resampled on their own); the probability of improvement as in "
+                              "the orderings. This comparison is not one of the paper's orderings, and the second "
+                              "reading stays out of the rank correlation.", ""]
+    for a, a_says, b, b_says in READINGS:
+        if (a, "greedy") not in data or (b, "greedy") not in data:
+            rmd.append("%s against %s: needs a run of each (%s)." % (
+                a, b, ", ".join(v for v in (a, b) if (v, "greedy") not in data) + " has none"))
+            continue
+        ref = paper.get(a, {})
+        rng_key = ("reading", a, b)
+        d_living = st.mean_difference(data[(a, "greedy")], data[(b, "greedy")], st.keyed_rng(args.seed, *rng_key, "living"),
+                                      args.reps)
+        d_success = st.mean_difference(succ[(a, "greedy")], succ[(b, "greedy")],
+                                       st.keyed_rng(args.seed, *rng_key, "success"), args.reps)
+        poi = st.probability_of_improvement(data[(a, "greedy")], data[(b, "greedy")],
+                                            st.keyed_rng(args.seed, *rng_key, "improvement"), args.reps)
+        va, vb = (float(np.mean(np.concatenate(data[(v, "greedy")]))) for v in (a, b))
+        sa, sb = (float(np.mean(np.concatenate(succ[(v, "greedy")]))) for v in (a, b))
+        for measure, x, y, paper_value, est in (
+                ("living_mean", va, vb, ref.get("living_trained"), d_living),
+                ("success_mean", sa, sb, None if "success_trained" not in ref else ref["success_trained"] / 100.0,
+                 d_success),
+                ("poi_runs", None, None, None, poi["runs"]), ("poi_episodes", None, None, None, poi["episodes"])):
+            readings_rows.append({"first": a, "second": b, "measure": measure, "first_value": x, "second_value": y,
+                                  "paper": paper_value, "estimate": est[0], "lo": est[1][0], "hi": est[1][1]})
+        na, nb = len(data[(a, "greedy")]), len(data[(b, "greedy")])
+        rmd += ["- **%s** (%d runs): %s." % (a, na, a_says), "- **%s** (%d runs): %s." % (b, nb, b_says), "",
+                "| measure | %s | %s | paper (%s) | %s minus %s [95 %% CI] |" % (a, b, a, a, b),
+                "| --- | --- | --- | --- | --- |",
+                "| living steps | %.1f | %.1f | %s | %s |" % (va, vb, ref.get("living_trained", "-"),
+                                                           fmt_ci(d_living[0], d_living[1])),
+                "| success %% | %.0f | %.0f | %s | %s |" % (100 * sa, 100 * sb, "%.0f" % ref["success_trained"]
+                                                          if "success_trained" in ref else "-",
+                                                          fmt_ci(d_success[0], d_success[1], 0, 100)), "",
+                "P(%s > %s): runs %s, episodes %s." % (a, b, fmt_ci(poi["runs"][0], poi["runs"][1], 2),
+                                                       fmt_ci(poi["episodes"][0], poi["episodes"][1], 2))]
+        if "living_trained" in ref:
+            closer = []
+            for what, x, y, target, scale, unit in (
+                    ("living steps", va, vb, float(ref["living_trained"]), 1.0, ""),
+                    ("success", sa, sb, float(ref["success_trained"]) / 100.0, 100.0, " points")):
+                da, db = abs(x - target), abs(y - target)
+                closer.append("in %s, %s (%.1f%s from the paper's %.0f, against %.1f)" % (
+                    what, a if da < db else b, scale * min(da, db), unit, scale * target, scale * max(da, db)))
+            told = ["in %s the interval of the difference %s" % (
+                what, "holds 0: the two readings are not told apart" if d[1][0] <= 0 <= d[1][1] else "excludes 0")
+                for what, d in (("living steps", d_living), ("success", d_success))]
+            rmd += ["", "Closer to the paper's figure: %s. %s." % ("; ".join(closer), "; ".join(told).capitalize())]
+        rmd.append("")
+    if readings_rows:
+        st.write_rows(os.path.join(out, "readings.csv"),
+                      [{k: (round(v, 4) if isinstance(v, float) else ("" if v is None else v)) for k, v in r.items()}
+                       for r in readings_rows])
+    with open(os.path.join(out, "readings.md"), "w") as f:
+        f.write("\n".join(rmd))
 
     if present:
         import matplotlib

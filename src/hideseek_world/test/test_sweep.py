@@ -288,6 +288,42 @@ def test_a_run_added_to_one_variant_leaves_the_other_variants_intervals_as_they_
     assert rows[0][("basic", "greedy")]["living_mean_hi"] != rows[1][("basic", "greedy")]["living_mean_hi"]
 
 
+def test_mean_difference_interval_holds_zero_only_when_the_runs_overlap():
+    rng = np.random.default_rng(4)
+    far = st.mean_difference([np.full(50, 300.0), np.full(50, 320.0)], [np.full(50, 100.0), np.full(50, 110.0)], rng, 300)
+    assert far[0] == pytest.approx(205.0) and far[1][0] > 0
+    near = st.mean_difference([np.full(50, 100.0), np.full(50, 300.0)], [np.full(50, 150.0), np.full(50, 250.0)], rng, 300)
+    assert near[0] == pytest.approx(0.0) and near[1][0] < 0 < near[1][1]
+
+
+def test_the_two_readings_of_the_stochastic_seeker_are_compared_beside_the_table(tmp_path):
+    """stochasticseeker (its seeker knows the spawn point) against stochasticseeker_explore: the
+    difference with its interval, and which reading lands nearer the paper's 277 living steps."""
+    rec = make_records(tmp_path, {
+        "stochasticseeker_seed0": ("stochasticseeker", 0, 2048, [500] * 20, [500] * 20),
+        "stochasticseeker_seed1": ("stochasticseeker", 1, 2048, [520] * 20, [520] * 20),
+        "stochasticseeker_explore_seed0": ("stochasticseeker_explore", 0, 2048, [300] * 20, [300] * 20),
+        "stochasticseeker_explore_seed1": ("stochasticseeker_explore", 1, 2048, [280] * 20, [280] * 20)})
+    shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
+    out = tmp_path / "t2"
+    run_analysis("sweep_table2.py", rec, out)
+    with open(out / "readings.csv") as f:
+        rows = {x["measure"]: x for x in csv.DictReader(f)}
+    assert float(rows["living_mean"]["estimate"]) == pytest.approx(220.0)
+    assert float(rows["living_mean"]["lo"]) > 0
+    assert float(rows["poi_runs"]["estimate"]) == 1.0
+    text = (out / "readings.md").read_text()
+    assert "in living steps, stochasticseeker_explore (13.0 from the paper's 277, against 233.0)" in text
+    assert "In living steps the interval of the difference excludes 0" in text
+    assert "[readings.md](readings.md)" in (out / "table2.md").read_text()
+    # Only one reading trained so far: no comparison is made up.
+    rec2 = make_records(tmp_path / "one", {"stochasticseeker_seed0": ("stochasticseeker", 0, 2048, [500] * 20, None)})
+    shutil.copytree(os.path.join(ROOT, "config"), rec2 / "config")
+    run_analysis("sweep_table2.py", rec2, tmp_path / "one" / "t2")
+    assert not (tmp_path / "one" / "t2" / "readings.csv").exists()
+    assert "needs a run of each (stochasticseeker_explore has none)" in (tmp_path / "one" / "t2" / "readings.md").read_text()
+
+
 def add_analysis(rec, name, gain_s, gain_h, s0h0o1=0.1):
     """A run's per-run analysis outputs as analyze_run.sh writes them (the parts the claims read)."""
     d = rec / "docs" / "runs" / name / "analysis"
