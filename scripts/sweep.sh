@@ -16,7 +16,8 @@
 #   retrain RUN ...  train again, after every other run of the queue, done runs whose weights are
 #            not on this machine (lost with a change of machine): the run a variant must ship
 #            (scripts/sweep.sh ship names it). The new run replaces the old one's records; from
-#            the same pin on a CPU with native bf16 they should come out the same, which git
+#            the same pin on the same kind of CPU they come out the same (on another kind the
+#            bf16 kernels can sum in another order: the run is a new draw of its seed), which git
 #            shows
 #   status   the pin, and every run in queue order: done (with its evaluations, whether it is
 #            analysed and whether its weights are on this machine), training (its steps),
