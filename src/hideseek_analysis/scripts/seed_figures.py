@@ -247,7 +247,7 @@ def tsne_figure(root, out, R, variants, seed, reps):
         panels += [("%s\nS %.2f, H %.2f" % (n, scores[n]["S"], scores[n]["H"]), coords) for n, coords in runs]
     cols = min(4, len(panels))
     nrows = -(-len(panels) // cols)
-    fig, axes = plt.subplots(nrows, cols, figsize=(2.6 * cols, 2.5 * nrows + 0.9), squeeze=False)
+    fig, axes = plt.subplots(nrows, cols, figsize=(2.6 * cols, 2.5 * nrows + 1.5), squeeze=False)
     for k, ax in enumerate(axes.flat):
         if k >= len(panels):
             ax.axis("off")
@@ -270,7 +270,7 @@ def tsne_figure(root, out, R, variants, seed, reps):
                      len(panels[0][1]), *(base_mean("random_init_", t, how) or np.nan for t in ("S", "H")
                                           for how in (np.min, np.max)),
                      base_mean("pixels", "S") or np.nan, base_mean("pixels", "H") or np.nan), fontsize=9)
-    save(fig, out, "tsne_seeds", table, rect=(0, 0.9 / (2.5 * nrows + 0.9), 1, 1))
+    save(fig, out, "tsne_seeds", table, rect=(0, 0.9 / (2.5 * nrows + 1.5), 1, 1 - 0.6 / (2.5 * nrows + 1.5)))  # room for the 3-line title
 
 
 def main(argv=None):
