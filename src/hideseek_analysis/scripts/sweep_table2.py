@@ -37,8 +37,8 @@ import sweep_stats as st  # noqa: E402
 
 MODES = (("greedy", ""), ("sampled", "sampled"))
 NAME = re.compile(r"^(?P<variant>.+)_seed(?P<seed>\d+)$")
-# Two readings of one variant of the paper: (the paper's variant, our reading, its reading, the other
-# reading's variant, its reading). The paper's figure is the first's.
+# Two readings of one variant of the paper: (the paper's variant, what its seeker does, the other
+# reading's variant, what its seeker does). The paper's figure is the first's.
 READINGS = [("stochasticseeker", "its seeker starts knowing the hider's spawn point",
              "stochasticseeker_explore", "its seeker explores until it sees the hider (the paper's text, literally)")]
 SWEEP_NOTE = "sweep run"  # scripts/sweep.sh notes each run it trained (a same-named run from elsewhere is not one)
@@ -237,8 +237,9 @@ def main(argv=None):
                               "reading stays out of the rank correlation.", ""]
     for a, a_says, b, b_says in READINGS:
         if (a, "greedy") not in data or (b, "greedy") not in data:
-            rmd.append("%s against %s: needs a run of each (%s)." % (
-                a, b, ", ".join(v for v in (a, b) if (v, "greedy") not in data) + " has none"))
+            missing = [v for v in (a, b) if (v, "greedy") not in data]
+            rmd.append("%s against %s: needs a run of each (%s %s none)." % (
+                a, b, " and ".join(missing), "has" if len(missing) == 1 else "have"))
             continue
         ref = paper.get(a, {})
         rng_key = ("reading", a, b)
