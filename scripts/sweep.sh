@@ -196,8 +196,11 @@ job() {
   rc=$?
   set -e
   if [ $rc -eq 0 ]; then
+    # paused_s again, from this training's own file (empty: none), so that a retrained run keeps no
+    # paused time of its first training (train_variant.sh at pins before 2026-11-27 left it).
     /usr/bin/python3 scripts/hideseek_registry.py --registry "$records/policies/policies.yaml" record "$name" \
-      note="$SWEEP_NOTE, pinned at $(git rev-parse --short=12 "$pin")"
+      note="$SWEEP_NOTE, pinned at $(git rev-parse --short=12 "$pin")" \
+      paused_s="$(head -n 1 "$runs/$name/paused_s" 2> /dev/null | cut -d. -f1)"
     analyze "$name" || true
     ship "$variant"
     say "$name: done: $(grep 'evaluate_run:.*(greedy)\|evaluate_run:.*(sampled)' "$dir/logs/$name.log" | sed 's/.*(\(greedy\|sampled\)): \([^(]*\).*/\1 \2/' | paste -sd ';')"

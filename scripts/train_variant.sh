@@ -96,7 +96,8 @@ paused=0
 [ -z "${PAUSED_FILE:-}" ] || [ ! -s "$PAUSED_FILE" ] || paused=$(head -n 1 "$PAUSED_FILE")
 paused=${paused%.*}
 [ "$paused" -ge 0 ] 2> /dev/null || { echo "train_variant: $PAUSED_FILE must hold a number of seconds >= 0, holds '$paused'" >&2; exit 2; }
-paused_field=()
+# paused_s= (empty) removes a paused time left in the entry by an earlier training of this run.
+paused_field=(paused_s=)
 [ "$paused" = 0 ] || paused_field=(paused_s="$paused")
 commits=$(paste -sd ';' "$run/commit" | sed 's/;/; /g')
 "${registry[@]}" record "$name" variant="$variant" network="$network" game="$game" \

@@ -26,7 +26,9 @@ usage:
                                                       the shipped weights' path (exit 1: none)
   hideseek_registry.py shipped --all [--game G]       LABEL VARIANT NETWORK PATH of every shipped policy, in
                                                       Table 2's order
-  hideseek_registry.py record RUN key=value ...       adds or updates a run's entry
+  hideseek_registry.py record RUN key=value ...       adds or updates a run's entry; key= (empty)
+                                                      removes the key, so that a run trained again
+                                                      keeps nothing of the old training (paused_s)
   hideseek_registry.py ship RUN WEIGHTS               copies WEIGHTS to policies/<variant>[_gru].pt
                                                       and makes RUN the shipped run of its key
   hideseek_registry.py ship-median VARIANT --weights-dir DIR [--note PREFIX]
@@ -212,10 +214,12 @@ def _locked(registry):
 
 
 def record(name, fields, registry=REGISTRY):
+    """Adds or updates a run's entry. A field whose value is None is removed from the entry."""
     with _locked(registry):
         entries = runs(registry)
         entry = dict(entries.get(name, {}))
         entry.update(fields)
+        entry = {k: v for k, v in entry.items() if v is not None}
         entries[name] = {k: entry[k] for k in RUN_KEYS if k in entry}
         _write(entries, registry)
         runs(registry)  # refuse what was just written if it is malformed
@@ -382,7 +386,10 @@ def main(argv=None):
                 key, sep, value = item.partition("=")
                 if not sep or key not in RUN_KEYS:
                     raise RegistryError("record: %r is not key=value with a key among %s" % (item, ", ".join(RUN_KEYS)))
-                fields[key] = _value(value) if key not in ("commit", "game", "log", "curve") else value
+                if value == "":
+                    fields[key] = None
+                else:
+                    fields[key] = _value(value) if key not in ("commit", "game", "log", "curve") else value
             record(args.run, fields, args.registry)
         elif args.command == "ship":
             ship(args.run, args.weights, args.registry)

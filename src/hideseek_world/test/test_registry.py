@@ -80,6 +80,21 @@ def test_problems_name_what_disagrees(tree):
     assert "stray.pt is shipped by no run" in found
 
 
+def test_recording_a_run_again_replaces_its_training_and_an_empty_value_removes_a_field(tree):
+    """A retrained run is recorded over its first training: the new wall time replaces the old, and
+    paused_s= (what train_variant.sh and the sweep pass when the new training was never paused)
+    removes the old training's paused time rather than leaving it beside the new wall time."""
+    registry, variants = tree
+    first = ["variant=basic", "network=ff", "game=v2", "training_seed=0", "wall_s=4394", "paused_s=1030"]
+    assert cli("--registry", registry, "--variants-dir", variants, "record", "basic_seed0", *first).returncode == 0
+    assert reg.runs(registry)["basic_seed0"]["paused_s"] == 1030
+    again = cli("--registry", registry, "--variants-dir", variants, "record", "basic_seed0", "wall_s=2504", "paused_s=")
+    assert again.returncode == 0, again.stderr
+    entry = reg.runs(registry)["basic_seed0"]
+    assert entry["wall_s"] == 2504 and "paused_s" not in entry
+    assert entry["variant"] == "basic" and entry["training_seed"] == 0
+
+
 def test_a_malformed_run_is_refused_naming_it(tree):
     registry, variants = tree
     open(registry, "a").write("basic_seed0: {variant: basic, network: ff, game: v2, stpes: 3}\n")
