@@ -182,7 +182,7 @@ prepare_tree() {
 
 # One run: train (or resume), export, record and evaluate into this checkout.
 job() {
-  local name=$1 variant=$2 seed=$3 slot=$4 port rc
+  local name=$1 variant=$2 seed=$3 slot=$4 port rc paused
   port=$((port_base + 10 * slot))
   for p in "$port" $((port + 1)) $((port + 2)); do
     port_free "$p" || { say "$name: port $p is in use; not started"; return 3; }
@@ -196,11 +196,14 @@ job() {
   rc=$?
   set -e
   if [ $rc -eq 0 ]; then
-    # paused_s again, from this training's own file (empty: none), so that a retrained run keeps no
-    # paused time of its first training (train_variant.sh at pins before 2026-11-27 left it).
+    # paused_s again, as train_variant.sh records it (none when 0: `paused_s=` removes the field),
+    # so that a retrained run keeps no paused time of its first training: train_variant.sh at pins
+    # before 2026-11-27 left it. Redundant once the pin is later than that.
+    paused=$(head -n 1 "$runs/$name/paused_s" 2> /dev/null || true)
+    paused=${paused%.*}
+    [ "${paused:-0}" != 0 ] || paused=
     /usr/bin/python3 scripts/hideseek_registry.py --registry "$records/policies/policies.yaml" record "$name" \
-      note="$SWEEP_NOTE, pinned at $(git rev-parse --short=12 "$pin")" \
-      paused_s="$(head -n 1 "$runs/$name/paused_s" 2> /dev/null | cut -d. -f1)"
+      note="$SWEEP_NOTE, pinned at $(git rev-parse --short=12 "$pin")" paused_s="$paused"
     analyze "$name" || true
     ship "$variant"
     say "$name: done: $(grep 'evaluate_run:.*(greedy)\|evaluate_run:.*(sampled)' "$dir/logs/$name.log" | sed 's/.*(\(greedy\|sampled\)): \([^(]*\).*/\1 \2/' | paste -sd ';')"
