@@ -4,7 +4,9 @@
 # of its features on the probe set's test images (coordinates and neighbourhood scores) and its
 # behaviour on 100 rollouts (play_episodes, seeds 10000-10099, greedy: states, transitions,
 # distance over time, how often it walks backward, keeps the seeker in view, breaks the line of
-# sight), into docs/runs/<run>/analysis/.
+# sight), into docs/runs/<run>/analysis/. For a GRU run, also its memoryless ablation on the same
+# rollout seeds (the same policy with its state zeroed at every step: it acts on the current image
+# alone) into docs/runs/<run>/analysis/memoryless/: what the claims table compares its memory with.
 # usage: scripts/analyze_run.sh RUN WEIGHTS          (RUN as in policies/policies.yaml)
 #        scripts/analyze_run.sh --tsne-only RUN WEIGHTS   (the t-SNE alone: for a run analysed
 #                                                           before the per-run t-SNE existed)
@@ -37,8 +39,10 @@ trap 'rm -rf "$tmp"' EXIT
 if [ $baseline = 1 ]; then
   out=$records/docs/analysis/baselines/$variant/${policy//\//_}
 else
-  variant=$(/usr/bin/python3 -c 'import sys; sys.path.insert(0, "scripts"); import hideseek_registry as r
-print(r.runs(sys.argv[2])[sys.argv[1]]["variant"])' "$name" "$records/policies/policies.yaml")
+  entry=$(/usr/bin/python3 -c 'import sys; sys.path.insert(0, "scripts"); import hideseek_registry as r
+e = r.runs(sys.argv[2])[sys.argv[1]]
+print(e["variant"], e.get("network", "ff"))' "$name" "$records/policies/policies.yaml")
+  read -r variant network <<< "$entry"
   out=$records/docs/runs/$name/analysis
   probe=$(scripts/probe_set.sh)
   devel/lib/hideseek_analysis/probe_set features "$probe" "$tmp/trained.npy" --policy "$policy" > /dev/null
@@ -52,13 +56,21 @@ print(r.runs(sys.argv[2])[sys.argv[1]]["variant"])' "$name" "$records/policies/p
     "$out/probes.csv" --run "$name"
 fi
 mkdir -p "$out"
-# play_episodes plays at most 64 episodes at once: chunks of 50, one CSV.
-for ((at = 0; at < episodes; at += 50)); do
-  n=$((episodes - at < 50 ? episodes - at : 50))
-  devel/lib/hideseek_play/play_episodes "$variant" "$policy" $((first + at)) "$n" "$tmp/chunk.csv" greedy > /dev/null
-  if [ $at = 0 ]; then cp "$tmp/chunk.csv" "$tmp/steps.csv"; else tail -n +2 "$tmp/chunk.csv" >> "$tmp/steps.csv"; fi
-done
+# play_episodes plays at most 64 episodes at once: chunks of 50, one CSV. $1: memory or memoryless.
+rollouts() {
+  local at n
+  for ((at = 0; at < episodes; at += 50)); do
+    n=$((episodes - at < 50 ? episodes - at : 50))
+    devel/lib/hideseek_play/play_episodes "$variant" "$policy" $((first + at)) "$n" "$tmp/chunk.csv" greedy "$1" > /dev/null
+    if [ $at = 0 ]; then cp "$tmp/chunk.csv" "$tmp/steps.csv"; else tail -n +2 "$tmp/chunk.csv" >> "$tmp/steps.csv"; fi
+  done
+}
+rollouts memory
 /usr/bin/python3 src/hideseek_analysis/scripts/behaviour.py "$tmp/steps.csv" "$out" --run "$name"
+if [ $baseline = 0 ] && [ "$network" = gru ]; then
+  rollouts memoryless
+  /usr/bin/python3 src/hideseek_analysis/scripts/behaviour.py "$tmp/steps.csv" "$out/memoryless" --run "$name"
+fi
 # The t-SNE last: its failure must not cost the probes and the behaviour above.
 [ $baseline = 1 ] || tsne
 echo "analyze_run: $name: $out"

@@ -8,8 +8,11 @@ Reads the sweep's runs (as sweep_table2.py selects them: registry entries <varia
 --extra), each run's evaluation (docs/runs/<run>/episodes.csv) and per-run analysis
 (docs/runs/<run>/analysis/: probes.csv, states.csv, transitions.csv, behaviour.csv, written by
 scripts/analyze_run.sh), the random hider's behaviour per variant
-(docs/analysis/baselines/<variant>/random/) and its living steps (docs/calibration_table.csv).
-Writes OUT/claims.md and OUT/claims.csv (default ROOT/docs/report).
+(docs/analysis/baselines/<variant>/random/) and its living steps (docs/calibration_table.csv), and
+for the memory claim the sweep's GRU runs (<variant>_gru_seed<S>, network gru) with their
+memoryless ablations (docs/runs/<run>/analysis/memoryless/behaviour.csv).
+Writes OUT/claims.md and OUT/claims.csv, and OUT/memory_seeds.md and .csv (the GRU runs against
+their feed-forward twins), default OUT ROOT/docs/report.
 
 Every interval is a 95 % percentile bootstrap over the runs (training seeds) of each variant
 involved, resampled within each variant; living steps use the two-level bootstrap (runs, then
@@ -337,10 +340,117 @@ def build(root, found, seed, reps, calib):
         out.append(claim("The faster hiders' distance oscillates", "Figure 6: the faster hiders' distance oscillates",
                          "turns of the distance per 100 steps, faster hiders minus basic", runs=runs_text(osc),
                          note="needs basic and a faster hider analysed"))
-    out.append(claim("Failures come from a lack of memory", "section 5: the hider forgets the seeker once out of view",
-                     "GRU runs against the feed-forward runs of the same seeds, and the GRU's memoryless ablation",
-                     note="not yet trained on game v2 (the GRU runs follow the sweep)"))
     return out
+
+
+# The variants whose GRU hiders the sweep trains: those where the paper blames the hider's lack of memory.
+GRU_VARIANTS = ("basic", "slowerhider", "stochasticmaps")
+MEMORY_CLAIM = ("Failures come from a lack of memory", "section 5: the hider forgets the seeker once out of view")
+
+
+def memory(root, found, gru_found, seed, reps):
+    """The memory claim and its table. Each GRU run <variant>_gru_seed<S> is paired with the
+    feed-forward run of the same variant and training seed (both evaluated greedy on the same
+    evaluation seeds): the difference of their mean living steps is one value per pair, resampled
+    over the pairs of each variant. The GRU's own memory is read from its memoryless ablation (the
+    same policy with its state zeroed at every step, on the per-run analysis' rollouts): living
+    steps with memory minus without, one value per GRU run. Supported: the GRU outlives its twin and
+    its memory is what does it (both intervals above 0); contradicted: the GRU lives shorter than
+    its twin (the difference's interval below 0); inconclusive otherwise, or while a variant has
+    fewer than MIN_RUNS pairs. Returns (claim row, table rows)."""
+    R = Runs(root, found)
+    pairs, ablation, table = {}, {}, []
+    for v in GRU_VARIANTS:
+        twins = {int(e.get("training_seed", -1)): n for n, e in found.get(v, [])}
+        gru_living, ff_living = [], []
+        for name, e in gru_found.get(v, []):
+            twin = twins.get(int(e.get("training_seed", -1)))
+            gru_path = os.path.join(root, "docs", "runs", name, "episodes.csv")
+            if twin is None or not os.path.exists(gru_path):
+                continue
+            g = load_episodes(gru_path)[0]
+            f = load_episodes(os.path.join(root, "docs", "runs", twin, "episodes.csv"))[0]
+            if len(g) != len(f):
+                raise SystemExit("claims: %s and %s were evaluated on different numbers of episodes" % (name, twin))
+            gru_living.append(g)
+            ff_living.append(f)
+            pairs.setdefault(v, []).append(float(g.mean() - f.mean()))
+            with_memory = R.analysis(name, "behaviour")
+            without = read_csv(os.path.join(root, "docs", "runs", name, "analysis", "memoryless", "behaviour.csv"))
+            if with_memory and without:
+                ablation.setdefault(v, []).append(float(with_memory[0]["mean_living_steps"])
+                                                  - float(without[0]["mean_living_steps"]))
+        if not gru_living:
+            continue
+        row = {"variant": v, "runs": len(gru_living)}
+        for key, runs in (("gru", gru_living), ("ff", ff_living)):
+            point, ci = st.pooled_statistic(runs, st.mean, st.keyed_rng(seed, v, "memory", key), reps)
+            row.update({key: round(point, 2), key + "_ci_low": round(ci[0], 2), key + "_ci_high": round(ci[1], 2)})
+        for key, per_run in (("difference", pairs[v]), ("memory_gain", ablation.get(v, []))):
+            if per_run:
+                point, ci = boot_runs({v: per_run}, lambda x: np.mean(list(x.values())[0]),
+                                      st.keyed_rng(seed, v, "memory", key), reps)
+                row.update({key: round(point, 2), key + "_ci_low": "" if not np.isfinite(ci[0]) else round(ci[0], 2),
+                            key + "_ci_high": "" if not np.isfinite(ci[1]) else round(ci[1], 2),
+                            key + "_runs": len(per_run)})
+        table.append(row)
+    name, paper = MEMORY_CLAIM
+    measure = ("living steps, each GRU run minus the feed-forward run of its variant and training seed, mean over %s; "
+               "beside it the GRU's memory: living steps with its state minus its memoryless ablation"
+               % ", ".join(GRU_VARIANTS))
+    if not pairs:
+        return claim(name, paper, measure, note="not yet trained on game v2 (the GRU runs follow the sweep)"), table
+    mean_over = lambda x: np.mean([a.mean() for a in x.values()])  # noqa: E731
+    point, ci = boot_runs(pairs, mean_over, st.keyed_rng(seed, "memory", "difference"), reps)
+    n_min = min(len(pairs.get(v, [])) for v in GRU_VARIANTS)
+    result = verdict(ci, n_min)
+    gain_text = "no memoryless ablation yet"
+    if ablation:
+        g_point, g_ci = boot_runs(ablation, mean_over, st.keyed_rng(seed, "memory", "memory_gain"), reps)
+        g_verdict = verdict(g_ci, min(len(ablation.get(v, [])) for v in GRU_VARIANTS))
+        gain_text = "memory minus memoryless %.1f%s" % (
+            g_point, " [%.1f, %.1f]" % g_ci if np.all(np.isfinite(g_ci)) else " (one run of a variant: no interval)")
+        if result == "supported" and g_verdict != "supported":
+            result = "inconclusive"  # the GRU lives longer, but not shown to be through its memory
+    elif result == "supported":
+        result = "inconclusive"
+    short = [v for v in GRU_VARIANTS if len(pairs.get(v, [])) < MIN_RUNS]
+    note = ("needs at least %d GRU runs, each with its feed-forward twin, of: %s" % (MIN_RUNS, ", ".join(short))
+            if short else "")
+    return claim(name, paper, measure + " (%s)" % gain_text, point, ci, runs_text(pairs), result, note,
+                 DEPARTURES["steps"]), table
+
+
+MEMORY_FIELDS = ["variant", "runs", "gru", "gru_ci_low", "gru_ci_high", "ff", "ff_ci_low", "ff_ci_high", "difference",
+                 "difference_ci_low", "difference_ci_high", "difference_runs", "memory_gain", "memory_gain_ci_low",
+                 "memory_gain_ci_high", "memory_gain_runs"]
+
+
+def write_memory(out_dir, rows):
+    """memory_seeds.md and .csv: per variant, the GRU runs against their feed-forward twins."""
+    st.write_rows(os.path.join(out_dir, "memory_seeds.csv"), rows, MEMORY_FIELDS)
+
+    def ci(r, key):
+        if r.get(key, "") == "":
+            return "-"
+        lo, hi = r.get(key + "_ci_low", ""), r.get(key + "_ci_high", "")
+        return "%.1f" % r[key] + (" [%.1f, %.1f]" % (lo, hi) if lo != "" else "")
+    md = ["# The hider with memory (GRU) against its feed-forward twin", "",
+          "Each GRU run `<variant>_gru_seed<S>` beside the feed-forward run of the same variant and training seed, "
+          "both evaluated greedy on evaluation seeds 0-99. Living steps: the pooled mean with a 95 % two-level "
+          "bootstrap (runs, then episodes). Difference: GRU minus feed-forward per pair of runs, mean over pairs, "
+          "95 % bootstrap over the pairs (none with one pair). Memory: the GRU's living steps on the per-run "
+          "analysis' 100 rollouts (seeds 10000-10099) minus those of its memoryless ablation (its state zeroed at "
+          "every step) on the same rollouts, mean over runs. The claim it decides is in [claims.md](claims.md).", "",
+          "| variant | GRU runs | GRU living steps | feed-forward, same seeds | GRU minus feed-forward | "
+          "memory minus memoryless |", "| --- | --- | --- | --- | --- | --- |"]
+    for r in rows:
+        md.append("| %s | %d | %s | %s | %s | %s |" % (r["variant"], r["runs"], ci(r, "gru"), ci(r, "ff"),
+                                                      ci(r, "difference"), ci(r, "memory_gain")))
+    if not rows:
+        md.append("| (no GRU run of the sweep yet) | 0 | - | - | - | - |")
+    with open(os.path.join(out_dir, "memory_seeds.md"), "w") as f:
+        f.write("\n".join(md) + "\n")
 
 
 SOUND_RUNS = 3
@@ -378,7 +488,8 @@ def write(out_dir, rows, header):
            "and Figures 4-7 and the t-SNE across seeds: [states](state_frequencies_seeds.png), "
            "[transitions](transitions_seeds.png), [distance](distance_seeds.png), "
            "[survival against representation](survival_representation.png), [t-SNE](tsne_seeds.png) "
-           "(each with its numbers in the .csv of the same name).", ""]
+           "(each with its numbers in the .csv of the same name), and the GRU runs against their feed-forward "
+           "twins in [memory_seeds.md](memory_seeds.md).", ""]
     with open(os.path.join(out_dir, "claims.md"), "w") as f:
         f.write("\n".join(md))
 
@@ -393,6 +504,9 @@ def main(argv=None):
     for r in read_csv(os.path.join(root, "docs", "calibration_table.csv")) or []:
         calib.setdefault(r["variant"], []).append(r)
     rows = build(root, found, args.seed, args.reps, calib)
+    memory_row, memory_table = memory(root, found, sweep_runs(root, args.steps, set(args.extra), "gru"), args.seed,
+                                      args.reps)
+    rows.append(memory_row)
     for r in rows:
         mark_provisional(r)
     n = sum(len(x) for x in found.values())
@@ -403,7 +517,9 @@ def main(argv=None):
               "the two runs' range, whose coverage is well under 95 %%: a claim decided on two runs of a variant is "
               "marked provisional (both runs agree), until its third run arrives." % (n, ", ".join("%s %d" % (v, len(x)) for v, x in found.items()) or "none",
                                             args.reps, MIN_RUNS))
-    write(args.out or os.path.join(root, "docs", "report"), rows, header)
+    out_dir = args.out or os.path.join(root, "docs", "report")
+    write(out_dir, rows, header)
+    write_memory(out_dir, memory_table)
     for r in rows:
         print("claims: %-70s %s" % (r["claim"], r["result"]))
     return 0

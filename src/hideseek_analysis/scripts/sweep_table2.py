@@ -61,16 +61,19 @@ def load_episodes(path):
     return living, success
 
 
-def sweep_runs(root, steps, extra):
-    """variant -> [(run, entry)], in training-seed order."""
+def sweep_runs(root, steps, extra, network="ff"):
+    """variant -> [(run, entry)], in training-seed order: the sweep's runs of `network` (ff:
+    <variant>_seed<S>; gru: <variant>_gru_seed<S>), plus the runs named in `extra` of that network."""
     with open(os.path.join(root, "policies", "policies.yaml")) as f:
         entries = yaml.safe_load(f) or {}
+    suffix = "" if network == "ff" else "_" + network
     found = {}
     for name, e in entries.items():
         m = NAME.match(name)
-        chosen = name in extra or (
-            m and m.group("variant") == e.get("variant") and e.get("network") == "ff" and e.get("game") == "v2"
-            and int(e.get("steps", 0)) >= steps and str(e.get("note", "")).startswith(SWEEP_NOTE))
+        chosen = (name in extra and e.get("network", "ff") == network) or (
+            m and m.group("variant") == str(e.get("variant")) + suffix and e.get("network") == network
+            and e.get("game") == "v2" and int(e.get("steps", 0)) >= steps
+            and str(e.get("note", "")).startswith(SWEEP_NOTE))
         if chosen:
             found.setdefault(e["variant"], []).append((name, e))
     for v in found:

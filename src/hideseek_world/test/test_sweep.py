@@ -459,6 +459,72 @@ def test_seed_figures_tsne_table3_and_behaviour_with_intervals_over_runs(tmp_pat
     assert "| basic | S | 2 | 79.0 (range of 2 runs: 78.0 to 80.0) |" in (out / "table3_seeds.md").read_text()
 
 
+def add_gru_runs(rec, living, with_memory, without_memory, seeds=(0, 1, 2), variants=("basic", "slowerhider",
+                                                                                       "stochasticmaps")):
+    """GRU sweep runs <variant>_gru_seed<S> in the registry, with their greedy evaluation (`living`,
+    episodes per seed) and the per-run analysis' living steps with memory and with the memoryless
+    ablation (one value per seed each)."""
+    path = rec / "policies" / "policies.yaml"
+    entries = yaml.safe_load(path.read_text())
+    for v in variants:
+        for s in seeds:
+            name = "%s_gru_seed%d" % (v, s)
+            entries[name] = {"variant": v, "network": "gru", "game": "v2", "training_seed": s, "steps": 2048,
+                             "note": "sweep run (config/sweep.yaml), pinned at 0123456789ab"}
+            d = rec / "docs" / "runs" / name
+            (d / "analysis" / "memoryless").mkdir(parents=True, exist_ok=True)
+            with open(d / "episodes.csv", "w") as f:
+                f.write("seed,living_steps,outcome\n" + "".join("%d,%d,captured\n" % (i, x)
+                                                                 for i, x in enumerate(living[s])))
+            for sub, x in (("", with_memory[s]), ("memoryless", without_memory[s])):
+                with open(d / "analysis" / sub / "behaviour.csv", "w") as f:
+                    f.write("run,episodes,steps,mean_living_steps,success_rate,backward_share,sees_seeker_share,"
+                            "seen_share,line_of_sight_breaks_per_100,seeker_lost_per_100,distance_turns_per_100\n"
+                            "%s,100,%d,%.2f,0,0.1,0.5,0.5,1,1,10\n" % (name, 100 * x, x))
+    path.write_text(yaml.safe_dump(entries, sort_keys=False))
+
+
+def test_the_memory_claim_pairs_each_gru_run_with_its_feed_forward_twin(tmp_path):
+    memory_claim = "Failures come from a lack of memory"
+    runs = {"%s_seed%d" % (v, s): (v, s, 2048, [100] * 20, [90] * 20)
+            for v in ("basic", "slowerhider", "stochasticmaps") for s in range(3)}
+    rec = make_records(tmp_path, runs)
+    # GRU runs outlive their twins by 50-52 living steps, and their memory is what does it (+80).
+    add_gru_runs(rec, {s: [150 + s] * 20 for s in range(3)}, [200] * 3, [120] * 3)
+    c = run_claims(tmp_path, rec)
+    m = c[memory_claim]
+    assert m["result"] == "supported", m
+    assert float(m["effect"]) == pytest.approx(51.0) and 50 <= float(m["ci_low"]) <= float(m["ci_high"]) <= 52
+    assert "memory minus memoryless 80.0" in m["measure"]
+    assert m["runs"] == "basic 3, slowerhider 3, stochasticmaps 3"
+    # the GRU runs are not counted as feed-forward runs of their variants
+    assert "basic 3" in c["Table 2's ordering of the variants"]["runs"]
+    with open(tmp_path / "report" / "memory_seeds.csv") as f:
+        t = {x["variant"]: x for x in csv.DictReader(f)}
+    assert float(t["basic"]["gru"]) == pytest.approx(151.0) and float(t["basic"]["ff"]) == pytest.approx(100.0)
+    assert float(t["slowerhider"]["memory_gain"]) == pytest.approx(80.0) and t["slowerhider"]["runs"] == "3"
+    assert "| basic | 3 | 151.0 [150.0, 152.0] | 100.0 [100.0, 100.0] | 51.0 [50.0, 52.0] | 80.0 [80.0, 80.0] |" in \
+        (tmp_path / "report" / "memory_seeds.md").read_text()
+    # It lives longer, but zeroing its state every step costs it nothing: not shown to be its memory.
+    add_gru_runs(rec, {s: [150 + s] * 20 for s in range(3)}, [200, 201, 199], [201, 200, 200])
+    assert run_claims(tmp_path, rec)[memory_claim]["result"] == "inconclusive"
+    # The GRU lives shorter than its twin: contradicted, with the rule that could cause it.
+    add_gru_runs(rec, {s: [60 + s] * 20 for s in range(3)}, [200] * 3, [120] * 3)
+    m = run_claims(tmp_path, rec)[memory_claim]
+    assert m["result"] == "contradicted" and float(m["ci_high"]) < 0 and "8M" in m["departure"]
+    # One GRU run of stochasticmaps is no interval over its seeds: undecided, naming the variant.
+    for s in (1, 2):
+        os.remove(rec / "docs" / "runs" / ("stochasticmaps_gru_seed%d" % s) / "episodes.csv")
+    m = run_claims(tmp_path, rec)[memory_claim]
+    assert m["result"] == "inconclusive" and "stochasticmaps" in m["note"] and "stochasticmaps 1" in m["runs"]
+    # No GRU run at all: the claim says so.
+    path = rec / "policies" / "policies.yaml"
+    path.write_text(yaml.safe_dump({k: e for k, e in yaml.safe_load(path.read_text()).items() if "_gru_" not in k},
+                                   sort_keys=False))
+    m = run_claims(tmp_path, rec)[memory_claim]
+    assert m["result"] == "inconclusive" and "not yet trained on game v2" in m["note"] and m["effect"] == ""
+
+
 def test_a_claim_decided_on_two_runs_of_a_variant_is_marked_provisional():
     import claims
     two = {"result": "contradicted", "runs": "fasterhider 2, visibilityreward_faster 3, basic 3", "note": ""}
