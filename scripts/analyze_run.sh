@@ -10,6 +10,8 @@
 # usage: scripts/analyze_run.sh RUN WEIGHTS          (RUN as in policies/policies.yaml)
 #        scripts/analyze_run.sh --tsne-only RUN WEIGHTS   (the t-SNE alone: for a run analysed
 #                                                           before the per-run t-SNE existed)
+#        scripts/analyze_run.sh --memoryless-only RUN WEIGHTS   (a GRU run's memoryless ablation
+#                                                           alone: for one analysed without it)
 #        scripts/analyze_run.sh --baseline VARIANT POLICY   (random or scripted/EVADER: behaviour
 #                                                            only, into docs/analysis/baselines/<variant>/<policy>/;
 #                                                            the random hider's: ROLLOUT_EPISODES=1000, about 43,000 steps)
@@ -17,11 +19,11 @@
 #   ROLLOUT_EPISODES (default 100), ROLLOUT_SEED (default 10000).
 set -euo pipefail
 [ -z "${RECORD_ROOT:-}" ] || RECORD_ROOT=$(realpath "$RECORD_ROOT")
-tsne_only=0
-if [ "${1:-}" = --tsne-only ]; then tsne_only=1; shift; fi
-case " $* " in *" --tsne-only "*) tsne_only=2 ;; esac
-if [ $tsne_only = 2 ] || { [ $tsne_only = 1 ] && [ "${1:-}" = --baseline ]; }; then
-  echo "analyze_run.sh: --tsne-only comes first and goes with a run (RUN WEIGHTS), not with --baseline" >&2
+only=
+case "${1:-}" in --tsne-only | --memoryless-only) only=${1#--}; only=${only%-only}; shift ;; esac
+case " $* " in *" --tsne-only "* | *" --memoryless-only "*) only=misplaced ;; esac
+if [ "$only" = misplaced ] || { [ -n "$only" ] && [ "${1:-}" = --baseline ]; }; then
+  echo "analyze_run.sh: --tsne-only and --memoryless-only come first and go with a run (RUN WEIGHTS), not with --baseline" >&2
   exit 2
 fi
 if [ "${1:-}" = --baseline ]; then
@@ -44,18 +46,7 @@ e = r.runs(sys.argv[2])[sys.argv[1]]
 print(e["variant"], e.get("network", "ff"))' "$name" "$records/policies/policies.yaml")
   read -r variant network <<< "$entry"
   out=$records/docs/runs/$name/analysis
-  probe=$(scripts/probe_set.sh)
-  devel/lib/hideseek_analysis/probe_set features "$probe" "$tmp/trained.npy" --policy "$policy" > /dev/null
-  mkdir -p "$out"
-  tsne() {
-    /usr/bin/python3 src/hideseek_analysis/scripts/probes.py tsne "$probe" "$tmp/trained.npy" "$out" --run "$name" \
-      --baselines docs/probe_set/tsne_baselines.csv
-  }
-  if [ $tsne_only = 1 ]; then tsne; echo "analyze_run: $name: t-SNE into $out"; exit 0; fi
-  /usr/bin/python3 src/hideseek_analysis/scripts/probes.py run "$probe" "$tmp/trained.npy" docs/probe_set/baselines.csv \
-    "$out/probes.csv" --run "$name"
 fi
-mkdir -p "$out"
 # play_episodes plays at most 64 episodes at once: chunks of 50, one CSV. $1: memory or memoryless.
 rollouts() {
   local at n
@@ -65,12 +56,33 @@ rollouts() {
     if [ $at = 0 ]; then cp "$tmp/chunk.csv" "$tmp/steps.csv"; else tail -n +2 "$tmp/chunk.csv" >> "$tmp/steps.csv"; fi
   done
 }
-rollouts memory
-/usr/bin/python3 src/hideseek_analysis/scripts/behaviour.py "$tmp/steps.csv" "$out" --run "$name"
-if [ $baseline = 0 ] && [ "$network" = gru ]; then
+memoryless() {
   rollouts memoryless
   /usr/bin/python3 src/hideseek_analysis/scripts/behaviour.py "$tmp/steps.csv" "$out/memoryless" --run "$name"
+}
+if [ "$only" = memoryless ]; then
+  [ "$network" = gru ] || { echo "analyze_run.sh: --memoryless-only: $name is a $network run; the ablation is a GRU's" >&2; exit 2; }
+  memoryless
+  echo "analyze_run: $name: memoryless ablation into $out/memoryless"
+  exit 0
 fi
-# The t-SNE last: its failure must not cost the probes and the behaviour above.
+if [ $baseline = 0 ]; then
+  probe=$(scripts/probe_set.sh)
+  devel/lib/hideseek_analysis/probe_set features "$probe" "$tmp/trained.npy" --policy "$policy" > /dev/null
+  mkdir -p "$out"
+  tsne() {
+    /usr/bin/python3 src/hideseek_analysis/scripts/probes.py tsne "$probe" "$tmp/trained.npy" "$out" --run "$name" \
+      --baselines docs/probe_set/tsne_baselines.csv
+  }
+  if [ "$only" = tsne ]; then tsne; echo "analyze_run: $name: t-SNE into $out"; exit 0; fi
+  /usr/bin/python3 src/hideseek_analysis/scripts/probes.py run "$probe" "$tmp/trained.npy" docs/probe_set/baselines.csv \
+    "$out/probes.csv" --run "$name"
+fi
+mkdir -p "$out"
+rollouts memory
+/usr/bin/python3 src/hideseek_analysis/scripts/behaviour.py "$tmp/steps.csv" "$out" --run "$name"
+# The t-SNE and the memoryless ablation last: their failure must not cost the probes and the
+# behaviour above (scripts/sweep.sh analyze redoes either alone).
 [ $baseline = 1 ] || tsne
+[ $baseline = 1 ] || [ "$network" != gru ] || memoryless
 echo "analyze_run: $name: $out"

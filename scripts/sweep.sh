@@ -135,6 +135,7 @@ is_done() {
 }
 analysed() { [ -s "$records/docs/runs/$1/analysis/behaviour.csv" ]; }
 has_tsne() { [ -s "$records/docs/runs/$1/analysis/tsne_neighbours.csv" ]; }
+has_memoryless() { [ -s "$records/docs/runs/$1/analysis/memoryless/behaviour.csv" ]; }
 
 # The process tree under a PID (itself first).
 tree_pids() {
@@ -240,22 +241,31 @@ ship() {
 }
 
 analyze_all() {
-  local name n=0
+  local name part n=0
   while read -r name _ _; do
-    if is_done "$name" && ! analysed "$name"; then
+    is_done "$name" || continue
+    if ! analysed "$name"; then
       analyze "$name" && n=$((n + 1))
-    elif is_done "$name" && ! has_tsne "$name" && [ -s "$runs/$name/policy.pt" ]; then
-      # analysed before the per-run t-SNE existed: that part alone, while the weights are here
-      if RECORD_ROOT=$records "$records/scripts/analyze_run.sh" --tsne-only "$name" "$runs/$name/policy.pt" \
+      continue
+    fi
+    [ -s "$runs/$name/policy.pt" ] || continue
+    # Analysed before the per-run t-SNE or a GRU's memoryless ablation existed, or the part failed:
+    # that part alone, while the weights are here.
+    for part in tsne memoryless; do
+      case $part in
+        tsne) ! has_tsne "$name" || continue ;;
+        memoryless) [ "$network" = gru ] && ! has_memoryless "$name" || continue ;;
+      esac
+      if RECORD_ROOT=$records "$records/scripts/analyze_run.sh" "--$part-only" "$name" "$runs/$name/policy.pt" \
         >> "$dir/logs/$name.analysis.log" 2>&1; then
-        say "$name: t-SNE into $records/docs/runs/$name/analysis"
+        say "$name: $part into $records/docs/runs/$name/analysis"
         n=$((n + 1))
       else
-        say "$name: the t-SNE failed; see $dir/logs/$name.analysis.log"
+        say "$name: the $part part failed; see $dir/logs/$name.analysis.log"
       fi
-    fi
+    done
   done < <(queue)
-  say "$n runs analysed"
+  say "$n runs or parts of runs analysed"
 }
 
 run_queue() {

@@ -348,76 +348,100 @@ GRU_VARIANTS = ("basic", "slowerhider", "stochasticmaps")
 MEMORY_CLAIM = ("Failures come from a lack of memory", "section 5: the hider forgets the seeker once out of view")
 
 
+def evaluation_by_seed(path):
+    """{evaluation seed: living steps} of a run's greedy evaluation (docs/runs/<run>/episodes.csv)."""
+    with open(path) as f:
+        return {int(r["seed"]): float(r["living_steps"]) for r in csv.DictReader(f)}
+
+
 def memory(root, found, gru_found, seed, reps):
-    """The memory claim and its table. Each GRU run <variant>_gru_seed<S> is paired with the
-    feed-forward run of the same variant and training seed (both evaluated greedy on the same
-    evaluation seeds): the difference of their mean living steps is one value per pair, resampled
-    over the pairs of each variant. The GRU's own memory is read from its memoryless ablation (the
-    same policy with its state zeroed at every step, on the per-run analysis' rollouts): living
-    steps with memory minus without, one value per GRU run. Supported: the GRU outlives its twin and
-    its memory is what does it (both intervals above 0); contradicted: the GRU lives shorter than
-    its twin (the difference's interval below 0); inconclusive otherwise, or while a variant has
-    fewer than MIN_RUNS pairs. Returns (claim row, table rows)."""
+    """The memory claim and its table. Each GRU run <variant>_gru_seed<S> is paired with the sweep's
+    feed-forward run <variant>_seed<S> (same variant and training seed), both evaluated greedy on
+    the same evaluation seeds: per evaluation seed, GRU living steps minus feed-forward living
+    steps. The difference is the mean over a variant's pairs, with the two-level bootstrap (pairs,
+    then evaluation seeds within each pair), averaged over the variants. The GRU's own memory is
+    read from its memoryless ablation (the same policy with its state zeroed at every step, on the
+    per-run analysis' rollouts): living steps with memory minus without, one value per GRU run,
+    bootstrapped over each variant's runs. Supported: the GRU outlives its twin and its memory is
+    what does it (both intervals above 0, the ablation there for every pair); contradicted: the GRU
+    lives shorter than its twin (the difference's interval below 0); inconclusive otherwise, or
+    while a variant has fewer than MIN_RUNS pairs. Returns (claim row, table rows)."""
     R = Runs(root, found)
-    pairs, ablation, table = {}, {}, []
+    pairs, ablation, table, unpaired = {}, {}, [], []
+    runs_dir = os.path.join(root, "docs", "runs")
     for v in GRU_VARIANTS:
-        twins = {int(e.get("training_seed", -1)): n for n, e in found.get(v, [])}
+        ff_names = set(R.names(v))
         gru_living, ff_living = [], []
         for name, e in gru_found.get(v, []):
-            twin = twins.get(int(e.get("training_seed", -1)))
-            gru_path = os.path.join(root, "docs", "runs", name, "episodes.csv")
-            if twin is None or not os.path.exists(gru_path):
+            twin = "%s_seed%d" % (v, int(e.get("training_seed", -1)))
+            gru_path, ff_path = (os.path.join(runs_dir, n, "episodes.csv") for n in (name, twin))
+            if twin not in ff_names or not os.path.exists(gru_path) or not os.path.exists(ff_path):
+                unpaired.append(name)
                 continue
-            g = load_episodes(gru_path)[0]
-            f = load_episodes(os.path.join(root, "docs", "runs", twin, "episodes.csv"))[0]
-            if len(g) != len(f):
-                raise SystemExit("claims: %s and %s were evaluated on different numbers of episodes" % (name, twin))
-            gru_living.append(g)
-            ff_living.append(f)
-            pairs.setdefault(v, []).append(float(g.mean() - f.mean()))
+            g, f = evaluation_by_seed(gru_path), evaluation_by_seed(ff_path)
+            if sorted(g) != sorted(f):
+                raise SystemExit("claims: %s and %s were evaluated on different evaluation seeds" % (name, twin))
+            seeds = sorted(g)
+            gru_living.append(np.array([g[k] for k in seeds]))
+            ff_living.append(np.array([f[k] for k in seeds]))
+            pairs.setdefault(v, []).append(gru_living[-1] - ff_living[-1])
             with_memory = R.analysis(name, "behaviour")
-            without = read_csv(os.path.join(root, "docs", "runs", name, "analysis", "memoryless", "behaviour.csv"))
+            without = read_csv(os.path.join(runs_dir, name, "analysis", "memoryless", "behaviour.csv"))
             if with_memory and without:
                 ablation.setdefault(v, []).append(float(with_memory[0]["mean_living_steps"])
                                                   - float(without[0]["mean_living_steps"]))
         if not gru_living:
             continue
         row = {"variant": v, "runs": len(gru_living)}
-        for key, runs in (("gru", gru_living), ("ff", ff_living)):
+        for key, runs in (("gru", gru_living), ("ff", ff_living), ("difference", pairs[v])):
             point, ci = st.pooled_statistic(runs, st.mean, st.keyed_rng(seed, v, "memory", key), reps)
             row.update({key: round(point, 2), key + "_ci_low": round(ci[0], 2), key + "_ci_high": round(ci[1], 2)})
-        for key, per_run in (("difference", pairs[v]), ("memory_gain", ablation.get(v, []))):
-            if per_run:
-                point, ci = boot_runs({v: per_run}, lambda x: np.mean(list(x.values())[0]),
-                                      st.keyed_rng(seed, v, "memory", key), reps)
-                row.update({key: round(point, 2), key + "_ci_low": "" if not np.isfinite(ci[0]) else round(ci[0], 2),
-                            key + "_ci_high": "" if not np.isfinite(ci[1]) else round(ci[1], 2),
-                            key + "_runs": len(per_run)})
+        row["difference_runs"] = len(pairs[v])
+        if ablation.get(v):
+            point, ci = boot_runs({v: ablation[v]}, lambda x: np.mean(list(x.values())[0]),
+                                  st.keyed_rng(seed, v, "memory", "memory_gain"), reps)
+            row.update({"memory_gain": round(point, 2),
+                        "memory_gain_ci_low": "" if not np.isfinite(ci[0]) else round(ci[0], 2),
+                        "memory_gain_ci_high": "" if not np.isfinite(ci[1]) else round(ci[1], 2),
+                        "memory_gain_runs": len(ablation[v])})
         table.append(row)
     name, paper = MEMORY_CLAIM
-    measure = ("living steps, each GRU run minus the feed-forward run of its variant and training seed, mean over %s; "
-               "beside it the GRU's memory: living steps with its state minus its memoryless ablation"
-               % ", ".join(GRU_VARIANTS))
+    measure = ("living steps, each GRU run minus the feed-forward run of its variant and training seed on the same "
+               "evaluation seeds, mean over %s; beside it the GRU's memory: living steps with its state minus its "
+               "memoryless ablation" % ", ".join(GRU_VARIANTS))
     if not pairs:
-        return claim(name, paper, measure, note="not yet trained on game v2 (the GRU runs follow the sweep)"), table
-    mean_over = lambda x: np.mean([a.mean() for a in x.values()])  # noqa: E731
-    point, ci = boot_runs(pairs, mean_over, st.keyed_rng(seed, "memory", "difference"), reps)
+        note = ("not yet trained on game v2 (the GRU runs follow the sweep)" if not unpaired else
+                "GRU runs %s have no evaluation or no evaluated feed-forward twin yet" % ", ".join(unpaired))
+        return claim(name, paper, measure, note=note), table
+    # The difference: each variant's pairs resampled, then the evaluation seeds within each pair.
+    variants = list(pairs)
+    rng = st.keyed_rng(seed, "memory", "difference")
+    point = float(np.mean([np.mean(np.concatenate(pairs[v])) for v in variants]))
+    boot = [np.mean([np.mean(np.concatenate(sample)) for sample in samples])
+            for samples in zip(*[st.two_level_samples(pairs[v], rng, reps) for v in variants])]
     n_min = min(len(pairs.get(v, [])) for v in GRU_VARIANTS)
+    ci = st.interval(boot) if n_min >= MIN_RUNS else (np.nan, np.nan)
     result = verdict(ci, n_min)
+    notes = []
+    short = [v for v in GRU_VARIANTS if len(pairs.get(v, [])) < MIN_RUNS]
+    if short:
+        notes.append("needs at least %d GRU runs, each with its evaluated feed-forward twin, of: %s"
+                     % (MIN_RUNS, ", ".join(short)))
+    no_ablation = [v for v in pairs if len(ablation.get(v, [])) < len(pairs[v])]
     gain_text = "no memoryless ablation yet"
     if ablation:
+        mean_over = lambda x: np.mean([a.mean() for a in x.values()])  # noqa: E731
         g_point, g_ci = boot_runs(ablation, mean_over, st.keyed_rng(seed, "memory", "memory_gain"), reps)
         g_verdict = verdict(g_ci, min(len(ablation.get(v, [])) for v in GRU_VARIANTS))
         gain_text = "memory minus memoryless %.1f%s" % (
             g_point, " [%.1f, %.1f]" % g_ci if np.all(np.isfinite(g_ci)) else " (one run of a variant: no interval)")
-        if result == "supported" and g_verdict != "supported":
-            result = "inconclusive"  # the GRU lives longer, but not shown to be through its memory
-    elif result == "supported":
+    if no_ablation:
+        notes.append("no memoryless ablation for every GRU run of: %s (scripts/sweep.sh analyze)" % ", ".join(no_ablation))
+    if result == "supported" and (no_ablation or g_verdict != "supported"):
         result = "inconclusive"
-    short = [v for v in GRU_VARIANTS if len(pairs.get(v, [])) < MIN_RUNS]
-    note = ("needs at least %d GRU runs, each with its feed-forward twin, of: %s" % (MIN_RUNS, ", ".join(short))
-            if short else "")
-    return claim(name, paper, measure + " (%s)" % gain_text, point, ci, runs_text(pairs), result, note,
+        if not no_ablation:
+            notes.append("the GRU outlives its twins, but without its memory it lives as long: not shown to be memory")
+    return claim(name, paper, measure + " (%s)" % gain_text, point, ci, runs_text(pairs), result, "; ".join(notes),
                  DEPARTURES["steps"]), table
 
 
@@ -437,10 +461,10 @@ def write_memory(out_dir, rows):
         return "%.1f" % r[key] + (" [%.1f, %.1f]" % (lo, hi) if lo != "" else "")
     md = ["# The hider with memory (GRU) against its feed-forward twin", "",
           "Each GRU run `<variant>_gru_seed<S>` beside the feed-forward run of the same variant and training seed, "
-          "both evaluated greedy on evaluation seeds 0-99. Living steps: the pooled mean with a 95 % two-level "
-          "bootstrap (runs, then episodes). Difference: GRU minus feed-forward per pair of runs, mean over pairs, "
-          "95 % bootstrap over the pairs (none with one pair). Memory: the GRU's living steps on the per-run "
-          "analysis' 100 rollouts (seeds 10000-10099) minus those of its memoryless ablation (its state zeroed at "
+          "both evaluated greedy on the same evaluation seeds (0-99). Living steps: the pooled mean with a 95 % two-level "
+          "bootstrap (runs, then episodes). Difference: GRU minus feed-forward on each evaluation seed, pooled over "
+          "the pairs of runs, with the same two-level bootstrap (pairs, then evaluation seeds). Memory: the GRU's "
+          "living steps on the per-run analysis' 100 rollouts (seeds 10000-10099) minus those of its memoryless ablation (its state zeroed at "
           "every step) on the same rollouts, mean over runs. The claim it decides is in [claims.md](claims.md).", "",
           "| variant | GRU runs | GRU living steps | feed-forward, same seeds | GRU minus feed-forward | "
           "memory minus memoryless |", "| --- | --- | --- | --- | --- | --- |"]
@@ -499,13 +523,13 @@ def main(argv=None):
     st.add_selection_args(p, os.path.dirname(os.path.abspath(__file__)))
     args = p.parse_args(argv)
     root = os.path.abspath(args.root)
-    found = sweep_runs(root, args.steps, set(args.extra))
+    found = sweep_runs(root, args.steps, set(args.extra), warn=False)  # --extra may name runs of either network
     calib = {}
     for r in read_csv(os.path.join(root, "docs", "calibration_table.csv")) or []:
         calib.setdefault(r["variant"], []).append(r)
     rows = build(root, found, args.seed, args.reps, calib)
-    memory_row, memory_table = memory(root, found, sweep_runs(root, args.steps, set(args.extra), "gru"), args.seed,
-                                      args.reps)
+    gru_found = sweep_runs(root, args.steps, set(args.extra), "gru", warn=False)
+    memory_row, memory_table = memory(root, found, gru_found, args.seed, args.reps)
     rows.append(memory_row)
     for r in rows:
         mark_provisional(r)

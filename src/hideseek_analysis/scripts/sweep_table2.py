@@ -61,9 +61,10 @@ def load_episodes(path):
     return living, success
 
 
-def sweep_runs(root, steps, extra, network="ff"):
+def sweep_runs(root, steps, extra, network="ff", warn=True):
     """variant -> [(run, entry)], in training-seed order: the sweep's runs of `network` (ff:
-    <variant>_seed<S>; gru: <variant>_gru_seed<S>), plus the runs named in `extra` of that network."""
+    <variant>_seed<S>; gru: <variant>_gru_seed<S>), plus the runs named in `extra` of that network
+    (`warn`: say on stderr which of `extra` are of another network and so left out)."""
     with open(os.path.join(root, "policies", "policies.yaml")) as f:
         entries = yaml.safe_load(f) or {}
     suffix = "" if network == "ff" else "_" + network
@@ -78,6 +79,9 @@ def sweep_runs(root, steps, extra, network="ff"):
             found.setdefault(e["variant"], []).append((name, e))
     for v in found:
         found[v].sort(key=lambda ne: (int(ne[1].get("training_seed", 0)), ne[0]))
+    other = sorted(n for n in extra if n in entries and entries[n].get("network", "ff") != network)
+    if other and warn:
+        print("sweep_table2: --extra %s: not %s runs, left out here" % (", ".join(other), network), file=sys.stderr)
     missing = [n for n in extra if n not in entries]
     if missing:
         raise SystemExit("sweep_table2: --extra: no run %s in the registry" % ", ".join(missing))

@@ -226,10 +226,10 @@ def test_rank_correlation_follows_the_reference_order():
     assert rho == pytest.approx(-1.0)
 
 
-def run_analysis(script, rec, out):
+def run_analysis(script, rec, out, *extra):
     """One of the analysis scripts across training seeds on the made-up checkout `rec`, into `out`."""
     r = subprocess.run([sys.executable, os.path.join(ANALYSIS, script), "--root", str(rec), "--out", str(out),
-                        "--steps", "2048", "--reps", "200"], capture_output=True, text=True, timeout=120)
+                        "--steps", "2048", "--reps", "200"] + list(extra), capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr
     return r
 
@@ -346,11 +346,11 @@ def write_states(path, name, s0h0o1):
                                                          i & 1, x))
 
 
-def run_claims(tmp_path, rec):
+def run_claims(tmp_path, rec, *extra):
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config", dirs_exist_ok=True)
     shutil.copy(os.path.join(ROOT, "docs", "calibration_table.csv"), rec / "docs" / "calibration_table.csv")
     out = tmp_path / "report"
-    run_analysis("claims.py", rec, out)
+    run_analysis("claims.py", rec, out, *extra)
     with open(out / "claims.csv") as f:
         return {x["claim"]: x for x in csv.DictReader(f)}
 
@@ -486,43 +486,100 @@ def add_gru_runs(rec, living, with_memory, without_memory, seeds=(0, 1, 2), vari
 
 def test_the_memory_claim_pairs_each_gru_run_with_its_feed_forward_twin(tmp_path):
     memory_claim = "Failures come from a lack of memory"
-    runs = {"%s_seed%d" % (v, s): (v, s, 2048, [100] * 20, [90] * 20)
+    # Feed-forward runs of seed s live 100 + 100 s; a made-up pilot of basic, seed 0, lives 900.
+    runs = {"%s_seed%d" % (v, s): (v, s, 2048, [100 + 100 * s] * 20, [90] * 20)
             for v in ("basic", "slowerhider", "stochasticmaps") for s in range(3)}
+    runs["basic_v2r3pilot_seed0"] = ("basic", 0, 2048, [900] * 20, [900] * 20)
     rec = make_records(tmp_path, runs)
-    # GRU runs outlive their twins by 50-52 living steps, and their memory is what does it (+80).
-    add_gru_runs(rec, {s: [150 + s] * 20 for s in range(3)}, [200] * 3, [120] * 3)
-    c = run_claims(tmp_path, rec)
+    # GRU runs of seed s live 150 + 101 s: 50, 51 and 52 more than their twins; their memory is worth +80.
+    add_gru_runs(rec, {s: [150 + 101 * s] * 20 for s in range(3)}, [200] * 3, [120] * 3)
+    # --extra brings the pilot into the feed-forward runs; the GRU's twin is still basic_seed0.
+    c = run_claims(tmp_path, rec, "--extra", "basic_v2r3pilot_seed0")
     m = c[memory_claim]
     assert m["result"] == "supported", m
-    assert float(m["effect"]) == pytest.approx(51.0) and 50 <= float(m["ci_low"]) <= float(m["ci_high"]) <= 52
-    assert "memory minus memoryless 80.0" in m["measure"]
+    assert float(m["effect"]) == pytest.approx(51.0)
+    # Paired by seed the differences are 50-52; paired any other way they would be -50 or 250.
+    assert 50 <= float(m["ci_low"]) < 51 < float(m["ci_high"]) <= 52
+    assert "memory minus memoryless 80.0" in m["measure"] and m["note"] == ""
     assert m["runs"] == "basic 3, slowerhider 3, stochasticmaps 3"
     # the GRU runs are not counted as feed-forward runs of their variants
-    assert "basic 3" in c["Table 2's ordering of the variants"]["runs"]
+    assert "slowerhider 3" in c["Table 2's ordering of the variants"]["runs"]
     with open(tmp_path / "report" / "memory_seeds.csv") as f:
         t = {x["variant"]: x for x in csv.DictReader(f)}
-    assert float(t["basic"]["gru"]) == pytest.approx(151.0) and float(t["basic"]["ff"]) == pytest.approx(100.0)
+    assert float(t["basic"]["gru"]) == pytest.approx(251.0) and float(t["basic"]["ff"]) == pytest.approx(200.0)
+    assert 50 <= float(t["basic"]["difference_ci_low"]) <= float(t["basic"]["difference_ci_high"]) <= 52
     assert float(t["slowerhider"]["memory_gain"]) == pytest.approx(80.0) and t["slowerhider"]["runs"] == "3"
-    assert "| basic | 3 | 151.0 [150.0, 152.0] | 100.0 [100.0, 100.0] | 51.0 [50.0, 52.0] | 80.0 [80.0, 80.0] |" in \
-        (tmp_path / "report" / "memory_seeds.md").read_text()
+    row = [x for x in (tmp_path / "report" / "memory_seeds.md").read_text().splitlines() if x.startswith("| slowerhider")]
+    assert len(row) == 1 and row[0].startswith("| slowerhider | 3 | 251.0 [") and "| 51.0 [5" in row[0]
+    assert row[0].endswith("| 80.0 [80.0, 80.0] |")
     # It lives longer, but zeroing its state every step costs it nothing: not shown to be its memory.
-    add_gru_runs(rec, {s: [150 + s] * 20 for s in range(3)}, [200, 201, 199], [201, 200, 200])
-    assert run_claims(tmp_path, rec)[memory_claim]["result"] == "inconclusive"
+    add_gru_runs(rec, {s: [150 + 101 * s] * 20 for s in range(3)}, [200, 201, 199], [201, 200, 200])
+    m = run_claims(tmp_path, rec)[memory_claim]
+    assert m["result"] == "inconclusive" and "not shown to be memory" in m["note"]
+    # One GRU run not yet analysed: no ablation for every run, so not decided on the ablation.
+    add_gru_runs(rec, {s: [150 + 101 * s] * 20 for s in range(3)}, [200] * 3, [120] * 3)
+    shutil.rmtree(rec / "docs" / "runs" / "slowerhider_gru_seed2" / "analysis")
+    m = run_claims(tmp_path, rec)[memory_claim]
+    assert m["result"] == "inconclusive" and "no memoryless ablation for every GRU run of: slowerhider" in m["note"]
     # The GRU lives shorter than its twin: contradicted, with the rule that could cause it.
-    add_gru_runs(rec, {s: [60 + s] * 20 for s in range(3)}, [200] * 3, [120] * 3)
+    add_gru_runs(rec, {s: [60 + 100 * s] * 20 for s in range(3)}, [200] * 3, [120] * 3)
     m = run_claims(tmp_path, rec)[memory_claim]
     assert m["result"] == "contradicted" and float(m["ci_high"]) < 0 and "8M" in m["departure"]
+    # A twin not yet evaluated, and a GRU run with no twin at all (seed 7), are left unpaired, not an error.
+    os.remove(rec / "docs" / "runs" / "stochasticmaps_seed1" / "episodes.csv")
+    add_gru_runs(rec, {7: [150] * 20}, {7: 200}, {7: 120}, seeds=(7,), variants=("stochasticmaps",))
+    m = run_claims(tmp_path, rec)[memory_claim]
+    assert "stochasticmaps 2" in m["runs"] and m["result"] == "contradicted"
     # One GRU run of stochasticmaps is no interval over its seeds: undecided, naming the variant.
-    for s in (1, 2):
-        os.remove(rec / "docs" / "runs" / ("stochasticmaps_gru_seed%d" % s) / "episodes.csv")
+    os.remove(rec / "docs" / "runs" / "stochasticmaps_gru_seed2" / "episodes.csv")
     m = run_claims(tmp_path, rec)[memory_claim]
     assert m["result"] == "inconclusive" and "stochasticmaps" in m["note"] and "stochasticmaps 1" in m["runs"]
-    # No GRU run at all: the claim says so.
+    assert m["ci_low"] == ""
+    # GRU runs whose evaluation has not come back: the claim says so.
     path = rec / "policies" / "policies.yaml"
+    for name in yaml.safe_load(path.read_text()):
+        if "_gru_" in name and (rec / "docs" / "runs" / name / "episodes.csv").exists():
+            os.remove(rec / "docs" / "runs" / name / "episodes.csv")
+    m = run_claims(tmp_path, rec)[memory_claim]
+    assert m["result"] == "inconclusive" and "have no evaluation or no evaluated feed-forward twin" in m["note"]
+    # No GRU run at all: the claim says so.
     path.write_text(yaml.safe_dump({k: e for k, e in yaml.safe_load(path.read_text()).items() if "_gru_" not in k},
                                    sort_keys=False))
     m = run_claims(tmp_path, rec)[memory_claim]
     assert m["result"] == "inconclusive" and "not yet trained on game v2" in m["note"] and m["effect"] == ""
+
+
+def test_analyze_redoes_only_the_missing_memoryless_ablation_of_a_gru_run(tmp_path):
+    """`scripts/sweep.sh analyze` on the GRU queue: a done GRU run analysed without its memoryless
+    ablation (analysed before it existed, or the part failed) gets that part alone while its weights
+    are here; a run that has it, or whose weights are gone, is left as it is."""
+    names = ("basic_gru_seed0", "slowerhider_gru_seed0", "basic_gru_seed1")
+    rec = make_records(tmp_path, {n: (n.split("_gru")[0], int(n[-1]), 2048, [30], [30]) for n in names})
+    calls = tmp_path / "calls.txt"
+    (rec / "scripts").mkdir()
+    fake = rec / "scripts" / "analyze_run.sh"
+    fake.write_text("#!/bin/bash\necho \"$*\" >> %s\n" % calls)
+    fake.chmod(0o755)
+    for n in names:
+        d = rec / "docs" / "runs" / n / "analysis"
+        (d / "memoryless").mkdir(parents=True)
+        for f in ("behaviour.csv", "tsne_neighbours.csv"):
+            (d / f).write_text("x\n")
+        w = tmp_path / "sweep" / "runs" / n
+        w.mkdir(parents=True)
+        if n != "basic_gru_seed1":  # its weights are gone: nothing can be redone
+            (w / "policy.pt").write_bytes(b"w")
+    (rec / "docs" / "runs" / "basic_gru_seed0" / "analysis" / "memoryless" / "behaviour.csv").write_text("x\n")
+    r = sweep(tmp_path, rec, "analyze", SWEEP_NETWORK="gru", SWEEP_SEEDS="0 1")
+    assert r.returncode == 0, r.stderr
+    assert calls.read_text().splitlines() == [
+        "--memoryless-only slowerhider_gru_seed0 %s" % (tmp_path / "sweep" / "runs" / "slowerhider_gru_seed0" / "policy.pt")]
+    assert "slowerhider_gru_seed0: memoryless into" in r.stdout + r.stderr
+    # The feed-forward queue never asks a run for a memoryless ablation.
+    calls.unlink()
+    r = sweep(tmp_path, rec, "analyze", SWEEP_SEEDS="0 1")
+    assert r.returncode == 0, r.stderr
+    assert not calls.exists()
 
 
 def test_a_claim_decided_on_two_runs_of_a_variant_is_marked_provisional():
