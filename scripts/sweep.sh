@@ -240,30 +240,29 @@ ship() {
   fi
 }
 
+# One part of a run's analysis alone (tsne or memoryless), while its weights are here.
+analyze_part() {
+  if RECORD_ROOT=$records "$records/scripts/analyze_run.sh" "--$2-only" "$1" "$runs/$1/policy.pt" \
+    >> "$dir/logs/$1.analysis.log" 2>&1; then
+    say "$1: $2 into $records/docs/runs/$1/analysis"
+  else
+    say "$1: the $2 part failed; see $dir/logs/$1.analysis.log"
+    return 1
+  fi
+}
+
 analyze_all() {
-  local name part n=0
+  local name n=0
   while read -r name _ _; do
     is_done "$name" || continue
     if ! analysed "$name"; then
-      analyze "$name" && n=$((n + 1))
+      if analyze "$name"; then n=$((n + 1)); fi
       continue
     fi
     [ -s "$runs/$name/policy.pt" ] || continue
-    # Analysed before the per-run t-SNE or a GRU's memoryless ablation existed, or the part failed:
-    # that part alone, while the weights are here.
-    for part in tsne memoryless; do
-      case $part in
-        tsne) ! has_tsne "$name" || continue ;;
-        memoryless) [ "$network" = gru ] && ! has_memoryless "$name" || continue ;;
-      esac
-      if RECORD_ROOT=$records "$records/scripts/analyze_run.sh" "--$part-only" "$name" "$runs/$name/policy.pt" \
-        >> "$dir/logs/$name.analysis.log" 2>&1; then
-        say "$name: $part into $records/docs/runs/$name/analysis"
-        n=$((n + 1))
-      else
-        say "$name: the $part part failed; see $dir/logs/$name.analysis.log"
-      fi
-    done
+    # Analysed before the per-run t-SNE or a GRU's memoryless ablation existed, or the part failed.
+    if ! has_tsne "$name" && analyze_part "$name" tsne; then n=$((n + 1)); fi
+    if [ "$network" = gru ] && ! has_memoryless "$name" && analyze_part "$name" memoryless; then n=$((n + 1)); fi
   done < <(queue)
   say "$n runs or parts of runs analysed"
 }
