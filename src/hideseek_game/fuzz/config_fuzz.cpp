@@ -3,9 +3,20 @@
 // variant naming it), 2 a game file (under the real basic variant). A file that loads is then
 // played: an arena is built and reset and takes a few steps. What must hold: no crash, hang or
 // unbounded allocation, and a refusal is a ConfigError, or an error naming the file, never another
-// exception. Files are written to a private folder beside copies of the real maps.
+// exception. A file that loads must also give what the game relies on (issue #63), checked here by
+// code of its own rather than by the loader's checks:
+//   - every number of the map and of the game's physics finite, every extent positive;
+//   - every obstacle sharing area with the arena's floor (a corner or an edge inside it, or the box
+//     covering the floor's centre);
+//   - every waypoint inside the arena, outside every obstacle;
+//   - spawns drawable: resets of three seeds each give two agents inside the arena, clear of every
+//     obstacle by the agent radius, at least min_spawn_distance apart, and finite after a few steps.
+// A violation prints which and aborts, like a crash. Files are written to a private folder beside
+// copies of the real maps.
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -53,11 +64,113 @@ void write(const fs::path& path, const uint8_t* data, size_t size) {
   out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
 }
 
+using hideseek_game::Box;
+using hideseek_game::Vec2;
+
+[[noreturn]] void violated(const std::string& what) {
+  std::fprintf(stderr, "config_fuzz: a file that loads breaks an invariant: %s\n", what.c_str());
+  std::abort();
+}
+
+void require(bool holds, const std::string& what) {
+  if (!holds) violated(what);
+}
+
+bool finite(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+// Whether the segment a-b passes through the open square (-h, h)^2 (Liang-Barsky clipping).
+bool segmentCrossesSquare(Vec2 a, Vec2 b, double h) {
+  double t0 = 0.0, t1 = 1.0;
+  const double p[4] = {-(b.x - a.x), b.x - a.x, -(b.y - a.y), b.y - a.y};
+  const double q[4] = {a.x + h, h - a.x, a.y + h, h - a.y};
+  for (int i = 0; i < 4; ++i) {
+    if (p[i] == 0.0) {
+      if (q[i] <= 0.0) return false;
+      continue;
+    }
+    const double t = q[i] / p[i];
+    if (p[i] < 0.0) t0 = std::max(t0, t);
+    if (p[i] > 0.0) t1 = std::min(t1, t);
+  }
+  return t0 < t1;
+}
+
+// The box shares area with the floor: one of its edges runs through the open square, or it covers
+// the square's centre (a box holding the whole floor crosses it with no edge).
+bool meetsFloor(const Box& b, double h) {
+  const double hx = 0.5 * b.size.x, hy = 0.5 * b.size.y;
+  Vec2 corner[4];
+  const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
+  for (int i = 0; i < 4; ++i) {
+    const double u = sx[i] * hx, v = sy[i] * hy;
+    corner[i] = {b.center.x + b.cos_yaw * u - b.sin_yaw * v, b.center.y + b.sin_yaw * u + b.cos_yaw * v};
+  }
+  for (int i = 0; i < 4; ++i) {
+    if (segmentCrossesSquare(corner[i], corner[(i + 1) % 4], h)) return true;
+  }
+  return hideseek_game::footprintDistance(b, {0.0, 0.0}) < 0.0;
+}
+
+void checkMap(const hideseek_game::MapSpec& m) {
+  const double h = m.half_extent;
+  require(std::isfinite(h) && h > 0.0, "half_extent " + std::to_string(h));
+  require(std::isfinite(m.wall_height) && std::isfinite(m.obstacle_height), "a height is not finite");
+  for (size_t i = 0; i < m.obstacles.size(); ++i) {
+    const Box& b = m.obstacles[i];
+    const std::string name = "obstacles[" + std::to_string(i) + "]";
+    require(finite(b.center) && finite(b.size) && std::isfinite(b.yaw) && std::isfinite(b.height),
+            name + " holds a number that is not finite");
+    require(b.size.x > 0.0 && b.size.y > 0.0 && b.height > 0.0, name + " has an extent that is not positive");
+    require(meetsFloor(b, h), name + " shares no area with the arena's floor");
+  }
+  for (size_t i = 0; i < m.waypoints.size(); ++i) {
+    const Vec2 w = m.waypoints[i];
+    const std::string name = "waypoints[" + std::to_string(i) + "]";
+    require(finite(w) && std::abs(w.x) < h && std::abs(w.y) < h, name + " is not inside the arena");
+    for (const Box& b : m.obstacles) {
+      require(hideseek_game::footprintDistance(b, w) > 0.0, name + " lies in an obstacle");
+    }
+  }
+}
+
+void checkGame(const hideseek_game::GameOptions& g) {
+  for (const double v : {g.physics_dt, g.agent_radius, g.agent_height, g.capture_distance, g.min_spawn_distance,
+                         g.hider.speed, g.hider.max_speed, g.hider.acceleration, g.hider.turn_rate, g.seeker.speed,
+                         g.seeker.max_speed, g.seeker.acceleration, g.seeker.turn_rate}) {
+    require(std::isfinite(v), "a game number is not finite");
+  }
+  require(g.physics_dt > 0.0 && g.action_repeat > 0 && g.max_steps > 0 && g.agent_radius > 0.0,
+          "a game step, radius or length is not positive");
+}
+
+// Spawns lie in the arena, clear of every obstacle, min_spawn_distance apart.
+void checkSpawns(const hideseek_game::Arena& arena, uint32_t seed) {
+  const auto& o = arena.options();
+  const double limit = arena.layout().half_extent - o.agent_radius;
+  const std::string at = " (seed " + std::to_string(seed) + ")";
+  for (const auto* agent : {&arena.hider(), &arena.seeker()}) {
+    const Vec2 p = agent->position;
+    require(finite(p) && std::abs(p.x) <= limit && std::abs(p.y) <= limit, "a spawn outside the arena" + at);
+    for (const Box& b : arena.layout().obstacles) {
+      require(hideseek_game::footprintDistance(b, p) >= o.agent_radius, "a spawn inside an obstacle" + at);
+    }
+  }
+  require(hideseek_game::distance(arena.hider().position, arena.seeker().position) >= o.min_spawn_distance,
+          "spawns closer than min_spawn_distance" + at);
+}
+
 void play(const hideseek_game::VariantConfig& v) {
   auto map = std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(v.map_file));
+  checkMap(*map);
+  checkGame(v.game);
   hideseek_game::Arena arena(v.game, map);
-  arena.reset(1);
-  for (int i = 0; i < 3; ++i) arena.step(hideseek_game::Action::kForward, hideseek_game::Action::kTurnLeft);
+  for (const uint32_t seed : {1u, 2u, 3u}) {
+    arena.reset(seed);
+    checkSpawns(arena, seed);
+    for (const Box& b : arena.layout().obstacles) require(meetsFloor(b, arena.layout().half_extent), "a drawn box");
+    for (int i = 0; i < 3; ++i) arena.step(hideseek_game::Action::kForward, hideseek_game::Action::kTurnLeft);
+    require(finite(arena.hider().position) && finite(arena.seeker().position), "an agent's position after 3 steps");
+  }
 }
 
 }  // namespace

@@ -1,8 +1,13 @@
 #include "hideseek_game/arena.h"
 
+#include <array>
 #include <cmath>
+#include <map>
+#include <sstream>
 #include <stdexcept>
+#include <utility>
 
+#include "hideseek_game/config_error.h"
 #include "hideseek_game/visibility.h"
 
 namespace hideseek_game {
@@ -19,6 +24,48 @@ Arena::Arena(const GameOptions& options, std::shared_ptr<const MapSpec> map) : o
     std::mt19937 unused(0);
     layout_ = makeLayout(*map_, unused);
     fixed_grid_ = std::make_unique<FreeSpaceGrid>(layout_, options_.agent_radius, kSpawnGridResolution);
+    requireSpawnRoom();
+  }
+}
+
+// A fixed map must leave room for the spawns: two cell centres where an agent fits, in one free
+// region, min_spawn_distance apart. Checked once, so that a map without room is refused at start,
+// naming its obstacles, instead of being searched at every reset. A region's diameter is taken over
+// its extreme cells along kDirections directions round the circle: at most 0.2 % short of the true one.
+void Arena::requireSpawnRoom() const {
+  constexpr int kDirections = 64;
+  const FreeSpaceGrid& grid = *fixed_grid_;
+  const double limit = layout_.half_extent - options_.agent_radius;  // where trySpawn draws
+  std::array<Vec2, kDirections> directions;
+  for (int k = 0; k < kDirections; ++k) {
+    directions[k] = {std::cos(2.0 * kPi * k / kDirections), std::sin(2.0 * kPi * k / kDirections)};
+  }
+  std::map<int, std::array<std::pair<double, Vec2>, kDirections>> extremes;  // region -> per direction
+  for (int y = 0; y < grid.height(); ++y) {
+    for (int x = 0; x < grid.width(); ++x) {
+      const GridCell c{x, y};
+      const Vec2 p = grid.centerOf(c);
+      if (std::abs(p.x) > limit || std::abs(p.y) > limit || !fits(p, grid)) continue;
+      auto [region, first] = extremes.try_emplace(grid.component(c));
+      for (int k = 0; k < kDirections; ++k) {
+        const double along = dot(directions[k], p);
+        auto& e = region->second[k];
+        if (first || along > e.first) e = {along, p};
+      }
+    }
+  }
+  double widest = 0.0;
+  for (const auto& [label, ends] : extremes) {
+    for (const auto& a : ends) {
+      for (const auto& b : ends) widest = std::max(widest, distance(a.second, b.second));
+    }
+  }
+  if (widest < options_.min_spawn_distance) {
+    std::ostringstream m;
+    m << "leave no room for the spawns: no two free points in one region are min_spawn_distance ("
+      << options_.min_spawn_distance << " m) apart for an agent of radius " << options_.agent_radius
+      << " m (widest: " << widest << " m)";
+    throw ConfigError(map_->source, "obstacles", m.str());
   }
 }
 

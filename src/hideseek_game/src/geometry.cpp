@@ -40,6 +40,16 @@ double footprintDistance(const Box& box, Vec2 p) {
   return outside + std::min(std::max(dx, dy), 0.0);
 }
 
+bool footprintOverlapsSquare(const Box& box, double half_extent) {
+  const double hx = 0.5 * box.size.x, hy = 0.5 * box.size.y, c = box.cos_yaw, s = box.sin_yaw;
+  // The box's half-widths along the world axes, and the square's along the box's axes.
+  const double box_x = hx * std::abs(c) + hy * std::abs(s), box_y = hx * std::abs(s) + hy * std::abs(c);
+  const double square_u = half_extent * (std::abs(c) + std::abs(s)), square_v = square_u;
+  const Vec2 q = toBoxFrame(box, {0.0, 0.0});  // the square's centre in the box's frame
+  return std::abs(box.center.x) < half_extent + box_x && std::abs(box.center.y) < half_extent + box_y &&
+         std::abs(q.x) < hx + square_u && std::abs(q.y) < hy + square_v;
+}
+
 bool pushCircleOut(const Box& box, double radius, Vec2& center) {
   const Vec2 q = toBoxFrame(box, center);
   const double hx = 0.5 * box.size.x, hy = 0.5 * box.size.y;

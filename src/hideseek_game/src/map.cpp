@@ -1,5 +1,7 @@
 #include "hideseek_game/map.h"
 
+#include <sstream>
+
 #include "hideseek_game/yaml_fields.h"
 
 namespace hideseek_game {
@@ -26,12 +28,19 @@ MapSpec readMapFile(const std::string& path) {
       YamlFields b(obstacles[i], path, name);
       if (!b.has("center")) throw ConfigError(path, name + ".center", "is required");
       if (!b.has("size")) throw ConfigError(path, name + ".size", "is required");
-      const Vec2 center = b.vec2(b.child("center"), b.field("center"));
-      const Vec2 size = b.vec2(b.child("size"), b.field("size"));
-      if (size.x <= 0.0 || size.y <= 0.0) throw ConfigError(path, b.field("size"), "extents must be positive");
+      // Ranges in units of the arena: a centre within three half-extents of the middle, sides from
+      // kMinObstacleSide up to the arena's width twice over; then the box must overlap the arena.
+      const double h = spec.half_extent;
+      const Vec2 center = b.vec2(b.child("center"), b.field("center"), -3.0 * h, 3.0 * h);
+      const Vec2 size = b.vec2(b.child("size"), b.field("size"), kMinObstacleSide, 4.0 * h);
       const double yaw = b.number("yaw", 0.0, -2.0 * kPi, 2.0 * kPi);
       const double height = b.number("height", spec.obstacle_height, 0.1, 10.0);
       Box box = Box::make(center, size, height, yaw);
+      if (!footprintOverlapsSquare(box, h)) {
+        std::ostringstream m;
+        m << "lies wholly outside the arena, whose floor spans [" << -h << ", " << h << "] m on both axes";
+        throw ConfigError(path, name, m.str());
+      }
       box.wall = b.boolean("wall", false);
       b.rejectUnknown();
       spec.obstacles.push_back(box);
@@ -53,13 +62,23 @@ MapSpec readMapFile(const std::string& path) {
   if (spec.generator.max_size < spec.generator.min_size) {
     throw ConfigError(path, "generator.max_size", "must not be below generator.min_size");
   }
+  // The largest draw may cover at most half the floor, so that every episode leaves room for the
+  // spawns (a generator that can fill the arena would be searched for a layout at every reset).
+  const double largest = spec.generator.max_boxes * spec.generator.max_size * spec.generator.max_size;
+  const double floor_area = 4.0 * spec.half_extent * spec.half_extent;
+  if (spec.stochastic && largest > 0.5 * floor_area) {
+    std::ostringstream m;
+    m << "max_boxes x max_size^2 (" << largest << " m^2) must be at most half the floor (" << 0.5 * floor_area
+      << " m^2)";
+    throw ConfigError(path, "generator", m.str());
+  }
 
   const YAML::Node waypoints = f.child("waypoints");
   if (waypoints.IsDefined() && !waypoints.IsNull()) {
     if (!waypoints.IsSequence()) throw ConfigError(path, "waypoints", "must be a list of [x, y]");
     for (size_t i = 0; i < waypoints.size(); ++i) {
       const std::string name = "waypoints[" + std::to_string(i) + "]";
-      const Vec2 w = f.vec2(waypoints[i], name);
+      const Vec2 w = f.vec2(waypoints[i], name, -spec.half_extent, spec.half_extent);
       if (std::abs(w.x) >= spec.half_extent || std::abs(w.y) >= spec.half_extent) {
         throw ConfigError(path, name, "lies outside the arena");
       }

@@ -110,13 +110,22 @@ std::string YamlFields::text(const std::string& key, const std::string& fallback
   return v;
 }
 
-Vec2 YamlFields::vec2(const YAML::Node& node, const std::string& f) const {
+Vec2 YamlFields::vec2(const YAML::Node& node, const std::string& f, double min, double max) const {
   if (!node.IsSequence() || node.size() != 2) throw ConfigError(source_, f, "must be a list [x, y]");
+  Vec2 v;
   try {
-    return {node[0].as<double>(), node[1].as<double>()};
+    v = {node[0].as<double>(), node[1].as<double>()};
   } catch (const YAML::Exception&) {
     throw ConfigError(source_, f, "must hold two numbers");
   }
+  for (const double c : {v.x, v.y}) {
+    if (!std::isfinite(c) || c < min || c > max) {
+      std::ostringstream s;
+      s << "must hold two numbers in " << range(min, max) << ", got [" << v.x << ", " << v.y << "]";
+      throw ConfigError(source_, f, s.str());
+    }
+  }
+  return v;
 }
 
 Rgb YamlFields::rgb(const std::string& key, Rgb fallback) {

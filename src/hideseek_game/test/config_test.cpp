@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <fstream>
 #include <functional>
+#include <memory>
 
+#include "hideseek_game/arena.h"
 #include "hideseek_game/config_error.h"
 #include "hideseek_game/game_options.h"
 #include "hideseek_game/map.h"
@@ -131,6 +133,69 @@ TEST(BadConfig, ErrorsNameTheFileAndTheField) {
   EXPECT_NE(errorOf([&] { loadMapFile("/nonexistent/map.yaml"); }).find("/nonexistent/map.yaml"), std::string::npos);
   const std::string syntax = writeTemp("syntax.yaml", "name: [unclosed\n");
   EXPECT_NE(errorOf([&] { loadMapFile(syntax); }).find("not valid YAML"), std::string::npos);
+}
+
+// Hand-edited map files with numbers no arena can hold are refused like a bad scalar, naming the
+// field (issue #63): every vector field finite and in its stated range, every obstacle on the floor.
+TEST(BadConfig, MapVectorsAreCheckedLikeScalarsAndObstaclesMustMeetTheArena) {
+  const auto refusal = [](const std::string& name, const std::string& obstacles, const std::string& waypoints) {
+    return errorOf(
+        [&] { loadMapFile(writeTemp(name, "name: m\nobstacles:\n" + obstacles + "waypoints: " + waypoints + "\n")); });
+  };
+  const std::string box = "  - {center: [3, 3], size: [1, 1]}\n";
+  std::string e = refusal("nan_center.yaml", "  - {center: [.nan, 0], size: [1, 1]}\n", "[[1, 1]]");
+  EXPECT_NE(e.find("nan_center.yaml: field 'obstacles[0].center': must hold two numbers in [-21, 21], got [nan, 0]"),
+            std::string::npos)
+      << e;
+  e = refusal("inf_size.yaml", "  - {center: [0, 0], size: [1, .inf]}\n", "[[3, 3]]");
+  EXPECT_NE(e.find("field 'obstacles[0].size': must hold two numbers in [0.01, 28]"), std::string::npos) << e;
+  e = refusal("zero_size.yaml", "  - {center: [0, 0], size: [0, 1]}\n", "[[3, 3]]");
+  EXPECT_NE(e.find("field 'obstacles[0].size': must hold two numbers in [0.01, 28], got [0, 1]"), std::string::npos)
+      << e;
+  e = refusal("far_center.yaml", "  - {center: [1e9, 0], size: [1, 1]}\n", "[[3, 3]]");
+  EXPECT_NE(e.find("field 'obstacles[0].center': must hold two numbers in [-21, 21], got [1e+09, 0]"),
+            std::string::npos)
+      << e;
+  // In range, yet wholly beyond the wall: refused, and so is a rotated box that misses the corner.
+  e = refusal("outside.yaml", box + "  - {center: [9, 0], size: [2, 2]}\n", "[[1, 1]]");
+  EXPECT_NE(e.find("field 'obstacles[1]': lies wholly outside the arena, whose floor spans [-7, 7] m on both axes"),
+            std::string::npos)
+      << e;
+  e = refusal("corner.yaml", "  - {center: [8.3, 8.3], size: [2, 2], yaw: 0.785398}\n", "[[1, 1]]");
+  EXPECT_NE(e.find("field 'obstacles[0]': lies wholly outside"), std::string::npos) << e;
+  e = refusal("nan_waypoint.yaml", box, "[[.nan, 1]]");
+  EXPECT_NE(e.find("field 'waypoints[0]': must hold two numbers in [-7, 7], got [nan, 1]"), std::string::npos) << e;
+  // A generator whose largest draw could cover more than half the floor.
+  e = errorOf([] {
+    loadMapFile(writeTemp("full.yaml", "name: m\ntype: stochastic\ngenerator: {max_boxes: 20, max_size: 5}\n"));
+  });
+  EXPECT_NE(e.find("field 'generator': max_boxes x max_size^2 (500 m^2) must be at most half the floor (98 m^2)"),
+            std::string::npos)
+      << e;
+  // A box that pokes into the floor, rotated or straddling a wall, is part of the arena.
+  EXPECT_NO_THROW(loadMapFile(writeTemp("straddles.yaml", "name: m\nobstacles:\n  - {center: [7.5, 0], size: [2, 2]}\n"
+                                                          "  - {center: [8.3, 8.3], size: [4, 4], yaw: 0.785398}\n"
+                                                          "waypoints: [[1, 1]]\n")));
+}
+
+// A fixed map whose obstacles leave no two free points min_spawn_distance apart is refused when the
+// arena is built, naming the map's obstacles; one with room plays.
+TEST(BadConfig, AFixedMapWithoutRoomForTheSpawnsIsRefused) {
+  const VariantConfig v = test::loadVariant("basic");
+  const auto arena = [&](const std::string& name, const std::string& obstacles) {
+    auto map = std::make_shared<const MapSpec>(
+        loadMapFile(writeTemp(name, "name: m\nobstacles:\n" + obstacles + "waypoints: [[-6.5, -6.5]]\n")));
+    return Arena(v.game, map);
+  };
+  // Everything but a 1.5 m square corner is filled: no two spawns can be min_spawn_distance apart.
+  const std::string e = errorOf([&] {
+    arena("cramped.yaml", "  - {center: [0.75, 0], size: [12.5, 14]}\n  - {center: [-6.25, 0.75], size: [1.5, 12.5]}\n");
+  });
+  EXPECT_NE(e.find("cramped.yaml: field 'obstacles': leave no room for the spawns"), std::string::npos) << e;
+  // The same box a little smaller leaves an L-shaped corridor, which is room enough.
+  Arena roomy = arena("roomy.yaml", "  - {center: [1.5, 1.5], size: [10, 10]}\n");
+  roomy.reset(3);
+  EXPECT_GE(distance(roomy.hider().position, roomy.seeker().position), v.game.min_spawn_distance);
 }
 
 }  // namespace hideseek_game

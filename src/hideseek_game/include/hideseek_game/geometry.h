@@ -61,6 +61,10 @@ bool segmentHitsBox(const Box& box, const Vec3& a, const Vec3& b);
 // Parameter t in [0, 1] where the segment a-b first enters the box, or a value > 1 when it misses.
 double segmentEntry(const Box& box, const Vec3& a, const Vec3& b);
 
+// True when the footprint and the open square (-half_extent, half_extent)^2 share some area (a box
+// that only touches the square's edge does not): separating axes, the square's two and the box's two.
+bool footprintOverlapsSquare(const Box& box, double half_extent);
+
 // Axis-aligned bounds of the footprint grown by margin.
 struct Bounds {
   double min_x, min_y, max_x, max_y;

@@ -36,6 +36,10 @@ struct StochasticObstacles {
   double max_size = 3.0;
 };
 
+// The shortest side a map file's obstacle may have, in metres (the longest is twice the arena's
+// width): a side must be positive, and 1 cm is less than any obstacle the maps draw.
+inline constexpr double kMinObstacleSide = 0.01;
+
 // A map file: fixed obstacles, or a generator that draws them every episode.
 struct MapSpec {
   std::string name;

@@ -36,7 +36,8 @@ class YamlFields {
     return *this;
   }
   std::string text(const std::string& key, const std::string& fallback, const std::set<std::string>& allowed);
-  Vec2 vec2(const YAML::Node& node, const std::string& field) const;
+  // A list [x, y] of two finite numbers, each in [min, max] (the same checks as number()).
+  Vec2 vec2(const YAML::Node& node, const std::string& field, double min, double max) const;
   Rgb rgb(const std::string& key, Rgb fallback);
   YAML::Node child(const std::string& key);
   std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
