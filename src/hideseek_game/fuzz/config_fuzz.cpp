@@ -8,7 +8,8 @@
 //   - every number of the map and of the game's physics finite, every extent positive;
 //   - every obstacle sharing area with the arena's floor (a corner or an edge inside it, or the box
 //     covering the floor's centre);
-//   - every waypoint inside the arena, outside every obstacle;
+//   - every waypoint inside the arena, outside every obstacle, and on a fixed map clear of every
+//     obstacle and wall by the agent radius;
 //   - spawns drawable: resets of three seeds each give two agents inside the arena, clear of every
 //     obstacle by the agent radius, at least min_spawn_distance apart, and finite after a few steps.
 // A violation prints which and aborts, like a crash. Files are written to a private folder beside
@@ -159,11 +160,24 @@ void checkSpawns(const hideseek_game::Arena& arena, uint32_t seed) {
           "spawns closer than min_spawn_distance" + at);
 }
 
+// A fixed map's waypoints are where an agent stands: clear of every obstacle and wall by its radius.
+void checkWaypointsFitAnAgent(const hideseek_game::Arena& arena) {
+  const auto& o = arena.options();
+  const double limit = arena.layout().half_extent - o.agent_radius;
+  for (const Vec2 w : arena.layout().waypoints) {
+    require(std::abs(w.x) <= limit && std::abs(w.y) <= limit, "a waypoint within an agent radius of a wall");
+    for (const Box& b : arena.layout().obstacles) {
+      require(hideseek_game::footprintDistance(b, w) >= o.agent_radius, "a waypoint within an agent radius of a box");
+    }
+  }
+}
+
 void play(const hideseek_game::VariantConfig& v) {
   auto map = std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(v.map_file));
   checkMap(*map);
   checkGame(v.game);
   hideseek_game::Arena arena(v.game, map);
+  if (!map->stochastic) checkWaypointsFitAnAgent(arena);
   for (const uint32_t seed : {1u, 2u, 3u}) {
     arena.reset(seed);
     checkSpawns(arena, seed);

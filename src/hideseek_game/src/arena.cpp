@@ -24,15 +24,15 @@ Arena::Arena(const GameOptions& options, std::shared_ptr<const MapSpec> map) : o
     std::mt19937 unused(0);
     layout_ = makeLayout(*map_, unused);
     fixed_grid_ = std::make_unique<FreeSpaceGrid>(layout_, options_.agent_radius, kSpawnGridResolution);
-    requireSpawnRoom();
+    requirePlayableLayout();
   }
 }
 
 // A fixed map must leave room for the spawns: two cell centres where an agent fits, in one free
-// region, min_spawn_distance apart. Checked once, so that a map without room is refused at start,
+// region, min_spawn_distance apart; and an agent must fit at each of its waypoints. Checked once, so that a map without room is refused at start,
 // naming its obstacles, instead of being searched at every reset. A region's diameter is taken over
 // its extreme cells along kDirections directions round the circle: at most 0.2 % short of the true one.
-void Arena::requireSpawnRoom() const {
+void Arena::requirePlayableLayout() const {
   constexpr int kDirections = 64;
   const FreeSpaceGrid& grid = *fixed_grid_;
   const double limit = layout_.half_extent - options_.agent_radius;  // where trySpawn draws
@@ -58,6 +58,16 @@ void Arena::requireSpawnRoom() const {
   for (const auto& [label, ends] : extremes) {
     for (const auto& a : ends) {
       for (const auto& b : ends) widest = std::max(widest, distance(a.second, b.second));
+    }
+  }
+  // The seeker patrols the waypoints: each must be a place where an agent stands.
+  for (size_t i = 0; i < layout_.waypoints.size(); ++i) {
+    const Vec2 w = layout_.waypoints[i];
+    if (std::abs(w.x) > limit || std::abs(w.y) > limit || !fits(w, grid)) {
+      std::ostringstream m;
+      m << "lies closer than the agent radius (" << options_.agent_radius
+        << " m) to a wall or an obstacle: no agent can stand there";
+      throw ConfigError(map_->source, "waypoints[" + std::to_string(i) + "]", m.str());
     }
   }
   if (widest < options_.min_spawn_distance) {

@@ -192,6 +192,14 @@ TEST(BadConfig, AFixedMapWithoutRoomForTheSpawnsIsRefused) {
     arena("cramped.yaml", "  - {center: [0.75, 0], size: [12.5, 14]}\n  - {center: [-6.25, 0.75], size: [1.5, 12.5]}\n");
   });
   EXPECT_NE(e.find("cramped.yaml: field 'obstacles': leave no room for the spawns"), std::string::npos) << e;
+  // A waypoint outside the box but closer to it than an agent's radius: the seeker could not stand there.
+  const std::string near = errorOf([&] {
+    const std::string path =
+        writeTemp("near.yaml", "name: m\nobstacles:\n  - {center: [0, 0], size: [2, 2]}\nwaypoints: [[1.2, 0]]\n");
+    Arena(v.game, std::make_shared<const MapSpec>(loadMapFile(path)));
+  });
+  EXPECT_NE(near.find("near.yaml: field 'waypoints[0]': lies closer than the agent radius (0.4 m)"), std::string::npos)
+      << near;
   // The same box a little smaller leaves an L-shaped corridor, which is room enough.
   Arena roomy = arena("roomy.yaml", "  - {center: [1.5, 1.5], size: [10, 10]}\n");
   roomy.reset(3);

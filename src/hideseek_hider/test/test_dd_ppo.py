@@ -50,8 +50,10 @@ def test_a_killed_rank_stops_the_other_naming_it():
 
 def test_a_frozen_rank_stops_the_other_after_the_timeout_naming_it():
     address = "127.0.0.1:%d" % free_port()
-    r0 = rank(0, address, "--updates", "8", "--timeout", "4")
-    r1 = rank(1, address, "--updates", "8", "--freeze-after", "2", "--timeout", "4")
+    # The timeout also bounds the rendezvous, where the two ranks' libtorch loads may be seconds
+    # apart on a slow or loaded CPU: 15 s, not less, so that only the freeze can exhaust it.
+    r0 = rank(0, address, "--updates", "8", "--timeout", "15")
+    r1 = rank(1, address, "--updates", "8", "--freeze-after", "2", "--timeout", "15")
     try:
         out0, _ = r0.communicate(timeout=120)
         assert r0.returncode == 3, out0

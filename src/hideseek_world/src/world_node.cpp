@@ -114,7 +114,9 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     watchdog_timer_ = nh_.createWallTimer(ros::WallDuration(0.05), &WorldNode::onWatchdog, this);
   } else {
     tick_timer_ = nh_.createWallTimer(ros::WallDuration(game.physics_dt), &WorldNode::onRealtimeTick, this);
-    publishObservations();
+    // The agents' first observation goes out once, when both are connected (onRealtimeTick). Sent
+    // here too, it reached agents that were already listening, and their second answers to the
+    // same step could arrive after the step had started with the first: counted as late.
     publishArenaZero(true);
   }
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(1.0), &WorldNode::publishDiagnostics, this);
@@ -258,7 +260,7 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
     }
     started_ = true;
     ROS_INFO("world: both agents connected, starting realtime");
-    publishObservations();  // the batch sent at start-up went out before anyone listened
+    publishObservations();
     return;
   }
   if (game_.decisionDue()) {

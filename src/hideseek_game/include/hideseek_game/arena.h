@@ -67,7 +67,7 @@ class Arena {
  private:
   bool trySpawn(std::mt19937& rng, const FreeSpaceGrid& grid);
   bool fits(Vec2 p, const FreeSpaceGrid& grid) const;
-  void requireSpawnRoom() const;
+  void requirePlayableLayout() const;
   void updateLabels();
 
   GameOptions options_;
