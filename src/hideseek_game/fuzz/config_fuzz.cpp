@@ -11,7 +11,8 @@
 //   - every waypoint inside the arena, outside every obstacle, and on a fixed map clear of every
 //     obstacle and wall by the agent radius;
 //   - spawns drawable: resets of three seeds each give two agents inside the arena, clear of every
-//     obstacle by the agent radius, at least min_spawn_distance apart, and finite after a few steps.
+//     obstacle by the agent radius, at least min_spawn_distance apart and farther than the capture
+//     distance, and finite after up to three steps.
 // A violation prints which and aborts, like a crash. Files are written to a private folder beside
 // copies of the real maps.
 #include <unistd.h>
@@ -182,7 +183,10 @@ void play(const hideseek_game::VariantConfig& v) {
     arena.reset(seed);
     checkSpawns(arena, seed);
     for (const Box& b : arena.layout().obstacles) require(meetsFloor(b, arena.layout().half_extent), "a drawn box");
-    for (int i = 0; i < 3; ++i) arena.step(hideseek_game::Action::kForward, hideseek_game::Action::kTurnLeft);
+    require(hideseek_game::distance(arena.hider().position, arena.seeker().position) > v.game.capture_distance,
+            "spawned within capture distance");
+    for (int i = 0; i < 3 && !arena.step(hideseek_game::Action::kForward, hideseek_game::Action::kTurnLeft).done(); ++i) {
+    }
     require(finite(arena.hider().position) && finite(arena.seeker().position), "an agent's position after 3 steps");
   }
 }

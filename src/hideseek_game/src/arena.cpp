@@ -100,8 +100,8 @@ bool Arena::trySpawn(std::mt19937& rng, const FreeSpaceGrid& grid) {
     Vec2 h, s;
     if (!sample(h) || !sample(s)) return false;
     if (distance(h, s) < options_.min_spawn_distance || !grid.connected(h, s)) continue;
-    hider_ = {h, std::atan2(s.y - h.y, s.x - h.x), 0.0};
-    seeker_ = {s, std::atan2(h.y - s.y, h.x - s.x), 0.0};
+    hider_ = {h, std::atan2(s.y - h.y, s.x - h.x), 0.0, {}};
+    seeker_ = {s, std::atan2(h.y - s.y, h.x - s.x), 0.0, {}};
     return true;
   }
   return false;
@@ -126,6 +126,16 @@ void Arena::reset(uint32_t seed) {
                              std::to_string(options_.min_spawn_distance) + " m apart, connected) found for seed " +
                              std::to_string(seed));
   }
+  step_ = 0;
+  frame_ = 0;
+  return_ = 0.0;
+  captured_ = false;
+  updateLabels();
+}
+
+void Arena::startFrom(const AgentState& hider, const AgentState& seeker) {
+  hider_ = hider;
+  seeker_ = seeker;
   step_ = 0;
   frame_ = 0;
   return_ = 0.0;

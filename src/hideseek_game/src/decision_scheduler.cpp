@@ -2,15 +2,17 @@
 
 namespace hideseek_game {
 
-DecisionScheduler::DecisionScheduler(ClockMode mode, int num_arenas, double stale_action_timeout, double resend_period)
+DecisionScheduler::DecisionScheduler(ClockMode mode, int num_arenas, double stale_action_timeout, double resend_period,
+                                     int seeker_actions)
     : mode_(mode),
       num_arenas_(num_arenas),
       stale_action_timeout_(stale_action_timeout),
       resend_period_(resend_period),
+      seeker_actions_(seeker_actions),
       pending_(2 * static_cast<size_t>(num_arenas)) {}
 
 Verdict DecisionScheduler::offer(Player player, int arena, uint8_t action, uint32_t step_id, uint32_t current_step) {
-  if (action >= kNumActions) return Verdict::kInvalidAction;
+  if (action >= actions(player)) return Verdict::kInvalidAction;
   if (mode_ == ClockMode::kRealtime && executing_ && player == Player::kHider) return Verdict::kLate;
   if (step_id != current_step) return Verdict::kWrongStep;
   pending_[index(player, arena)] = static_cast<Action>(action);

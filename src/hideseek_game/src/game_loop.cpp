@@ -9,7 +9,8 @@ namespace hideseek_game {
 GameLoop::GameLoop(const GameOptions& game, std::shared_ptr<const MapSpec> map, const GameLoopOptions& options)
     : world_(game, std::move(map), options.num_arenas, options.seed, options.render, options.render_threads,
              options.seed_stride),
-      scheduler_(options.mode, options.num_arenas, options.stale_action_timeout, options.resend_period),
+      scheduler_(options.mode, options.num_arenas, options.stale_action_timeout, options.resend_period,
+                 actionCount(game, true)),
       render_(options.render) {
   const size_t n = static_cast<size_t>(options.num_arenas);
   if (render_) images_.resize(world_.imageBytes() * n);

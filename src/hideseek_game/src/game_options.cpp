@@ -1,6 +1,7 @@
 #include "hideseek_game/game_options.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "hideseek_game/yaml_fields.h"
 
@@ -26,6 +27,10 @@ void readMotion(YamlFields& f, MotionOptions& m) {
   m.max_speed = f.number("max_speed", m.max_speed, 0.0, 20.0);
   m.acceleration = f.number("acceleration", m.acceleration, 0.0, 100.0);
   m.turn_rate = f.number("turn_rate_deg", m.turn_rate * 180.0 / kPi, 1.0, 3600.0) * kPi / 180.0;
+  const std::string model = f.text("accelerate_model", m.accelerate_model == AccelerateModel::kBrake ? "brake" : "momentum",
+                                   {"brake", "momentum"});
+  m.accelerate_model = model == "brake" ? AccelerateModel::kBrake : AccelerateModel::kMomentum;
+  m.drag = f.number("drag", m.drag, 0.0, 100.0);
 }
 
 // Applies one file's fields over opts; unknown keys are errors. A game file that extends none is
@@ -85,6 +90,11 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
     if (variant) variant->seeker_policy = s.text("policy", "deterministic", {"deterministic", "stochastic"});
     g.seeker_decision_frames = s.integer("decision_frames", g.seeker_decision_frames, 1, 1000);
     g.seeker_knows_spawn = s.boolean("knows_spawn", g.seeker_knows_spawn);
+    const std::string steering =
+        s.text("steering", g.seeker_steering == SeekerSteering::kTurnOrMove ? "turn_or_move" : "turn_while_moving",
+               {"turn_or_move", "turn_while_moving"});
+    g.seeker_steering = steering == "turn_or_move" ? SeekerSteering::kTurnOrMove : SeekerSteering::kTurnWhileMoving;
+    g.seeker_move_angle = s.number("move_angle_deg", g.seeker_move_angle * 180.0 / kPi, 0.0, 180.0) * kPi / 180.0;
     s.rejectUnknown();
   }
   {
@@ -110,6 +120,12 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
   f.rejectUnknown();
   if (g.camera.mount_height >= g.agent_height) {
     throw ConfigError(source, "camera.mount_height", "must be below agents.height");
+  }
+  // Spawns are min_spawn_distance apart: within capture_distance an episode would end at its spawn.
+  if (g.min_spawn_distance <= g.capture_distance) {
+    std::ostringstream m;
+    m << "must exceed episode.capture_distance (" << g.capture_distance << " m), or the agents may spawn captured";
+    throw ConfigError(source, "episode.min_spawn_distance", m.str());
   }
   if (g.action_repeat % g.seeker_decision_frames != 0) {
     throw ConfigError(source, "seeker.decision_frames",

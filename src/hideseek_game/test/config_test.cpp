@@ -124,6 +124,13 @@ TEST(BadConfig, ErrorsNameTheFileAndTheField) {
   const std::string range = writeTemp("range.yaml", "variant: x\nmap: deterministic.yaml\nhider: {speed: -1}\n");
   const std::string e = errorOf([&] { loadVariantConfig(game, range); });
   EXPECT_NE(e.find("range.yaml: field 'hider.speed': must be in [0, 20], got -1"), std::string::npos) << e;
+  // Found by config_fuzz: a capture distance beyond the spawn distance let episodes end at their spawn.
+  const std::string reach =
+      writeTemp("reach.yaml", "variant: x\nmap: deterministic.yaml\nepisode: {capture_distance: 5.8}\n");
+  const std::string r = errorOf([&] { loadVariantConfig(game, reach); });
+  EXPECT_NE(r.find("reach.yaml: field 'episode.min_spawn_distance': must exceed episode.capture_distance (5.8 m)"),
+            std::string::npos)
+      << r;
   const std::string map =
       writeTemp("badmap.yaml", "name: m\nobstacles:\n  - {center: [0, 0], size: [1]}\nwaypoints: [[1, 1]]\n");
   EXPECT_NE(errorOf([&] { loadMapFile(map); }).find("badmap.yaml: field 'obstacles[0].size'"), std::string::npos);

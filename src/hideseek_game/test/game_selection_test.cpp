@@ -23,7 +23,8 @@ TEST(GameSelection, NamesResolveToTheirFiles) {
   EXPECT_EQ(gameFile(kConfig, "v2"), kConfig + "/game.yaml");
   EXPECT_EQ(gameFile(kConfig, "v1"), kConfig + "/game_v1.yaml");
   EXPECT_EQ(variantFile(kConfig, "basic"), kConfig + "/variants/basic.yaml");
-  EXPECT_EQ(gameNames(kConfig), (std::vector<std::string>{"v2", "v1"}));
+  EXPECT_EQ(gameFile(kConfig, "v3"), kConfig + "/game_v3.yaml");
+  EXPECT_EQ(gameNames(kConfig), (std::vector<std::string>{"v2", "v1", "v3"}));
 }
 
 TEST(GameSelection, AVariantOfTheFirstGamePlaysTheFirstGamesMap) {
@@ -36,8 +37,8 @@ TEST(GameSelection, AVariantOfTheFirstGamePlaysTheFirstGamesMap) {
 }
 
 TEST(GameSelection, AnUnknownNameIsRefusedWithTheNamesThere) {
-  const std::string game = errorOf([] { gameFile(kConfig, "v3"); });
-  EXPECT_NE(game.find("'v3' is not a game here (v2, v1)"), std::string::npos) << game;
+  const std::string game = errorOf([] { gameFile(kConfig, "v9"); });
+  EXPECT_NE(game.find("'v9' is not a game here (v2, v1, v3)"), std::string::npos) << game;
   const std::string variant = errorOf([] { variantFile(kConfig, "nosuch"); });
   EXPECT_NE(variant.find("'nosuch' is not a variant here (basic, "), std::string::npos) << variant;
   // A path is no name: the resolver never reads outside config/.
@@ -51,7 +52,8 @@ TEST(GameSelection, AToolsGameArgumentIsANameOrAFile) {
   EXPECT_EQ(gameArgument(kConfig, "v1"), kConfig + "/game_v1.yaml");
   EXPECT_EQ(gameArgument(kConfig, "/somewhere/mine.yaml"), "/somewhere/mine.yaml");
   EXPECT_EQ(gameArgument(kConfig, "mine.yaml"), "mine.yaml");
-  EXPECT_NE(errorOf([] { gameArgument(kConfig, "v3"); }), "");
+  EXPECT_EQ(gameArgument(kConfig, "v3"), kConfig + "/game_v3.yaml");
+  EXPECT_NE(errorOf([] { gameArgument(kConfig, "v9"); }), "");
 }
 
 // A game file selected under one name that calls itself another is refused: the run registry

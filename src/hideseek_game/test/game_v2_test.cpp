@@ -140,13 +140,13 @@ TEST(GameV2, BoxesMarkedAsWallsBlockButAreNotObstaclesInView) {
   Arena arena(v.game, map);
   arena.reset(1000);
   // Standing in the north-east part of the arena, looking into the corner wall: no obstacle.
-  AgentState viewer{{5.0, 2.0}, 0.25 * kPi, 0.0};
+  AgentState viewer{{5.0, 2.0}, 0.25 * kPi, 0.0, {}};
   EXPECT_FALSE(obstacleInView(viewer, arena.layout(), v.game));
   // The same spot looking at the centre sees the cross.
   viewer.yaw = std::atan2(-2.0, -5.0);
   EXPECT_TRUE(obstacleInView(viewer, arena.layout(), v.game));
   // And the corner wall stops an agent like any obstacle.
-  AgentState walker{{5.0, 2.0}, 0.25 * kPi, 0.0};
+  AgentState walker{{5.0, 2.0}, 0.25 * kPi, 0.0, {}};
   for (int f = 0; f < 200; ++f)
     advanceAgent(walker, Action::kForward, v.game.hider, v.game.physics_dt, arena.layout(), v.game.agent_radius);
   EXPECT_LT(walker.position.x + walker.position.y, 14.0 - 4.0 * std::sqrt(2.0) - 0.4 * std::sqrt(2.0) + 1e-6);
@@ -163,7 +163,7 @@ TEST(GameV2, TheSeekersFrontColourShowsWhetherItFacesTheHider) {
   renderer.setScene(0, empty);
   std::vector<uint8_t> image(static_cast<size_t>(v.game.camera.width) * v.game.camera.height * 3);
   auto frontPixels = [&](double seeker_yaw) {
-    const AgentState hider{{-2.5, 0.0}, 0.0, 0.0}, seeker{{2.5, 0.0}, seeker_yaw, 0.0};
+    const AgentState hider{{-2.5, 0.0}, 0.0, 0.0, {}}, seeker{{2.5, 0.0}, seeker_yaw, 0.0, {}};
     renderer.render({{0, hider, seeker, false}}, RenderMode::kColor, image.data());
     int n = 0;
     for (size_t p = 0; p < image.size(); p += 3) {

@@ -107,3 +107,104 @@ TEST(Kinematics, AccelerateModeLosesSpeedIntoAWall) {
 }
 
 }  // namespace hideseek_game
+
+namespace hideseek_game {
+
+namespace {
+
+// Game v3's accelerating hider: the momentum model of config/game_v3.yaml over the fasterhider variant.
+MotionOptions momentumHider() {
+  MotionOptions m = test::loadVariant("fasterhider", "v3").game.hider;
+  EXPECT_EQ(m.mode, SpeedMode::kAccelerate);
+  EXPECT_EQ(m.accelerate_model, AccelerateModel::kMomentum);
+  return m;
+}
+
+}  // namespace
+
+// A user steering the v3 fasterhider: it keeps its speed and direction of travel through a turn
+// and a stay, where v2's brakes (AccelerateModeRampsUpCapsAndCoastsToRest).
+TEST(MomentumModel, ATurnOrAStayKeepsTheVelocityInTheMapFrame) {
+  MotionOptions m = momentumHider();
+  m.drag = 0.0;
+  AgentState a;
+  a.position = {-6.0, 0.0};
+  step(a, Action::kForward, m, emptyArena(), 50);  // 1 s of pushing along +x
+  const double speed = norm(a.velocity);
+  EXPECT_NEAR(speed, m.acceleration * 1.0, 1e-9);
+  EXPECT_NEAR(a.velocity.y, 0.0, 1e-12);
+  const Vec2 before = a.position;
+  step(a, Action::kTurnLeft, m, emptyArena(), 25);  // half a second: a quarter turn of the body
+  EXPECT_NEAR(a.yaw, 0.5 * kPi, 1e-9);
+  EXPECT_NEAR(norm(a.velocity), speed, 1e-12) << "a turn pushes nothing: the speed is kept";
+  EXPECT_NEAR(a.velocity.y, 0.0, 1e-12) << "the velocity does not turn with the body";
+  EXPECT_NEAR(a.position.x - before.x, speed * 0.5, 1e-9) << "it travels on along +x while it turns";
+  EXPECT_NEAR(a.speed, 0.0, 1e-9) << "speed is the velocity's part along the heading, now across it";
+  step(a, Action::kStay, m, emptyArena(), 10);
+  EXPECT_NEAR(norm(a.velocity), speed, 1e-12) << "no drag: a stay keeps the speed";
+  // Pushing forward now (heading +y) adds across the old motion.
+  step(a, Action::kForward, m, emptyArena(), 50);
+  EXPECT_NEAR(a.velocity.x, speed, 1e-9);
+  EXPECT_NEAR(a.velocity.y, m.acceleration * 1.0, 1e-9);
+}
+
+TEST(MomentumModel, DragSlowsOnlyTheFramesThatPushNothingAndTheSpeedIsCapped) {
+  MotionOptions m = momentumHider();
+  m.drag = 1.0;
+  Layout wide = emptyArena();
+  wide.half_extent = 100.0;  // room for 8 s of pushing
+  AgentState a;
+  step(a, Action::kForward, m, wide, 400);  // 8 s: well past the cap
+  EXPECT_NEAR(norm(a.velocity), m.max_speed, 1e-9);
+  a.position = {0.0, 0.0};
+  step(a, Action::kStay, m, emptyArena(), 1);
+  EXPECT_NEAR(norm(a.velocity), m.max_speed * (1.0 - m.drag * kDt), 1e-9);
+  step(a, Action::kTurnRight, m, emptyArena(), 1);
+  EXPECT_NEAR(norm(a.velocity), m.max_speed * std::pow(1.0 - m.drag * kDt, 2), 1e-9);
+  // Backward pushes against the heading: from rest it moves backwards.
+  AgentState b;
+  step(b, Action::kBackward, m, emptyArena(), 10);
+  EXPECT_LT(b.velocity.x, 0.0);
+  EXPECT_LT(b.position.x, 0.0);
+}
+
+// A wall stops only the part of the velocity that points into it: the agent slides along it.
+TEST(MomentumModel, AWallRemovesOnlyThePartIntoIt) {
+  MotionOptions m = momentumHider();
+  m.drag = 0.0;
+  AgentState a;
+  a.position = {6.0, 0.0};
+  a.yaw = 0.25 * kPi;
+  step(a, Action::kForward, m, emptyArena(), 50);  // 1 s diagonally into the east wall
+  const double limit = 7.0 - 0.4;
+  EXPECT_NEAR(a.position.x, limit, 1e-9) << "it stops at the wall";
+  EXPECT_NEAR(a.velocity.x, 0.0, 1e-12) << "the part into the wall is gone";
+  EXPECT_NEAR(a.velocity.y, m.acceleration * std::sin(0.25 * kPi), 1e-9) << "the part along the wall is kept";
+  const double y = a.position.y;
+  step(a, Action::kStay, m, emptyArena(), 25);
+  EXPECT_NEAR(a.position.y - y, a.velocity.y * 0.5, 1e-9) << "it slides on along the wall";
+  EXPECT_NEAR(a.position.x, limit, 1e-9);
+  // Into a box's face head-on: the speed is gone, nothing is left to slide with.
+  Layout l = emptyArena();
+  l.obstacles.push_back(Box::make({2.0, 0.0}, {1.0, 4.0}, 1.5, 0.0));
+  AgentState b;
+  step(b, Action::kForward, m, l, 100);
+  EXPECT_NEAR(b.position.x, 1.5 - 0.4, 1e-9);
+  EXPECT_NEAR(norm(b.velocity), 0.0, 1e-9);
+}
+
+// Game v3's seeker may turn and move in one frame; the hider may not (the world refuses it).
+TEST(MomentumModel, AForwardTurnTurnsAndMovesInOneFrame) {
+  MotionOptions m = test::loadVariant("basic", "v3").game.seeker;
+  AgentState a;
+  step(a, Action::kForwardLeft, m, emptyArena(), 1);
+  EXPECT_NEAR(a.yaw, m.turn_rate * kDt, 1e-12);
+  EXPECT_NEAR(norm(a.position), m.speed * kDt, 1e-12);
+  EXPECT_GT(a.position.y, 0.0);
+  const GameOptions v3 = test::loadVariant("basic", "v3").game, v2 = test::loadVariant("basic").game;
+  EXPECT_EQ(actionCount(v3, true), kNumSeekerActions);
+  EXPECT_EQ(actionCount(v3, false), kNumActions);
+  EXPECT_EQ(actionCount(v2, true), kNumActions) << "v2's seeker turns or moves";
+}
+
+}  // namespace hideseek_game

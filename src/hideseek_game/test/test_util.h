@@ -15,9 +15,9 @@ namespace hideseek_game::test {
 
 inline std::string configPath(const std::string& relative) { return std::string(HIDESEEK_CONFIG_DIR) + "/" + relative; }
 
-// A variant of the default game, as the nodes resolve it.
-inline VariantConfig loadVariant(const std::string& name) {
-  return selectGame(HIDESEEK_CONFIG_DIR, kDefaultGame, name).config;
+// A variant of the default game, or of the game named, as the nodes resolve it.
+inline VariantConfig loadVariant(const std::string& name, const std::string& game = kDefaultGame) {
+  return selectGame(HIDESEEK_CONFIG_DIR, game, name).config;
 }
 
 // What the ConfigError that f throws says, or "" when it throws none.

@@ -292,8 +292,8 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
     for (size_t i = 0; i < n; ++i) {
       batch[i] = {msg->images.data() + i * image_bytes, msg->seed[i], msg->step[i], {}, {}};
       if (poses) {
-        batch[i].hider = {{msg->hider_pose[i].x, msg->hider_pose[i].y}, msg->hider_pose[i].theta, 0.0};
-        batch[i].seeker = {{msg->seeker_pose[i].x, msg->seeker_pose[i].y}, msg->seeker_pose[i].theta, 0.0};
+        batch[i].hider = {{msg->hider_pose[i].x, msg->hider_pose[i].y}, msg->hider_pose[i].theta, 0.0, {}};
+        batch[i].seeker = {{msg->seeker_pose[i].x, msg->seeker_pose[i].y}, msg->seeker_pose[i].theta, 0.0, {}};
       }
     }
     out.actions = policy_->act(batch);

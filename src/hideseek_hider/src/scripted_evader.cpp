@@ -88,8 +88,8 @@ float ScriptedEvader::fieldAt(const std::vector<float>& field, Vec2 p) const {
 }
 
 bool ScriptedEvader::hiddenFrom(Vec2 seeker, Vec2 p) const {
-  AgentState viewer{seeker, std::atan2(p.y - seeker.y, p.x - seeker.x), 0.0};
-  AgentState target{p, 0.0, 0.0};
+  AgentState viewer{seeker, std::atan2(p.y - seeker.y, p.x - seeker.x), 0.0, {}};
+  AgentState target{p, 0.0, 0.0, {}};
   return !hideseek_game::agentSeesAgent(viewer, target, layout_, game_);
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "hideseek_game/arena.h"
+#include "hideseek_play/orbit.h"
 #include "hideseek_play/scripted_game.h"
 
 namespace hideseek_play {
@@ -192,6 +193,45 @@ TEST(Calibration, SeekerCatchesAHiderThatStaysPutOnceItHasSeenIt) {
     }
     EXPECT_GE(seen_episodes, 50) << v;
   }
+}
+
+}  // namespace hideseek_play
+
+// The orbit study (hideseek_play/orbit.h), independent of HIDESEEK_GAME_FILE: game v3's seeker,
+// which moves while it turns, catches a hider circling in the open no faster than itself, from
+// every start angle; game v2's turn-or-move seeker, slowed by its turns, trails such an orbit for
+// good once it is wide enough that the capture distance does not reach across (k = 3, radius
+// 1.92 m). Wider orbits, where the hider's mean speed exceeds the seeker's, may survive in either
+// game: the hider is the faster agent.
+namespace hideseek_play {
+namespace {
+
+hideseek_game::VariantConfig gameVariant(const std::string& game, const std::string& name) {
+  return hideseek_game::loadVariantConfig(kConfig + "/game" + (game == "v2" ? "" : "_" + game) + ".yaml",
+                                          kConfig + "/variants/" + name + ".yaml");
+}
+
+}  // namespace
+
+TEST(Orbit, GameV3sSeekerCatchesTheTightOrbitsFromEveryStartAngle) {
+  const auto v3 = gameVariant("v3", "basic");
+  for (const int k : {1, 2, 3}) {
+    const OrbitShape shape{k};
+    ASSERT_LE(orbitSpeed(v3.game, shape), v3.game.seeker.speed) << "a tight orbit is no faster than the seeker";
+    for (const auto& e : playOrbitAngles(v3, shape, 12)) {
+      EXPECT_FALSE(e.survived) << "k " << k << " (radius " << orbitRadius(v3.game, shape) << " m), start angle "
+                               << e.start_angle_deg << ": the v3 seeker never caught the circling hider";
+    }
+  }
+}
+
+// The same orbit against game v2's seeker: the figure the exploit rested on, and what makes the
+// v3 check above meaningful (an orbit no seeker could survive would prove nothing).
+TEST(Orbit, GameV2sSeekerLetsATightOrbitSurvive) {
+  const auto v2 = gameVariant("v2", "basic");
+  int survived = 0;
+  for (const auto& e : playOrbitAngles(v2, OrbitShape{3}, 12)) survived += e.survived;
+  EXPECT_GT(survived, 0) << "game v2's seeker caught the k = 3 orbit from all 12 start angles";
 }
 
 }  // namespace hideseek_play

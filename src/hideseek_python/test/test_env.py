@@ -125,8 +125,8 @@ def test_bad_input_is_refused_with_a_clear_error(envs):
         hideseek.make_vec("nosuch", num_envs=1)
     with pytest.raises(ValueError, match="num_envs"):
         hideseek.make_vec("basic", num_envs=0)
-    with pytest.raises(ValueError, match="'v3' is not a game here"):
-        hideseek.make_vec("basic", num_envs=1, game="v3")
+    with pytest.raises(ValueError, match="'v9' is not a game here"):
+        hideseek.make_vec("basic", num_envs=1, game="v9")
 
 
 def test_bad_variant_file_names_file_and_field(tmp_path):

@@ -99,7 +99,7 @@ TEST(VecGame, BadInputIsRefusedAndChangesNothing) {
   EXPECT_EQ(game.info(1).seed, 1u);
   EXPECT_THROW(VecGame(variant("basic"), 0, 0, 1), std::invalid_argument);
   EXPECT_THROW(VecGame(variant("basic"), 65, 0, 1), std::invalid_argument);
-  EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v3", "basic"), hideseek_game::ConfigError);
+  EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v9", "basic"), hideseek_game::ConfigError);
   EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v2", "../game"), hideseek_game::ConfigError);
   EXPECT_THROW(hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v2", "nosuchvariant"), hideseek_game::ConfigError);
 }

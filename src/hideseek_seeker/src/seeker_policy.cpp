@@ -13,6 +13,8 @@ SeekerOptions seekerOptionsFor(const hideseek_game::VariantConfig& variant, doub
   o.type = variant.seeker_policy == "stochastic" ? SeekerPolicyType::kStochastic : SeekerPolicyType::kDeterministic;
   o.radius = variant.game.agent_radius;
   o.turn_per_step = variant.game.seeker.turn_rate * variant.game.physics_dt * variant.game.seeker_decision_frames;
+  o.turn_while_moving = variant.game.seeker_steering == hideseek_game::SeekerSteering::kTurnWhileMoving;
+  o.move_angle = variant.game.seeker_move_angle;
   o.grid_resolution = grid_resolution;
   return o;
 }
@@ -57,20 +59,39 @@ void SeekerPolicy::setGoal(const AgentState& pose, Vec2 goal) {
   }
 }
 
+namespace {
+
+// The turn an action makes: a forward turn counts as its turn.
+Action turnOf(Action a) {
+  if (a == Action::kForwardLeft) return Action::kTurnLeft;
+  if (a == Action::kForwardRight) return Action::kTurnRight;
+  return a;
+}
+
+}  // namespace
+
 Action SeekerPolicy::steerTowards(const AgentState& pose, Vec2 target) const {
   const double bearing = std::atan2(target.y - pose.position.y, target.x - pose.position.x);
   const double error = wrapAngle(bearing - pose.yaw);
   // Turn while more than half a turn step off, so the heading error stays within a half step.
   if (std::abs(error) <= 0.5 * options_.turn_per_step) return Action::kForward;
-  const Action turn = error > 0 ? Action::kTurnLeft : Action::kTurnRight;
+  Action turn = error > 0 ? Action::kTurnLeft : Action::kTurnRight;
   // Never undo the previous turn. When the target flips between two sides from one step to the
   // next (a hider stepping forward and back with the bearing near the middle between two
   // reachable headings, or a path that changes corner), undoing would keep the seeker turning
   // left, right, left, ... on the spot for good. Instead it moves forward when the target is
   // ahead, which changes the geometry and still closes in, or keeps turning the same way.
-  const Action back = last_action_ == Action::kTurnLeft ? Action::kTurnRight : Action::kTurnLeft;
-  const bool just_turned = last_action_ == Action::kTurnLeft || last_action_ == Action::kTurnRight;
-  if (just_turned && turn == back) return std::abs(error) < 0.5 * kPi ? Action::kForward : last_action_;
+  const Action last_turn = turnOf(last_action_);
+  const Action back = last_turn == Action::kTurnLeft ? Action::kTurnRight : Action::kTurnLeft;
+  const bool just_turned = last_turn == Action::kTurnLeft || last_turn == Action::kTurnRight;
+  if (just_turned && turn == back) {
+    if (std::abs(error) < 0.5 * kPi) return Action::kForward;
+    turn = last_turn;
+  }
+  // Game v3: a target within move_angle of the heading is approached while turning.
+  if (options_.turn_while_moving && std::abs(error) <= options_.move_angle) {
+    return turn == Action::kTurnLeft ? Action::kForwardLeft : Action::kForwardRight;
+  }
   return turn;
 }
 

@@ -41,7 +41,7 @@ TEST(SeekerPolicy, ReachesAGoalBehindTheCrossFromLastKnownPosition) {
   SeekerPolicy seeker({});
   seeker.reset(layout, 1);
   // South of the cross's east arm; the hider was glimpsed once north of it, then never again.
-  AgentState s{{0.6, -1.2}, hideseek_game::kPi / 2, 0.0};
+  AgentState s{{0.6, -1.2}, hideseek_game::kPi / 2, 0.0, {}};
   const Vec2 behind{0.6, 1.2};
   seeker.act({s, behind});
   for (int step = 0; step < 200 && hideseek_game::distance(s.position, behind) > 0.5; ++step) {
@@ -61,7 +61,7 @@ TEST(SeekerPolicy, PlansOnTheLayoutOfTheCurrentEpisode) {
   Layout open;
   open.waypoints = {{0.0, 0.0}};
   const Layout cross = deterministicLayout();
-  const AgentState s{{0.6, -1.2}, hideseek_game::kPi / 2, 0.0};
+  const AgentState s{{0.6, -1.2}, hideseek_game::kPi / 2, 0.0, {}};
   const Vec2 behind{0.6, 1.2};
   auto pathLength = [&](SeekerPolicy& seeker) {
     seeker.act({s, behind});
@@ -85,7 +85,7 @@ TEST(SeekerPolicy, ChasesOnSightAndTurnsTowardsTheHider) {
   const Layout layout = deterministicLayout();
   SeekerPolicy seeker({});
   seeker.reset(layout, 1);
-  const AgentState s{{0.0, -4.0}, 0.0, 0.0};  // between the cross and the south wall segment, facing east
+  const AgentState s{{0.0, -4.0}, 0.0, 0.0, {}};  // between the cross and the south wall segment, facing east
   EXPECT_EQ(seeker.act({s, Vec2{0.0, -2.0}}), Action::kTurnLeft);  // hider to its left
   EXPECT_EQ(seeker.mode(), SeekerMode::kChase);
   EXPECT_EQ(seeker.act({s, Vec2{3.0, -4.0}}), Action::kForward);  // hider straight ahead
@@ -96,7 +96,7 @@ TEST(SeekerPolicy, DeterministicSeekerPatrolsWaypointsInOrder) {
   const Layout layout = deterministicLayout();
   SeekerPolicy seeker({});
   seeker.reset(layout, 1);
-  AgentState s{layout.waypoints[0], 0.0, 0.0};
+  AgentState s{layout.waypoints[0], 0.0, 0.0, {}};
   std::vector<size_t> visited;
   for (int step = 0; step < 3000 && visited.size() < 4; ++step) {
     advance(s, seeker.act({s, std::nullopt}), layout);
@@ -116,7 +116,7 @@ TEST(SeekerPolicy, StochasticSeekerWandersToVariedPointsAndChasesOnSight) {
   o.type = SeekerPolicyType::kStochastic;
   SeekerPolicy seeker(o);
   seeker.reset(layout, 42);
-  AgentState s{{-6.0, -6.0}, 0.0, 0.0};
+  AgentState s{{-6.0, -6.0}, 0.0, 0.0, {}};
   std::set<std::pair<int, int>> goals;
   for (int step = 0; step < 1500; ++step) {
     advance(s, seeker.act({s, std::nullopt}), layout);
@@ -130,11 +130,11 @@ TEST(SeekerPolicy, StochasticSeekerWandersToVariedPointsAndChasesOnSight) {
   // Two seekers with different episode seeds wander differently.
   SeekerPolicy other(o);
   other.reset(layout, 43);
-  AgentState t{{-6.0, -6.0}, 0.0, 0.0};
+  AgentState t{{-6.0, -6.0}, 0.0, 0.0, {}};
   other.act({t, std::nullopt});
   SeekerPolicy again(o);
   again.reset(layout, 42);
-  again.act({AgentState{{-6.0, -6.0}, 0.0, 0.0}, std::nullopt});
+  again.act({AgentState{{-6.0, -6.0}, 0.0, 0.0, {}}, std::nullopt});
   EXPECT_NE(other.goal()->x, again.goal()->x);
 }
 
@@ -159,8 +159,8 @@ TEST(SeekerPolicy, DeterministicSeekerCatchesAStandingHiderItCanSee) {
   const GameOptions g = shippedGame();
   SeekerPolicy seeker({});
   seeker.reset(open, 0);
-  AgentState s{{-5.0, -5.0}, 2.0, 0.0};
-  const AgentState hider{{4.0, 3.0}, 0.0, 0.0};
+  AgentState s{{-5.0, -5.0}, 2.0, 0.0, {}};
+  const AgentState hider{{4.0, 3.0}, 0.0, 0.0, {}};
   int step = 0;
   for (; step < 400 && hideseek_game::distance(s.position, hider.position) > g.capture_distance; ++step) {
     const bool sees = hideseek_game::agentSeesAgent(s, hider, open, g);

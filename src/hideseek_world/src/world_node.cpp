@@ -197,7 +197,7 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_game::CheckedAc
         WallThrottle& throttle = throttles_.invalid_action;
         if (throttle.ready()) {
           ROS_WARN("world: rejected %s action %u for arena %zu: actions are 0..%d (%lu more like it since the last)",
-                   channel.name.c_str(), msg.actions[i], i, kNumActions - 1,
+                   channel.name.c_str(), msg.actions[i], i, game_.actions(channel.player) - 1,
                    static_cast<unsigned long>(throttle.suppressed()));
         }
         break;

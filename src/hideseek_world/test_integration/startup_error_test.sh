@@ -19,7 +19,7 @@ expect_fatal() {  # name, expected text, launch arguments...
 }
 expect_fatal missing_policy "checkpoint /nonexistent/policy.pt cannot be read" basic.launch policy:=/nonexistent/policy.pt
 expect_fatal bad_precision "/hider/precision must be auto, fp32 or bf16, got 'fp16'" basic.launch precision:=fp16
-expect_fatal unknown_game "game names no game: " basic.launch game:=v3
+expect_fatal unknown_game "game names no game: " basic.launch game:=v9
 expect_fatal unknown_variant "'nosuch' is not a variant here (basic, " game.launch.xml variant:=nosuch
 config="$(cd "$(dirname "$0")/../../hideseek_game/config" && pwd)"  # the game package holds the maps
 printf 'variant: basic\nmap: %s/maps/deterministic.yaml\nhider:\n  sped: 3.0\n' "$config" > "$dir/typo.yaml"

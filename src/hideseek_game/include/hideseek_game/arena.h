@@ -36,6 +36,9 @@ class Arena {
 
   // Starts an episode: draws the layout (stochastic maps) and the spawns from `seed` alone.
   void reset(uint32_t seed);
+  // Restarts the episode `reset` began from these poses instead of its spawns (the orbit study
+  // starts the seeker at chosen angles round a circling hider); the layout and seed stay.
+  void startFrom(const AgentState& hider, const AgentState& seeker);
   // Advances one decision step (action_repeat physics frames, fewer when a capture ends it).
   StepResult step(Action hider, Action seeker);
   // Advances one physics frame of the current decision step; returns the step's result when this

@@ -38,7 +38,10 @@ struct DecisionActions {
 
 class DecisionScheduler {
  public:
-  DecisionScheduler(ClockMode mode, int num_arenas, double stale_action_timeout, double resend_period);
+  // The seeker may take seeker_actions actions (kNumActions, or kNumSeekerActions where the game
+  // lets it move while it turns); the hider always kNumActions.
+  DecisionScheduler(ClockMode mode, int num_arenas, double stale_action_timeout, double resend_period,
+                    int seeker_actions = kNumActions);
 
   // An action of `player` for `arena`, answering step `step_id` while the arena is at `current_step`.
   Verdict offer(Player player, int arena, uint8_t action, uint32_t step_id, uint32_t current_step);
@@ -48,6 +51,8 @@ class DecisionScheduler {
   bool completeFor(Player player) const;
   // Whether the pending answer of `player` for `arena` has arrived.
   bool answered(Player player, int arena) const { return pending_[index(player, arena)].has_value(); }
+  // The actions `player` may take: codes 0 .. actions(player) - 1.
+  int actions(Player player) const { return player == Player::kSeeker ? seeker_actions_ : kNumActions; }
 
   // Realtime: may the next decision start at `now_s`? `agents_connected`: both agents publish.
   RealtimeStart realtimeStart(double now_s, bool agents_connected);
@@ -77,6 +82,7 @@ class DecisionScheduler {
   int num_arenas_;
   double stale_action_timeout_;
   double resend_period_;
+  int seeker_actions_;
   std::vector<std::optional<Action>> pending_;  // [player][arena]
   bool executing_ = false;
   std::optional<double> waiting_since_;  // realtime: when the next decision could first have started

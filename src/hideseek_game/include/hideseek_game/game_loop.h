@@ -65,6 +65,8 @@ class GameLoop {
   RealtimeStart realtimeStart(double now_s, bool hider_connected, bool seeker_connected);
   // Whether `player` answered `arena` for the decision due.
   bool answered(Player player, int arena) const { return scheduler_.answered(player, arena); }
+  // The actions `player` may take in this game (codes 0 .. actions - 1).
+  int actions(Player player) const { return scheduler_.actions(player); }
   // Takes the decision due: at a step's start both agents' actions, inside it the seeker's
   // (STAY where an answer is missing). Realtime: the hider's answers are late until the step ends.
   void takeDecision();

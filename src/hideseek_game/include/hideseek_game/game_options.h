@@ -15,13 +15,29 @@ inline constexpr int kMaxSeed = 1 << 30;
 
 enum class SpeedMode { kConstant, kAccelerate };
 
+// What the accelerating ("A") mode does with the actions that push nothing: stay and the turns.
+enum class AccelerateModel {
+  kBrake,     // games v1 and v2: they slow the agent by `acceleration`, and its velocity turns with its body
+  kMomentum,  // game v3: a rigid body whose velocity is a vector of the map frame, kept through turns and
+              // stays, where only `drag` slows it; forward and backward push along the heading
+};
+
 // How an agent moves under the five actions.
 struct MotionOptions {
   SpeedMode mode{};
   double speed{};         // m/s, constant mode
-  double max_speed{};     // m/s, accelerate mode
+  double max_speed{};     // m/s, accelerate mode: the cap on the speed
   double acceleration{};  // m/s^2, accelerate mode
   double turn_rate{};     // rad/s
+  AccelerateModel accelerate_model{};
+  double drag{};  // 1/s, momentum model: each frame of stay or a turn scales the velocity by 1 - drag dt
+};
+
+// How the scripted seeker steers towards its target.
+enum class SeekerSteering {
+  kTurnOrMove,       // games v1 and v2: each decision turns on the spot or moves forward
+  kTurnWhileMoving,  // game v3: it also moves forward while it turns (Action::kForwardLeft, kForwardRight)
+                     // when its target lies within move_angle of its heading
 };
 
 struct CameraOptions {
@@ -63,6 +79,8 @@ struct GameOptions {
   // The seeker starts knowing the hider's spawn point, as its last known position: both
   // agents start facing each other (game v2: true; game v1: false).
   bool seeker_knows_spawn{};
+  SeekerSteering seeker_steering{};
+  double seeker_move_angle{};  // rad, turn-while-moving steering: the target's bearing within which it moves
   CameraOptions camera;
   RewardOptions rewards;
 

@@ -31,6 +31,10 @@ struct SeekerOptions {
   double grid_resolution = 0.1;                      // m
   double turn_per_step = 0.12 * hideseek_game::kPi;  // rad turned by one turn action
   double goal_tolerance = 0.5;                       // m: a waypoint or last known position counts as reached
+  // Game v3's steering: a turn towards a target within move_angle of the heading also moves forward
+  // (Action::kForwardLeft, kForwardRight); games v1 and v2 turn on the spot.
+  bool turn_while_moving = false;
+  double move_angle = 0.0;  // rad
 };
 
 // The seeker of a variant, as the seeker node builds it: its policy type, radius and turn from the

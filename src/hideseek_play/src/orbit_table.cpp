@@ -1,0 +1,104 @@
+// The orbit table (issue #65): a hider circling in the open on a fixed pattern of its five actions
+// against each game's seeker, from start angles evenly round the circle (hideseek_play/orbit.h).
+// Usage: orbit_table [--config DIR] [--game GAME|FILE]... [--variant NAME] [--angles N] [--shapes 1,2,4]
+// Several --game give one table with a block per game (default: v2 and v3).
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "hideseek_game/config_error.h"
+#include "hideseek_game/game_selection.h"
+#include "hideseek_game/package_paths.h"
+#include "hideseek_play/orbit.h"
+
+namespace {
+
+struct Options {
+  std::string config_dir;
+  std::vector<std::string> games;
+  std::string variant = "basic";
+  int angles = 24;
+  std::vector<int> shapes{1, 2, 3, 4, 6};
+};
+
+int usage(const std::string& why) {
+  std::cerr << "orbit_table: " << why
+            << "\nusage: orbit_table [--config DIR] [--game GAME|FILE]... [--variant NAME] [--angles N] "
+               "[--shapes 1,2,4]\n";
+  return 2;
+}
+
+std::optional<std::string> parseArgs(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (a == "--config" && has_value) {
+      o.config_dir = argv[++i];
+    } else if (a == "--game" && has_value) {
+      o.games.push_back(argv[++i]);
+    } else if (a == "--variant" && has_value) {
+      o.variant = argv[++i];
+    } else if (a == "--angles" && has_value) {
+      o.angles = std::atoi(argv[++i]);
+      if (o.angles < 1 || o.angles > 3600) return "--angles must be in [1, 3600]";
+    } else if (a == "--shapes" && has_value) {
+      o.shapes.clear();
+      std::stringstream list(argv[++i]);
+      for (std::string k; std::getline(list, k, ',');) {
+        const int steps = std::atoi(k.c_str());
+        if (steps < 1 || steps > 50) return "--shapes: forward steps per turn must be in [1, 50], got '" + k + "'";
+        o.shapes.push_back(steps);
+      }
+    } else {
+      return "unknown argument '" + a + "'";
+    }
+  }
+  if (o.games.empty()) o.games = {"v2", "v3"};
+  return std::nullopt;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (const auto error = parseArgs(argc, argv, o)) return usage(*error);
+  try {
+    if (o.config_dir.empty()) o.config_dir = hideseek_game::configDirectory();
+    std::printf("Orbit evader (forward k steps, then one left turn) against the seeker, %s, %d start angles\n\n",
+                o.variant.c_str(), o.angles);
+    std::printf(
+        "| game | k | radius (m) | hider's mean speed (m/s) | start angles survived | mean living steps | "
+        "seeker sees hider | both see each other | mean distance (m) |\n| --- | --- | --- | --- | --- | --- | --- | --- "
+        "| --- |\n");
+    for (const auto& game : o.games) {
+      const std::string file = hideseek_game::gameArgument(o.config_dir, game);
+      const auto v = hideseek_game::loadVariantConfig(file, hideseek_game::variantFile(o.config_dir, o.variant));
+      for (const int k : o.shapes) {
+        const hideseek_play::OrbitShape shape{k};
+        const auto played = hideseek_play::playOrbitAngles(v, shape, o.angles);
+        int survived = 0;
+        double steps = 0.0, seen = 0.0, mutual = 0.0, dist = 0.0;
+        for (const auto& e : played) {
+          survived += e.survived;
+          steps += e.living_steps;
+          seen += e.seen_share * e.living_steps;
+          mutual += e.mutual_share * e.living_steps;
+          dist += e.mean_distance * e.living_steps;
+        }
+        std::printf("| %s | %d | %.2f | %.2f | %d / %d | %.1f | %.0f %% | %.0f %% | %.2f |\n", v.game.name.c_str(), k,
+                    hideseek_play::orbitRadius(v.game, shape), hideseek_play::orbitSpeed(v.game, shape), survived,
+                    o.angles, steps / played.size(), 100.0 * seen / steps, 100.0 * mutual / steps, dist / steps);
+        std::fflush(stdout);
+      }
+    }
+  } catch (const hideseek_game::ConfigError& e) {
+    std::cerr << "orbit_table: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}
