@@ -185,7 +185,8 @@ void play(const hideseek_game::VariantConfig& v) {
     for (const Box& b : arena.layout().obstacles) require(meetsFloor(b, arena.layout().half_extent), "a drawn box");
     require(hideseek_game::distance(arena.hider().position, arena.seeker().position) > v.game.capture_distance,
             "spawned within capture distance");
-    for (int i = 0; i < 3 && !arena.step(hideseek_game::Action::kForward, hideseek_game::Action::kTurnLeft).done(); ++i) {
+    for (int i = 0; i < 3 && !arena.step(hideseek_game::Action::kForward, hideseek_game::Action::kTurnLeft).done();
+         ++i) {
     }
     require(finite(arena.hider().position) && finite(arena.seeker().position), "an agent's position after 3 steps");
   }

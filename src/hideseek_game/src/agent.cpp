@@ -7,7 +7,9 @@ namespace hideseek_game {
 
 namespace {
 
-bool pushesForward(Action a) { return a == Action::kForward || a == Action::kForwardLeft || a == Action::kForwardRight; }
+bool pushesForward(Action a) {
+  return a == Action::kForward || a == Action::kForwardLeft || a == Action::kForwardRight;
+}
 
 double nextSpeed(double speed, Action action, const MotionOptions& m, double dt) {
   if (m.mode == SpeedMode::kConstant) {

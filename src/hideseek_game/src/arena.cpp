@@ -29,9 +29,9 @@ Arena::Arena(const GameOptions& options, std::shared_ptr<const MapSpec> map) : o
 }
 
 // A fixed map must leave room for the spawns: two cell centres where an agent fits, in one free
-// region, min_spawn_distance apart; and an agent must fit at each of its waypoints. Checked once, so that a map without room is refused at start,
-// naming its obstacles, instead of being searched at every reset. A region's diameter is taken over
-// its extreme cells along kDirections directions round the circle: at most 0.2 % short of the true one.
+// region, min_spawn_distance apart; and an agent must fit at each of its waypoints. Checked once, so that a map without
+// room is refused at start, naming its obstacles, instead of being searched at every reset. A region's diameter is
+// taken over its extreme cells along kDirections directions round the circle: at most 0.2 % short of the true one.
 void Arena::requirePlayableLayout() const {
   constexpr int kDirections = 64;
   const FreeSpaceGrid& grid = *fixed_grid_;

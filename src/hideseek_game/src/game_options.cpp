@@ -27,8 +27,8 @@ void readMotion(YamlFields& f, MotionOptions& m) {
   m.max_speed = f.number("max_speed", m.max_speed, 0.0, 20.0);
   m.acceleration = f.number("acceleration", m.acceleration, 0.0, 100.0);
   m.turn_rate = f.number("turn_rate_deg", m.turn_rate * 180.0 / kPi, 1.0, 3600.0) * kPi / 180.0;
-  const std::string model = f.text("accelerate_model", m.accelerate_model == AccelerateModel::kBrake ? "brake" : "momentum",
-                                   {"brake", "momentum"});
+  const std::string model = f.text(
+      "accelerate_model", m.accelerate_model == AccelerateModel::kBrake ? "brake" : "momentum", {"brake", "momentum"});
   m.accelerate_model = model == "brake" ? AccelerateModel::kBrake : AccelerateModel::kMomentum;
   m.drag = f.number("drag", m.drag, 0.0, 100.0);
 }

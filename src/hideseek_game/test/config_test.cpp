@@ -180,9 +180,10 @@ TEST(BadConfig, MapVectorsAreCheckedLikeScalarsAndObstaclesMustMeetTheArena) {
             std::string::npos)
       << e;
   // A box that pokes into the floor, rotated or straddling a wall, is part of the arena.
-  EXPECT_NO_THROW(loadMapFile(writeTemp("straddles.yaml", "name: m\nobstacles:\n  - {center: [7.5, 0], size: [2, 2]}\n"
-                                                          "  - {center: [8.3, 8.3], size: [4, 4], yaw: 0.785398}\n"
-                                                          "waypoints: [[1, 1]]\n")));
+  EXPECT_NO_THROW(loadMapFile(writeTemp("straddles.yaml",
+                                        "name: m\nobstacles:\n  - {center: [7.5, 0], size: [2, 2]}\n"
+                                        "  - {center: [8.3, 8.3], size: [4, 4], yaw: 0.785398}\n"
+                                        "waypoints: [[1, 1]]\n")));
 }
 
 // A fixed map whose obstacles leave no two free points min_spawn_distance apart is refused when the
@@ -196,7 +197,8 @@ TEST(BadConfig, AFixedMapWithoutRoomForTheSpawnsIsRefused) {
   };
   // Everything but a 1.5 m square corner is filled: no two spawns can be min_spawn_distance apart.
   const std::string e = errorOf([&] {
-    arena("cramped.yaml", "  - {center: [0.75, 0], size: [12.5, 14]}\n  - {center: [-6.25, 0.75], size: [1.5, 12.5]}\n");
+    arena("cramped.yaml",
+          "  - {center: [0.75, 0], size: [12.5, 14]}\n  - {center: [-6.25, 0.75], size: [1.5, 12.5]}\n");
   });
   EXPECT_NE(e.find("cramped.yaml: field 'obstacles': leave no room for the spawns"), std::string::npos) << e;
   // A waypoint outside the box but closer to it than an agent's radius: the seeker could not stand there.

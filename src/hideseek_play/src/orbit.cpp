@@ -30,8 +30,8 @@ double orbitSpeed(const hideseek_game::GameOptions& g, OrbitShape shape) {
   return g.hider.speed * shape.forward_steps / (shape.forward_steps + 1.0);
 }
 
-OrbitEpisode playOrbit(const hideseek_game::VariantConfig& variant, OrbitShape shape, double start_angle_deg, double gap,
-                       double half_extent) {
+OrbitEpisode playOrbit(const hideseek_game::VariantConfig& variant, OrbitShape shape, double start_angle_deg,
+                       double gap, double half_extent) {
   const hideseek_game::GameOptions& g = variant.game;
   auto map = std::make_shared<hideseek_game::MapSpec>();
   map->name = "open";

@@ -73,7 +73,8 @@ int main(int argc, char** argv) {
                 o.variant.c_str(), o.angles);
     std::printf(
         "| game | k | radius (m) | hider's mean speed (m/s) | start angles survived | mean living steps | "
-        "seeker sees hider | both see each other | mean distance (m) |\n| --- | --- | --- | --- | --- | --- | --- | --- "
+        "seeker sees hider | both see each other | mean distance (m) |\n| --- | --- | --- | --- | --- | --- | --- | "
+        "--- "
         "| --- |\n");
     for (const auto& game : o.games) {
       const std::string file = hideseek_game::gameArgument(o.config_dir, game);

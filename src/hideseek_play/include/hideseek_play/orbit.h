@@ -26,9 +26,9 @@ struct OrbitEpisode {
   double start_angle_deg = 0.0;  // where the seeker starts, round the circle's centre
   int living_steps = 0;
   bool survived = false;
-  double seen_share = 0.0;      // decision steps after which the seeker sees the hider
-  double mutual_share = 0.0;    // decision steps after which each agent sees the other
-  double mean_distance = 0.0;   // m between the agents, over the decision steps
+  double seen_share = 0.0;     // decision steps after which the seeker sees the hider
+  double mutual_share = 0.0;   // decision steps after which each agent sees the other
+  double mean_distance = 0.0;  // m between the agents, over the decision steps
 };
 
 // One episode in an open arena of `half_extent` m: the hider starts on the circle round the
