@@ -1,6 +1,7 @@
 #include "hideseek_game/game_options.h"
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "hideseek_game/yaml_fields.h"
@@ -158,12 +159,15 @@ std::string applyGameFile(const std::string& path, GameOptions& g, int depth) {
 VariantConfig loadVariantConfig(const std::string& game_file, const std::string& variant_file) {
   VariantConfig v;
   std::string maps_dir;
+  // Resolved from an absolute path: an extended file's maps_dir is re-anchored at its own folder,
+  // which for a relative game file (config/game_v3.yaml) is relative too, and was prefixed twice.
+  const std::string game_path = std::filesystem::absolute(game_file).lexically_normal().string();
   try {
-    maps_dir = applyGameFile(game_file, v.game, 0);
+    maps_dir = applyGameFile(game_path, v.game, 0);
   } catch (const YAML::Exception& e) {  // what the fields' checks did not foresee still names the file
     throw ConfigError(game_file, "<file>", e.what());
   }
-  if (maps_dir.front() != '/') maps_dir = directoryOf(game_file) + "/" + maps_dir;
+  if (maps_dir.front() != '/') maps_dir = directoryOf(game_path) + "/" + maps_dir;
   try {
     applyGameFields(loadYamlFile(variant_file), variant_file, v.game, &v);
   } catch (const YAML::Exception& e) {

@@ -56,6 +56,17 @@ TEST(GameSelection, AToolsGameArgumentIsANameOrAFile) {
   EXPECT_NE(errorOf([] { gameArgument(kConfig, "v9"); }), "");
 }
 
+// A game file named by a relative path that extends another finds its maps (the extended file's
+// maps_dir was once prefixed with the relative folder twice: config/config/maps).
+TEST(GameSelection, ARelativeGameFileThatExtendsAnotherFindsItsMaps) {
+  const std::filesystem::path here = std::filesystem::current_path();
+  std::filesystem::current_path(std::filesystem::path(kConfig).parent_path());
+  const VariantConfig v = loadVariantConfig("config/game_v1.yaml", "config/variants/basic.yaml");
+  std::filesystem::current_path(here);
+  EXPECT_TRUE(std::filesystem::is_regular_file(v.map_file)) << v.map_file;
+  EXPECT_NE(v.map_file.find("maps/v1/"), std::string::npos) << v.map_file;
+}
+
 // A game file selected under one name that calls itself another is refused: the run registry
 // records the game's own name beside each policy.
 TEST(GameSelection, AGameFileMustCallItselfByItsName) {
