@@ -125,7 +125,8 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
   // Spawns are min_spawn_distance apart: within capture_distance an episode would end at its spawn.
   if (g.min_spawn_distance <= g.capture_distance) {
     std::ostringstream m;
-    m << "must exceed episode.capture_distance (" << g.capture_distance << " m), or the agents may spawn captured";
+    m << "(" << g.min_spawn_distance << " m) must exceed episode.capture_distance (" << g.capture_distance
+      << " m), or the agents may spawn captured; a file that sets either must keep the two apart";
     throw ConfigError(source, "episode.min_spawn_distance", m.str());
   }
   if (g.action_repeat % g.seeker_decision_frames != 0) {

@@ -128,8 +128,9 @@ TEST(BadConfig, ErrorsNameTheFileAndTheField) {
   const std::string reach =
       writeTemp("reach.yaml", "variant: x\nmap: deterministic.yaml\nepisode: {capture_distance: 5.8}\n");
   const std::string r = errorOf([&] { loadVariantConfig(game, reach); });
-  EXPECT_NE(r.find("reach.yaml: field 'episode.min_spawn_distance': must exceed episode.capture_distance (5.8 m)"),
-            std::string::npos)
+  EXPECT_NE(
+      r.find("reach.yaml: field 'episode.min_spawn_distance': (3 m) must exceed episode.capture_distance (5.8 m)"),
+      std::string::npos)
       << r;
   const std::string map =
       writeTemp("badmap.yaml", "name: m\nobstacles:\n  - {center: [0, 0], size: [1]}\nwaypoints: [[1, 1]]\n");

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 #include "hideseek_game/arena.h"
 #include "hideseek_seeker/seeker_policy.h"
@@ -33,6 +35,13 @@ double orbitSpeed(const hideseek_game::GameOptions& g, OrbitShape shape) {
 OrbitEpisode playOrbit(const hideseek_game::VariantConfig& variant, OrbitShape shape, double start_angle_deg,
                        double gap, double half_extent) {
   const hideseek_game::GameOptions& g = variant.game;
+  const double room = half_extent - g.agent_radius;  // where an agent's centre may be
+  if (orbitRadius(g, shape) + gap > room) {
+    throw std::invalid_argument("orbit study: a circle of radius " + std::to_string(orbitRadius(g, shape)) +
+                                " m plus the seeker's " + std::to_string(gap) + " m start gap leaves the arena (" +
+                                std::to_string(room) +
+                                " m from its centre): take fewer forward steps or a smaller gap");
+  }
   auto map = std::make_shared<hideseek_game::MapSpec>();
   map->name = "open";
   map->source = "the orbit study's open arena";

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,7 @@ struct Options {
   std::vector<std::string> games;
   std::string variant = "basic";
   int angles = 24;
-  std::vector<int> shapes{1, 2, 3, 4, 6};
+  std::vector<int> shapes{1, 2, 3, 4, 5};  // k = 5: radius 3.2 m, the widest that fits with the 3 m gap
 };
 
 int usage(const std::string& why) {
@@ -100,6 +101,9 @@ int main(int argc, char** argv) {
   } catch (const hideseek_game::ConfigError& e) {
     std::cerr << "orbit_table: " << e.what() << '\n';
     return 1;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "orbit_table: " << e.what() << '\n';
+    return 2;
   }
   return 0;
 }

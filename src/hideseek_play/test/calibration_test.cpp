@@ -225,6 +225,14 @@ TEST(Orbit, GameV3sSeekerCatchesTheTightOrbitsFromEveryStartAngle) {
   }
 }
 
+// A circle that, with the seeker's start gap, would not fit in the arena is refused, not played
+// with the seeker started inside a wall.
+TEST(Orbit, ACircleThatDoesNotFitIsRefused) {
+  const auto v3 = gameVariant("v3", "basic");
+  EXPECT_NO_THROW(playOrbit(v3, OrbitShape{5}, 0.0));
+  EXPECT_THROW(playOrbit(v3, OrbitShape{6}, 0.0), std::invalid_argument);
+}
+
 // The same orbit against game v2's seeker: the figure the exploit rested on, and what makes the
 // v3 check above meaningful (an orbit no seeker could survive would prove nothing).
 TEST(Orbit, GameV2sSeekerLetsATightOrbitSurvive) {

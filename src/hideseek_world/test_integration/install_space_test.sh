@@ -50,6 +50,7 @@ done
 launch() {
   local name=$1 limit=$2 until=$3
   shift 3
+  : > "$tmp/$name.log"  # exists before the watch below first reads it
   # Started in $tmp, so that no process inherits the checkout as its working directory.
   (cd "$tmp" && exec env -i HOME="$HOME" PATH=/usr/bin:/bin LANG=C.UTF-8 bash -c "source '$prefix/setup.bash' && \
     exec strace -f -qq --seccomp-bpf -e trace=open,openat,execve,stat,newfstatat -e signal=none \
@@ -57,7 +58,12 @@ launch() {
   local job=$!
   if [ -n "$until" ]; then
     local pattern=${until% *} count=${until##* }
-    while kill -0 $job 2> /dev/null && [ "$(grep -c "$pattern" "$tmp/$name.log")" -lt "$count" ]; do sleep 0.5; done
+    local seen
+    while kill -0 $job 2> /dev/null; do
+      seen=$(grep -c "$pattern" "$tmp/$name.log" 2> /dev/null)
+      [ "${seen:-0}" -ge "$count" ] && break
+      sleep 0.5
+    done
     # strace's child is `timeout`, which passes SIGINT on to roslaunch as its own limit would.
     pkill -INT -f "^timeout -s INT $limit roslaunch -p $port hideseek_world" 2> /dev/null
   fi

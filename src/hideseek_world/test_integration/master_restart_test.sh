@@ -12,22 +12,27 @@ export ROS_MASTER_URI=http://localhost:$port
 failures=()
 roscore -p "$port" > "$dir/core1.log" 2>&1 &
 core=$!
-# Each wait below ends as soon as what it waits for happens; its bound (about 2 min, 5 min for the
-# first episode) only catches a hang, however slow the CPU.
-for _ in $(seq 1 600); do rostopic list > /dev/null 2>&1 && break; sleep 0.2; done
+# Each wait ends as soon as what it waits for happens; its bound, in seconds of wall time (2 min,
+# 5 min for the first episode), only catches a hang, however slow the CPU.
+wait_until() {
+  local end=$((SECONDS + $1))
+  shift
+  until "$@"; do [ $SECONDS -ge $end ] && return 1; sleep 0.2; done
+}
+wait_until 120 eval 'rostopic list > /dev/null 2>&1'
 roslaunch -p "$port" hideseek_world basic.launch mode:=lockstep num_arenas:=2 policy:=random > "$dir/game.log" 2>&1 &
 launch=$!
-for _ in $(seq 1 1500); do grep -a -q "episode .* (seed" "$dir/game.log" && break; sleep 0.2; done
+wait_until 300 grep -a -q "episode .* (seed" "$dir/game.log"
 episodes() { grep -a -c "episode .* (seed" "$dir/game.log"; }
 # The master and its rosout die as a crash would.
 kill -KILL $(pgrep -f "rosmaster --core -p $port") $(pgrep -f "rosout.*__name:=rosout") "$core" 2> /dev/null
 said() { grep -a "$1" "$dir/game.log" | grep -a -o "/[a-z]*: $2" | sort -u | tr '\n' ' '; }  # (the log holds NULs)
-for _ in $(seq 1 600); do [ "$(said "does not answer" "the ROS")" = "/hider: the ROS /seeker: the ROS /world: the ROS " ] && break; sleep 0.2; done
+wait_until 120 eval '[ "$(said "does not answer" "the ROS")" = "/hider: the ROS /seeker: the ROS /world: the ROS " ]'
 gone=$(said "does not answer" "the ROS")
 before=$(episodes)
 roscore -p "$port" > "$dir/core2.log" 2>&1 &
 core=$!
-for _ in $(seq 1 600); do [ "$(said "a new ROS master answers" "a new")" = "/hider: a new /seeker: a new /world: a new " ] && break; sleep 0.2; done
+wait_until 120 eval '[ "$(said "a new ROS master answers" "a new")" = "/hider: a new /seeker: a new /world: a new " ]'
 unknown=$(said "a new ROS master answers" "a new")
 after=$(episodes)
 [ "$gone" = "/hider: the ROS /seeker: the ROS /world: the ROS " ] ||

@@ -34,7 +34,8 @@ struct OrbitEpisode {
 // One episode in an open arena of `half_extent` m: the hider starts on the circle round the
 // arena's centre, heading along it; the seeker starts `gap` m outside the circle at
 // `start_angle_deg`, facing the hider's start. The seeker is the variant's (its steering, speeds,
-// decision rate and spawn knowledge); the episode lasts up to the game's max_steps.
+// decision rate and spawn knowledge); the episode lasts up to the game's max_steps. Throws
+// std::invalid_argument when the circle and the gap do not fit inside the arena.
 OrbitEpisode playOrbit(const hideseek_game::VariantConfig& variant, OrbitShape shape, double start_angle_deg,
                        double gap = 3.0, double half_extent = 7.0);
 
