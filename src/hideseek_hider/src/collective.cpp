@@ -3,6 +3,7 @@
 #include <arpa/inet.h>
 #include <netdb.h>
 #include <netinet/in.h>
+#include <signal.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -347,6 +348,11 @@ std::unique_ptr<Collective> joinRanks(const RendezvousOptions& options) {
                                 std::to_string(options.world_size) + ")");
   }
   if (!(options.timeout_s > 0.0)) throw std::invalid_argument("the DD-PPO timeout must be positive");
+  // A rank killed mid-collective closes its sockets; a write to one raises SIGPIPE, whose default
+  // action killed this rank before it could name the dead one (seen on one busy core). Ignored, the
+  // write fails with EPIPE, Gloo throws, and the rank stops with its message. (roscpp ignores
+  // SIGPIPE too, so a ROS node is unchanged.)
+  signal(SIGPIPE, SIG_IGN);
   return std::make_unique<GlooCollective>(options);
 }
 
