@@ -51,8 +51,11 @@ launch() {
   local name=$1 limit=$2 until=$3
   shift 3
   : > "$tmp/$name.log"  # exists before the watch below first reads it
-  # Started in $tmp, so that no process inherits the checkout as its working directory.
-  (cd "$tmp" && exec env -i HOME="$HOME" PATH=/usr/bin:/bin LANG=C.UTF-8 bash -c "source '$prefix/setup.bash' && \
+  # Started in $tmp, so that no process inherits the checkout as its working directory. The log is a
+  # file, where stdout is block-buffered: rosconsole's ROSCONSOLE_STDOUT_LINE_BUFFERED (and Python's
+  # PYTHONUNBUFFERED) make each node write its lines as it logs them, so the watch below sees them.
+  (cd "$tmp" && exec env -i HOME="$HOME" PATH=/usr/bin:/bin LANG=C.UTF-8 ROSCONSOLE_STDOUT_LINE_BUFFERED=1 \
+    PYTHONUNBUFFERED=1 bash -c "source '$prefix/setup.bash' && \
     exec strace -f -qq --seccomp-bpf -e trace=open,openat,execve,stat,newfstatat -e signal=none \
     -o '$tmp/trace.$name' timeout -s INT $limit roslaunch -p $port hideseek_world $*") > "$tmp/$name.log" 2>&1 &
   local job=$!
@@ -123,6 +126,6 @@ opened=$(cat "$tmp"/trace.* 2>/dev/null | grep -oE "\"$prefix/[^\"]*\"" | sort -
 say "the graphs opened $opened distinct files of the prefix, none of a source tree unless listed below"
 
 write_xunit "$out" install_space InstalledPackagesRunWithoutTheCheckout "${failures[@]}"
-printf 'failure: %s\n' "${failures[@]}"
+[ ${#failures[@]} -eq 0 ] || printf 'failure: %s\n' "${failures[@]}"
 [ ${#failures[@]} -eq 0 ] && rm -rf "$tmp"
 exit 0
