@@ -15,10 +15,11 @@
 #            ends), where its weights are on this machine
 #   retrain RUN ...  train again, after every other run of the queue, done runs whose weights are
 #            not on this machine (lost with a change of machine): the run a variant must ship
-#            (scripts/sweep.sh ship names it). The new run replaces the old one's records; from
-#            the same pin on the same kind of CPU they come out the same (on another kind the
-#            bf16 kernels can sum in another order: the run is a new draw of its seed), which git
-#            shows
+#            (scripts/sweep.sh ship names it). The retrain is a run of its own, <run>_retrain
+#            (draw: retrain, retrain_of: <run> in the registry), recorded beside its first draw:
+#            Table 2 and the claims count first draws only, and the retrain may ship. From the
+#            same pin on the same kind of CPU it comes out as the first draw did; on another kind
+#            the bf16 kernels can sum in another order, and it is a new draw of its seed
 #   status   the pin, and every run in queue order: done (with its evaluations, whether it is
 #            analysed and whether its weights are on this machine), training (its steps),
 #            partial (a checkpoint) or missing; then the runs queued for retraining and the
@@ -97,16 +98,22 @@ queue() {
   for s in $seeds; do for v in $variants; do echo "$(run_name "$v" "$s") $v $s"; done; done
 }
 
-# The runs queued for retraining (scripts/sweep.sh retrain), as "NAME VARIANT SEED" lines, and
-# whether one still wants it: its weights are not here.
+# The runs queued for retraining (scripts/sweep.sh retrain), as "NAME_retrain VARIANT SEED retrain"
+# lines: a retrain is a run of its own, <run>_retrain, recorded beside its first draw (which Table 2
+# and the claims keep counting). One is still wanted while neither its first draw's weights nor its
+# own are here and it is not done.
 retrain_queue() {
   local name variant seed
   [ -s "$state/retrain" ] || return 0
   while read -r name variant seed; do
-    grep -qx "$name" "$state/retrain" && echo "$name $variant $seed retrain"
+    grep -qx "$name" "$state/retrain" && echo "${name}_retrain $variant $seed retrain"
   done < <(queue)
 }
-wants_retrain() { grep -qx "$1" "$state/retrain" 2> /dev/null && [ ! -s "$runs/$1/policy.pt" ]; }
+wants_retrain() {
+  local first=${1%_retrain}
+  grep -qx "$first" "$state/retrain" 2> /dev/null && [ ! -s "$runs/$first/policy.pt" ] && [ ! -s "$runs/$1/policy.pt" ] \
+    && ! is_done "$1"
+}
 
 # The runs the queue would start, in order: every run not done, seed-major, then every run queued
 # for retraining. "NAME VARIANT SEED" lines.
@@ -183,7 +190,9 @@ prepare_tree() {
 
 # One run: train (or resume), export, record and evaluate into this checkout.
 job() {
-  local name=$1 variant=$2 seed=$3 slot=$4 port rc paused
+  local name=$1 variant=$2 seed=$3 slot=$4 port rc paused draw=()
+  # A retrain records what it is, and the first draw it repeats.
+  case $name in *_retrain) draw=(draw=retrain retrain_of="${name%_retrain}") ;; esac
   port=$((port_base + 10 * slot))
   for p in "$port" $((port + 1)) $((port + 2)); do
     port_free "$p" || { say "$name: port $p is in use; not started"; return 3; }
@@ -204,7 +213,7 @@ job() {
     paused=${paused%.*}
     [ "${paused:-0}" != 0 ] || paused=
     /usr/bin/python3 scripts/hideseek_registry.py --registry "$records/policies/policies.yaml" record "$name" \
-      note="$SWEEP_NOTE, pinned at $(git rev-parse --short=12 "$pin")" paused_s="$paused"
+      note="$SWEEP_NOTE, pinned at $(git rev-parse --short=12 "$pin")" paused_s="$paused" "${draw[@]}"
     analyze "$name" || true
     ship "$variant"
     say "$name: done: $(grep 'evaluate_run:.*(greedy)\|evaluate_run:.*(sampled)' "$dir/logs/$name.log" | sed 's/.*(\(greedy\|sampled\)): \([^(]*\).*/\1 \2/' | paste -sd ';')"
@@ -263,7 +272,7 @@ analyze_all() {
     # Analysed before the per-run t-SNE or a GRU's memoryless ablation existed, or the part failed.
     if ! has_tsne "$name" && analyze_part "$name" tsne; then n=$((n + 1)); fi
     if [ "$network" = gru ] && ! has_memoryless "$name" && analyze_part "$name" memoryless; then n=$((n + 1)); fi
-  done < <(queue)
+  done < <(queue; retrain_queue)
   say "$n runs or parts of runs analysed"
 }
 
@@ -329,7 +338,7 @@ status() {
   echo "sweep: pin $(git rev-parse --short=12 "$pin" 2> /dev/null || echo "$pin") (config/sweep.yaml), worktree $tree, runs $runs"
   echo "sweep: queue $(if [ -n "$(queue_pid)" ]; then echo "running (pid $(queue_pid))"; else echo "not running"; fi)$([ -e "$state/paused" ] && echo ", PAUSED since $(date -d @"$(cat "$state/paused")" +%H:%M:%S)")"
   native_bf16 || echo "sweep: this CPU has no native bf16: the queue will not train here"
-  while read -r name variant seed; do
+  while read -r name variant seed _; do
     if [ -e "$state/job.$name" ] && alive "$(cat "$state/job.$name")"; then
       steps_now=$(tail -n 1 "$runs/$name/training_log.csv" 2> /dev/null | cut -d, -f2,3 || true)
       printf '%-34s training  %s steps of %s, %s s%s\n' "$name" "${steps_now%,*}" "$steps" "${steps_now#*,}" \
@@ -345,9 +354,9 @@ status() {
     else
       printf '%-34s missing\n' "$name"
     fi
-  done < <(queue)
+  done < <(queue; retrain_queue)
   local queued=() order=()
-  while read -r name _ _ _; do wants_retrain "$name" && queued+=("$name"); done < <(retrain_queue)
+  while read -r name _ _ _; do wants_retrain "$name" && queued+=("${name%_retrain}"); done < <(retrain_queue)
   [ ${#queued[@]} = 0 ] || echo "sweep: queued for retraining (weights lost; after every other run): ${queued[*]}"
   while read -r name _ _; do order+=("$name"); done < <(to_train)
   echo "sweep: left to train, in order: ${order[*]:-nothing}"
@@ -363,7 +372,7 @@ retrain() {
     is_done "$name" || die "retrain: '$name' is not done: the queue trains it anyway"
     if [ -s "$runs/$name/policy.pt" ]; then echo "sweep: $name: its weights are here ($runs/$name/policy.pt); nothing to retrain"; continue; fi
     grep -qx "$name" "$state/retrain" 2> /dev/null || echo "$name" >> "$state/retrain"
-    echo "sweep: $name queued for retraining, after every other run of the queue"
+    echo "sweep: $name queued for retraining, after every other run of the queue, as ${name}_retrain beside its first draw"
   done
   [ -z "$(queue_pid)" ] || echo "sweep: the running queue takes it up when a slot frees"
 }

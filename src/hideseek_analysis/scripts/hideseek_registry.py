@@ -73,8 +73,13 @@ PAPER = os.path.join(ROOT, "config", "paper_reference.yaml")
 NETWORKS = ("ff", "gru")
 # Keys a run may carry (the C++ loader refuses any other, so that a typo is found).
 RUN_KEYS = ("variant", "network", "game", "training_seed", "steps", "wall_s", "paused_s", "precision", "commit",
-            "log", "curve", "command", "note", "weights")
+            "log", "curve", "command", "note", "weights", "draw", "retrain_of")
 REQUIRED = ("variant", "network", "game")
+# A run's draw: `first`, the first training of its variant and seed (the default, and the only
+# draw that Table 2 and the claims count), or `retrain`, the same variant and seed trained again to
+# recover weights to ship, named <run>_retrain and pointing at its first draw with `retrain_of`.
+DRAWS = ("first", "retrain")
+RETRAIN_SUFFIX = "_retrain"
 
 
 class RegistryError(Exception):
@@ -145,6 +150,11 @@ def runs(registry=REGISTRY):
         return {}
     with open(registry) as f:
         entries = yaml.safe_load(f) or {}
+    return _checked(entries, registry)
+
+
+def _checked(entries, registry):
+    """The entries, once each is well formed; RegistryError naming the run and field otherwise."""
     if not isinstance(entries, dict):
         raise RegistryError("%s: must map run names to runs" % registry)
     for name, entry in entries.items():
@@ -159,7 +169,18 @@ def runs(registry=REGISTRY):
         if entry["network"] not in NETWORKS:
             raise RegistryError("%s: run %s: field 'network' is %r, not one of %s" % (registry, name, entry["network"],
                                                                                       ", ".join(NETWORKS)))
+        if draw(entry) not in DRAWS:
+            raise RegistryError("%s: run %s: field 'draw' is %r, not one of %s" % (registry, name, entry["draw"],
+                                                                                   ", ".join(DRAWS)))
+        if (draw(entry) == "retrain") != bool(entry.get("retrain_of")):
+            raise RegistryError("%s: run %s: %s" % (registry, name, "a retrain needs 'retrain_of', the run it trains again"
+                                                    if draw(entry) == "retrain" else "'retrain_of' is only for a retrain"))
     return entries
+
+
+def draw(entry):
+    """first or retrain (see DRAWS)."""
+    return entry.get("draw", "first")
 
 
 def weights_path(entry, registry=REGISTRY):
@@ -221,8 +242,7 @@ def record(name, fields, registry=REGISTRY):
         entry.update(fields)
         entry = {k: v for k, v in entry.items() if v is not None}
         entries[name] = {k: entry[k] for k in RUN_KEYS if k in entry}
-        _write(entries, registry)
-        runs(registry)  # refuse what was just written if it is malformed
+        _write(_checked(entries, registry), registry)  # a malformed entry is refused before it is written
 
 
 def ship(name, weights, registry=REGISTRY):
@@ -265,7 +285,7 @@ def median_run(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, n
     for name, e in runs(registry).items():
         if (e["variant"], e["network"], e["game"]) != (variant, network, game):
             continue
-        if not str(e.get("note", "")).startswith(note):
+        if not str(e.get("note", "")).startswith(note) or draw(e) != "first":
             continue
         steps = greedy_living_steps(name, root)
         if steps is not None:
@@ -277,23 +297,29 @@ def median_run(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, n
 
 
 def ship_median(variant, weights_dir, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE):
-    """Ships the median run of a variant (median_run) from weights_dir/<run>/policy.pt. Returns a
-    sentence saying what it did; raises RegistryError when the median run's weights are not there."""
+    """Ships the median run of a variant (median_run, by first draws) from weights_dir/<run>/policy.pt,
+    or, where those weights are lost, its retrain <run>_retrain from weights_dir/<run>_retrain/.
+    Returns a sentence saying what it did; raises WeightsMissing when neither's weights are there."""
     name = median_run(variant, network, game, registry, root, note)
     if name is None:
         return "variant %s has no evaluated run whose note starts with %r; nothing shipped" % (variant, note)
     current, _ = shipped(variant, network, game, registry)
-    if current == name:
-        return "%s, the median run of %s, is already shipped" % (name, variant)
-    weights = os.path.join(weights_dir, name, "policy.pt")
-    if not os.path.isfile(weights):
-        raise WeightsMissing("the median run of %s is %s, but its weights %s are not on this machine; %s "
-                            "(scripts/sweep.sh retrain %s to ship it)" % (variant, name, weights,
-                                                         "%s stays shipped" % current if current else "no run is shipped",
-                                                         name))
-    with _locked(registry):
-        ship(name, weights, registry)
-    return "shipped %s as the median run of %s (was %s)" % (name, variant, current or "nothing")
+    retrain = name + RETRAIN_SUFFIX
+    if current in (name, retrain):
+        return "%s, the median run of %s%s, is already shipped" % (current, variant,
+                                                                  " (its retrain)" if current == retrain else "")
+    candidates = [name] + ([retrain] if retrain in runs(registry) else [])
+    for run in candidates:
+        weights = os.path.join(weights_dir, run, "policy.pt")
+        if os.path.isfile(weights):
+            with _locked(registry):
+                ship(run, weights, registry)
+            return "shipped %s as the median run of %s%s (was %s)" % (run, variant, " (its retrain)" if run == retrain
+                                                                     else "", current or "nothing")
+    raise WeightsMissing("the median run of %s is %s, but its weights %s are not on this machine; %s "
+                         "(scripts/sweep.sh retrain %s to ship it)" % (
+                             variant, name, " or ".join(os.path.join(weights_dir, r, "policy.pt") for r in candidates),
+                             "%s stays shipped" % current if current else "no run is shipped", name))
 
 
 def problems(registry=REGISTRY, variants_dir=VARIANTS_DIR):
@@ -320,6 +346,17 @@ def problems(registry=REGISTRY, variants_dir=VARIANTS_DIR):
         for field in ("log", "curve"):
             if e.get(field) and not os.path.isfile(os.path.join(ROOT, e[field])):
                 found.append("run %s: %s %s does not exist" % (name, field, e[field]))
+        if draw(e) == "retrain":
+            first = entries.get(e["retrain_of"])
+            if first is None:
+                found.append("run %s: retrain_of names %s, which is not a run" % (name, e["retrain_of"]))
+            elif draw(first) != "first" or any(first.get(k) != e.get(k) for k in ("variant", "network", "game",
+                                                                                   "training_seed")):
+                found.append("run %s: not a retrain of %s (another draw, variant, network, game or training seed)"
+                             % (name, e["retrain_of"]))
+            elif name != e["retrain_of"] + RETRAIN_SUFFIX:
+                found.append("run %s: a retrain of %s is named %s" % (name, e["retrain_of"],
+                                                                    e["retrain_of"] + RETRAIN_SUFFIX))
     listed = {os.path.realpath(weights_path(e, registry)) for e in entries.values() if e.get("weights")}
     for path in sorted(glob.glob(os.path.join(os.path.dirname(registry), "*.pt"))):
         if os.path.realpath(path) not in listed:

@@ -5,8 +5,8 @@ usage: sweep_table2.py [--root DIR] [--out DIR] [--steps N] [--extra RUN ...] [-
 
 Reads the run registry (ROOT/policies/policies.yaml): the sweep's runs are its feed-forward game-v2
 entries named <variant>_seed<S> whose variant is <variant>, whose note says the sweep's queue
-trained them, trained for at least --steps steps
-(--extra adds other runs by name, each to its own variant). Each run's episodes come from
+trained them, trained for at least --steps steps, each seed's first draw (a retrain, <run>_retrain,
+never counts: docs/sweep.md) (--extra adds other runs by name, each to its own variant). Each run's episodes come from
 ROOT/docs/runs/<run>/episodes.csv (greedy) and sampled/episodes.csv (sampled). Beside them: the
 paper's figures (config/paper_reference.yaml) and the random hider and scripted evaders
 (docs/calibration_table.csv).
@@ -68,8 +68,14 @@ def sweep_runs(root, steps, extra, network="ff", warn=True):
     with open(os.path.join(root, "policies", "policies.yaml")) as f:
         entries = yaml.safe_load(f) or {}
     suffix = "" if network == "ff" else "_" + network
+    retrains = sorted(n for n in extra if n in entries and entries[n].get("draw", "first") == "retrain")
+    if retrains:
+        raise SystemExit("sweep_table2: --extra %s: a retrain never enters Table 2 or a claim (its first draw, %s, "
+                         "does)" % (", ".join(retrains), ", ".join(entries[n]["retrain_of"] for n in retrains)))
     found = {}
     for name, e in entries.items():
+        if e.get("draw", "first") != "first":
+            continue  # a retrain: shown beside its first draw in the run's records, never counted
         m = NAME.match(name)
         chosen = (name in extra and e.get("network", "ff") == network) or (
             m and m.group("variant") == str(e.get("variant")) + suffix and e.get("network") == network

@@ -55,6 +55,14 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
     r.training_seed = f.integer("training_seed", 0, 0, kMaxSeed);
     r.steps = static_cast<long long>(f.number("steps", 0, 0, static_cast<double>(kMaxSteps)));
     const std::string weights = f.text("weights", "", {});
+    r.draw = f.text("draw", "first", {"first", "retrain"});
+    r.retrain_of = f.text("retrain_of", "", {});
+    if (r.draw == "retrain" && r.retrain_of.empty()) {
+      throw ConfigError(registry_file, f.field("retrain_of"), "is required for a retrain: the run it trains again");
+    }
+    if (r.draw == "first" && !r.retrain_of.empty()) {
+      throw ConfigError(registry_file, f.field("retrain_of"), "is only for a retrain (draw: retrain)");
+    }
     // Recorded for people and the scripts; read here so that a typo in a key is still refused.
     for (const char* key : {"wall_s", "paused_s", "precision", "commit", "log", "curve", "command", "note"}) {
       if (f.has(key)) f.child(key);

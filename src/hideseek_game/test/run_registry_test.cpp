@@ -85,6 +85,21 @@ TEST_F(RunRegistryTest, MissingWeightsUnknownFieldsAndMissingFieldsAreRefused) {
   EXPECT_NE(errorOf("r: {variant: basic, network: ff}\n").find("'r.game': is required"), std::string::npos);
 }
 
+TEST_F(RunRegistryTest, ARetrainNamesTheFirstDrawItRepeats) {
+  const auto runs = loadRunRegistry(
+      write("basic_seed0: {variant: basic, network: ff, game: v2}\n"
+            "basic_seed0_retrain: {variant: basic, network: ff, game: v2, draw: retrain, retrain_of: basic_seed0}\n"));
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].draw, "first");
+  EXPECT_EQ(runs[1].draw, "retrain");
+  EXPECT_EQ(runs[1].retrain_of, "basic_seed0");
+  EXPECT_NE(errorOf("r: {variant: basic, network: ff, game: v2, draw: retrain}\n").find("'r.retrain_of': is required"),
+            std::string::npos);
+  EXPECT_NE(errorOf("r: {variant: basic, network: ff, game: v2, draw: second}\n").find("r.draw"), std::string::npos);
+  EXPECT_NE(errorOf("r: {variant: basic, network: ff, game: v2, retrain_of: q}\n").find("only for a retrain"),
+            std::string::npos);
+}
+
 TEST_F(RunRegistryTest, TheShippedRegistryIsReadable) {
   // The committed registry: every run well formed, every shipped file present.
   EXPECT_NO_THROW(loadRunRegistry(std::string(HIDESEEK_POLICY_DIR) + "/policies.yaml"));

@@ -145,3 +145,36 @@ def test_ship_median_ships_the_median_sweep_run_and_keeps_the_shipped_one_withou
     # an even count ships the lower of the middle two
     (tmp_path / "docs" / "runs" / "basic_seed2" / "evaluation.csv").unlink()
     assert reg.median_run("basic", registry=registry, root=root) == "basic_seed1"
+
+
+def test_the_median_counts_first_draws_and_ships_a_retrain_where_the_first_draws_weights_are_lost(tree, tmp_path):
+    """A retrain (<run>_retrain, draw: retrain) never counts toward the median, however it scored;
+    where the median first draw's weights are gone and its retrain's are here, the retrain ships,
+    named as the retrain it is. A retrain must name a first draw of the same variant and seed."""
+    registry, variants = tree
+    root = str(tmp_path)
+    weights_dir = tmp_path / "runs"
+    sweep = {"note": "sweep run (config/sweep.yaml), pinned at abc", "variant": "basic", "network": "ff", "game": "v2"}
+    scores = {"basic_seed0": 400.0, "basic_seed1": 100.0, "basic_seed2": 250.0, "basic_seed2_retrain": 900.0}
+    for name, living in scores.items():
+        fields = dict(sweep, training_seed=int(name[10]))
+        if name.endswith("_retrain"):
+            fields.update(draw="retrain", retrain_of="basic_seed2")
+        reg.record(name, fields, registry)
+        folder = tmp_path / "docs" / "runs" / name
+        folder.mkdir(parents=True)
+        (folder / "evaluation.csv").write_text("variant,policy,episodes,avg_living_steps,success_rate\n"
+                                               "basic,%s (greedy),100,%.2f,0.1\n" % (name, living))
+    assert reg.median_run("basic", registry=registry, root=root) == "basic_seed2"  # 900 is not a first draw
+    (weights_dir / "basic_seed2_retrain").mkdir(parents=True)
+    (weights_dir / "basic_seed2_retrain" / "policy.pt").write_bytes(b"retrain")
+    said = reg.ship_median("basic", str(weights_dir), registry=registry, root=root)
+    assert "shipped basic_seed2_retrain as the median run of basic (its retrain)" in said
+    assert reg.shipped("basic", registry=registry)[0] == "basic_seed2_retrain"
+    assert "already shipped" in reg.ship_median("basic", str(weights_dir), registry=registry, root=root)
+    assert reg.problems(registry, variants) == []
+    reg.record("basic_seed1_retrain", dict(sweep, training_seed=0, draw="retrain", retrain_of="basic_seed1"), registry)
+    assert "not a retrain of basic_seed1" in "\n".join(reg.problems(registry, variants))
+    with pytest.raises(reg.RegistryError, match="a retrain needs 'retrain_of'"):
+        reg.record("basic_seed0_retrain", dict(sweep, training_seed=0, draw="retrain"), registry)
+    assert "basic_seed0_retrain" not in reg.runs(registry)  # refused before it was written

@@ -20,6 +20,10 @@ struct RunEntry {
   int training_seed = 0;
   long long steps = 0;
   std::string weights;  // absolute path of the committed weights, or "" (not shipped)
+  // first: the first training of its variant and seed, the draw tables and claims count; retrain:
+  // the same variant and seed trained again (only to recover weights to ship), named in retrain_of.
+  std::string draw = "first";
+  std::string retrain_of;  // the first draw a retrain repeats; "" for a first draw
 };
 
 // Reads the registry; throws ConfigError naming the run and field at fault, also where two runs
