@@ -12,6 +12,9 @@
 #                                                           before the per-run t-SNE existed)
 #        scripts/analyze_run.sh --memoryless-only RUN WEIGHTS   (a GRU run's memoryless ablation
 #                                                           alone: for one analysed without it)
+#        scripts/analyze_run.sh --behaviour-only RUN WEIGHTS   (the rollouts' behaviour tables alone:
+#                                                           greedy, so they come out as before, plus
+#                                                           what behaviour.py measures since)
 #        scripts/analyze_run.sh --baseline VARIANT POLICY   (random or scripted/EVADER: behaviour
 #                                                            only, into docs/analysis/baselines/<variant>/<policy>/;
 #                                                            the random hider's: ROLLOUT_EPISODES=1000, about 43,000 steps)
@@ -20,10 +23,10 @@
 set -euo pipefail
 [ -z "${RECORD_ROOT:-}" ] || RECORD_ROOT=$(realpath "$RECORD_ROOT")
 only=
-case "${1:-}" in --tsne-only | --memoryless-only) only=${1#--}; only=${only%-only}; shift ;; esac
-case " $* " in *" --tsne-only "* | *" --memoryless-only "*) only=misplaced ;; esac
+case "${1:-}" in --tsne-only | --memoryless-only | --behaviour-only) only=${1#--}; only=${only%-only}; shift ;; esac
+case " $* " in *" --tsne-only "* | *" --memoryless-only "* | *" --behaviour-only "*) only=misplaced ;; esac
 if [ "$only" = misplaced ] || { [ -n "$only" ] && [ "${1:-}" = --baseline ]; }; then
-  echo "analyze_run.sh: --tsne-only and --memoryless-only come first and go with a run (RUN WEIGHTS), not with --baseline" >&2
+  echo "analyze_run.sh: --tsne-only, --memoryless-only and --behaviour-only come first and go with a run (RUN WEIGHTS), not with --baseline" >&2
   exit 2
 fi
 if [ "${1:-}" = --baseline ]; then
@@ -64,6 +67,13 @@ if [ "$only" = memoryless ]; then
   [ "$network" = gru ] || { echo "analyze_run.sh: --memoryless-only: $name is a $network run; the ablation is a GRU's" >&2; exit 2; }
   memoryless
   echo "analyze_run: $name: memoryless ablation into $out/memoryless"
+  exit 0
+fi
+if [ "$only" = behaviour ]; then
+  mkdir -p "$out"
+  rollouts memory
+  /usr/bin/python3 src/hideseek_analysis/scripts/behaviour.py "$tmp/steps.csv" "$out" --run "$name"
+  echo "analyze_run: $name: behaviour into $out"
   exit 0
 fi
 if [ $baseline = 0 ]; then

@@ -15,7 +15,9 @@ Writes into OUT_DIR:
   walks backward, keeps the seeker in view (S), is seen (H), and how often per 100 steps it breaks
   the seeker's line of sight (H from 1 to 0), loses sight of the seeker (S from 1 to 0), and how
   often the distance between the agents turns from growing to shrinking or back (its 5-step
-  moving average), a measure of oscillation.
+  moving average: every wobble counts), and how often it swings by at least SWING_M (1 m) either
+  way, the paper's oscillation (a hider that lets the seeker come metres closer, then runs);
+- swings.csv: the swings per 100 steps at each of SWING_THRESHOLDS, the threshold's effect.
 """
 import argparse
 import csv
@@ -30,6 +32,28 @@ from hideseek_analysis import STATE_NAMES, state_frequencies, state_index, trans
 BACKWARD = 2  # hideseek_game::Action::kBackward
 BIN = 10
 MAX_STEPS = 1000
+SWING_M = 1.0  # the paper's faster hiders let the distance swing by metres
+SWING_THRESHOLDS = (0.25, 0.5, 1.0, 2.0)
+
+
+def swings(x, threshold):
+    """How often the distance x reverses by at least `threshold`: once it has moved one way by the
+    threshold, each time it comes back from its extreme by the threshold or more (a zigzag with
+    hysteresis: a wobble smaller than the threshold never counts)."""
+    trend, count = 0, 0
+    lo = hi = ext = x[0]
+    for v in x[1:]:
+        if trend == 0:
+            lo, hi = min(lo, v), max(hi, v)
+            if v - lo >= threshold:
+                trend, ext = 1, v
+            elif hi - v >= threshold:
+                trend, ext = -1, v
+        elif trend * (v - ext) > 0:
+            ext = v
+        elif trend * (ext - v) >= threshold:
+            trend, ext, count = -trend, v, count + 1
+    return count
 
 
 def read_steps(path):
@@ -70,6 +94,8 @@ def summarise(d):
         change = np.diff(np.convolve(x, np.ones(5) / 5, mode="valid"))
         change = change[np.abs(change) > 1e-6]
         turns += int((np.sign(change[1:]) != np.sign(change[:-1])).sum())
+    swung = {t: sum(swings(d["distance"][d["seed"] == seed], t) for seed in np.unique(d["seed"]))
+             for t in SWING_THRESHOLDS}
     bins = np.arange(0, MAX_STEPS, BIN)
     which = np.minimum(d["step"] // BIN, len(bins) - 1)
     mean_distance = np.full(len(bins), np.nan)
@@ -83,13 +109,15 @@ def summarise(d):
     return {
         "freq": freq, "counts": counts, "prob": prob, "tcounts": tcounts, "bins": bins,
         "mean_distance": mean_distance, "running": running,
+        "swings": {t: round(100.0 * c / n, 3) for t, c in swung.items()},
         "row": {"episodes": int(ends.sum()), "steps": n, "mean_living_steps": round(float(living.mean()), 2),
                 "success_rate": round(float(success.mean()), 4),
                 "backward_share": round(float((d["action"] == BACKWARD).mean()), 4),
                 "sees_seeker_share": round(float(d["S"].mean()), 4), "seen_share": round(float(d["H"].mean()), 4),
                 "line_of_sight_breaks_per_100": round(100.0 * h_breaks / n, 3),
                 "seeker_lost_per_100": round(100.0 * s_losses / n, 3),
-                "distance_turns_per_100": round(100.0 * turns / n, 3)},
+                "distance_turns_per_100": round(100.0 * turns / n, 3),
+                "distance_swings_per_100": round(100.0 * swung[SWING_M] / n, 3)},
     }
 
 
@@ -115,6 +143,11 @@ def write(out_dir, s, name):
         w.writerow(["run", "step_bin_start", "mean_distance", "episodes_running"])
         for b, m, r in zip(s["bins"], s["mean_distance"], s["running"]):
             w.writerow([name, int(b), "" if np.isnan(m) else round(float(m), 4), int(r)])
+    with open(os.path.join(out_dir, "swings.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["run", "threshold_m", "swings_per_100"])
+        for t, per_100 in s["swings"].items():
+            w.writerow([name, t, per_100])
     with open(os.path.join(out_dir, "behaviour.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=["run"] + list(s["row"]))
         w.writeheader()

@@ -104,6 +104,37 @@ def test_behaviour_counts_states_transitions_and_behaviour(tmp_path):
     assert d[0]["episodes_running"] == "2" and d[1]["mean_distance"] == ""
 
 
+def test_swings_count_reversals_of_at_least_the_threshold_and_never_a_wobble():
+    # an orbit's wobble: 0.3 m up and down, 40 times: no swing of 1 m, many turns
+    wobble = [2.0 + 0.3 * (k % 2) for k in range(80)]
+    assert behaviour.swings(wobble, 1.0) == 0
+    assert behaviour.swings(wobble, 0.25) == 78  # every reversal is at least 0.25 m
+    # waits while the seeker comes 3 m closer, runs 4 m away, waits again, runs: 3 reversals of >= 1 m
+    wait_run = [5, 4, 3, 2, 4, 6, 5, 4, 3, 6.5, 6.4]
+    assert behaviour.swings(wait_run, 1.0) == 3
+    assert behaviour.swings(wait_run, 2.0) == 3
+    assert behaviour.swings(wait_run, 3.5) == 0  # no reversal reaches 3.5 m
+    assert behaviour.swings([1.0, 1.5, 1.9], 1.0) == 0  # one way only
+
+
+def test_behaviour_reports_swings_at_each_threshold(tmp_path):
+    # comes 3 m closer, runs 4 m away, then wobbles by 0.3 m at 6 m for 30 steps
+    dists = [5, 4.5, 4, 3.5, 3, 2.5, 2, 3, 4, 5, 6] + [6 - 0.3 * (k % 2) for k in range(30)]
+    e0 = [(1, 1, 0, dist, 2) for dist in dists]
+    steps = tmp_path / "steps.csv"
+    write_steps(steps, [(10000, e0)])
+    out = tmp_path / "out"
+    behaviour.write(str(out), behaviour.summarise(behaviour.read_steps(str(steps))), "r")
+    with open(out / "behaviour.csv") as f:
+        row = next(csv.DictReader(f))
+    assert float(row["distance_swings_per_100"]) == pytest.approx(100 / 41, abs=1e-2)  # one swing of >= 1 m
+    assert float(row["distance_turns_per_100"]) > float(row["distance_swings_per_100"])  # the wobble at 6 m counts there
+    with open(out / "swings.csv") as f:
+        per = {float(r["threshold_m"]): float(r["swings_per_100"]) for r in csv.DictReader(f)}
+    assert sorted(per) == list(behaviour.SWING_THRESHOLDS)
+    assert per[2.0] == pytest.approx(100 / 41, abs=1e-2) and per[0.25] > per[1.0]
+
+
 def test_neighbour_score_is_one_for_separated_labels_and_a_half_for_mixed_ones():
     rng = np.random.default_rng(3)
     y = np.repeat([0, 1], 100)

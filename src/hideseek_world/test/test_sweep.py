@@ -3,6 +3,7 @@ apart) and sweep_table2.py's statistics across training seeds (two-level bootstr
 improvement, rank correlation), on small made-up registries: no training, no ROS master."""
 import csv
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -106,10 +107,12 @@ def test_retrain_queues_a_done_run_without_weights_after_every_other_run(tmp_pat
     assert r.returncode == 2 and "is not done" in r.stderr
     r = sweep(tmp_path, rec, "retrain", "basic_seed0")
     assert r.returncode == 0 and "basic_seed0 queued for retraining" in r.stdout, r.stderr
+    assert "as basic_seed0_retrain beside its first draw" in r.stdout
     status = sweep(tmp_path, rec, "status").stdout
     assert "queued for retraining (weights lost; after every other run): basic_seed0" in status
-    # the missing runs first, seed-major, then the retraining
-    assert "left to train, in order: slowerhider_seed0 basic_seed1 slowerhider_seed1 basic_seed0" in status
+    # the missing runs first, seed-major, then the retraining, a run of its own beside the first draw
+    assert "left to train, in order: slowerhider_seed0 basic_seed1 slowerhider_seed1 basic_seed0_retrain" in status
+    assert re.search(r"^basic_seed0_retrain +missing", status, re.M), status
     # once its weights are here (the retrained run, or the old ones found), it is not trained again
     w = tmp_path / "sweep" / "runs" / "basic_seed0"
     w.mkdir(parents=True)
@@ -590,6 +593,72 @@ def test_a_claim_decided_on_two_runs_of_a_variant_is_marked_provisional():
     for r in (two, three, undecided):
         claims.mark_provisional(r)
     assert two["note"].startswith("provisional") and three["note"] == "" and undecided["note"] == "needs more"
+
+
+def test_an_effect_under_its_practical_size_is_negligible_not_support():
+    import claims
+    size = claims.PRACTICAL["share"][0]
+    assert claims.verdict((0.004, 0.011), 3, 1.0, 0.007, size) == "negligible"  # v2's 0.007 of the steps
+    assert claims.verdict((0.03, 0.05), 3, 1.0, 0.04, size) == "supported"
+    assert claims.verdict((-0.05, -0.03), 3, 1.0, -0.04, size) == "contradicted"
+    assert claims.verdict((-0.01, 0.05), 3, 1.0, 0.02, size) == "inconclusive"
+    assert claims.verdict((0.03, 0.05), 1, 1.0, 0.04, size) == "inconclusive"  # one run: no interval over seeds
+
+
+def write_behaviour(rec, name, turns, swings=None):
+    d = rec / "docs" / "runs" / name / "analysis"
+    d.mkdir(parents=True, exist_ok=True)
+    cols = "run,episodes,steps,mean_living_steps,success_rate,backward_share,sees_seeker_share,seen_share," \
+           "line_of_sight_breaks_per_100,seeker_lost_per_100,distance_turns_per_100"
+    row = "%s,100,10000,100,0,0.5,0.5,0.5,1,1,%s" % (name, turns)
+    if swings is None:
+        (d / "swings.csv").unlink(missing_ok=True)
+    else:
+        cols, row = cols + ",distance_swings_per_100", row + ",%s" % swings
+        (d / "swings.csv").write_text("run,threshold_m,swings_per_100\n" + "".join(
+            "%s,%s,%s\n" % (name, t, swings * f) for t, f in ((0.25, 8), (0.5, 3), (1.0, 1), (2.0, 0.5))))
+    (d / "behaviour.csv").write_text(cols + "\n" + row + "\n")
+
+
+def test_oscillation_counts_swings_of_a_metre_and_names_runs_without_them(tmp_path):
+    """basic wobbles (many turns, no swing of 1 m), the faster hiders swing: supported on swings,
+    though the old measure (turns) says the opposite; a run analysed before the swings is named."""
+    variants = ("basic", "fasterhider", "visibilityreward_faster")
+    rec = make_records(tmp_path, {"%s_seed%d" % (v, s): (v, s, 2048, [100] * 20, [90] * 20)
+                                  for v in variants for s in range(3)})
+    for s in range(3):
+        write_behaviour(rec, "basic_seed%d" % s, 30 + s, 0.01 * s)
+        write_behaviour(rec, "fasterhider_seed%d" % s, 2, 1.5 + 0.1 * s)
+        write_behaviour(rec, "visibilityreward_faster_seed%d" % s, 2, 1.2 + 0.1 * s)
+    c = run_claims(tmp_path, rec)["The faster hiders' distance oscillates"]
+    assert c["result"] == "supported", c
+    assert float(c["effect"]) == pytest.approx(1.45 - 0.01, abs=1e-3)
+    assert "the old measure" in c["measure"] and "-2" in c["measure"]  # turns: faster minus basic near -29
+    table = (tmp_path / "report" / "oscillation_thresholds.md").read_text()
+    assert "| basic | basic_seed1 | 31.00 | 0.08 | 0.03 | 0.01 | 0.01 |" in table
+    write_behaviour(rec, "fasterhider_seed2", 2)  # analysed before the swings, weights lost
+    c = run_claims(tmp_path, rec)["The faster hiders' distance oscillates"]
+    assert "no swings measured for fasterhider_seed2" in c["note"]
+    assert "| fasterhider | fasterhider_seed2 | 2.00 | - | - | - | - |" in (
+        tmp_path / "report" / "oscillation_thresholds.md").read_text()
+
+
+def test_a_retrain_never_enters_table2_or_a_claim(tmp_path):
+    runs = {"basic_seed%d" % s: ("basic", s, 2048, [100 + 10 * s] * 20, [90] * 20) for s in range(3)}
+    runs["basic_seed0_retrain"] = ("basic", 0, 2048, [900] * 20, [900] * 20)
+    rec = make_records(tmp_path, runs)
+    path = rec / "policies" / "policies.yaml"
+    entries = yaml.safe_load(path.read_text())
+    entries["basic_seed0_retrain"].update(draw="retrain", retrain_of="basic_seed0")
+    path.write_text(yaml.safe_dump(entries, sort_keys=False))
+    shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
+    run_analysis("sweep_table2.py", rec, tmp_path / "t2")
+    rows = list(csv.DictReader(open(tmp_path / "t2" / "table2.csv")))
+    basic = next(r for r in rows if r["variant"] == "basic" and r["mode"] == "greedy")
+    assert basic["run_names"] == "basic_seed0 basic_seed1 basic_seed2"
+    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "sweep_table2.py"), "--root", str(rec), "--out",
+                        str(tmp_path / "t3"), "--extra", "basic_seed0_retrain"], capture_output=True, text=True)
+    assert r.returncode != 0 and "a retrain never enters Table 2 or a claim" in r.stderr
 
 
 def test_hold_runs_a_command_with_the_sweep_paused_and_resumes_it(tmp_path):
