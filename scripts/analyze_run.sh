@@ -17,7 +17,9 @@
 #                                                           what behaviour.py measures since)
 #        scripts/analyze_run.sh --baseline VARIANT POLICY   (random or scripted/EVADER: behaviour
 #                                                            only, into docs/analysis/baselines/<variant>/<policy>/;
-#                                                            the random hider's: ROLLOUT_EPISODES=1000, about 43,000 steps)
+#                                                            the random hider's: ROLLOUT_EPISODES=1000, about 43,000 steps;
+#                                                            GAME=v3: into docs/analysis/baselines/v3/<variant>/<policy>/)
+#   A run plays its own game, as the registry records it.
 #   RECORD_ROOT (default this checkout): where the registry and docs/runs are (the sweep's checkout).
 #   ROLLOUT_EPISODES (default 100), ROLLOUT_SEED (default 10000).
 set -euo pipefail
@@ -42,12 +44,15 @@ first=${ROLLOUT_SEED:-10000}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 if [ $baseline = 1 ]; then
+  game=${GAME:-v2}
   out=$records/docs/analysis/baselines/$variant/${policy//\//_}
+  [ "$game" = v2 ] || out=$records/docs/analysis/baselines/$game/$variant/${policy//\//_}
 else
+  # A run is analysed on its own game, as the registry records it.
   entry=$(/usr/bin/python3 -c 'import sys; sys.path.insert(0, "scripts"); import hideseek_registry as r
 e = r.runs(sys.argv[2])[sys.argv[1]]
-print(e["variant"], e.get("network", "ff"))' "$name" "$records/policies/policies.yaml")
-  read -r variant network <<< "$entry"
+print(e["variant"], e.get("network", "ff"), e["game"])' "$name" "$records/policies/policies.yaml")
+  read -r variant network game <<< "$entry"
   out=$records/docs/runs/$name/analysis
 fi
 # play_episodes plays at most 64 episodes at once: chunks of 50, one CSV. $1: memory or memoryless.
@@ -55,7 +60,7 @@ rollouts() {
   local at n
   for ((at = 0; at < episodes; at += 50)); do
     n=$((episodes - at < 50 ? episodes - at : 50))
-    devel/lib/hideseek_play/play_episodes "$variant" "$policy" $((first + at)) "$n" "$tmp/chunk.csv" greedy "$1" > /dev/null
+    devel/lib/hideseek_play/play_episodes --game "$game" "$variant" "$policy" $((first + at)) "$n" "$tmp/chunk.csv" greedy "$1" > /dev/null
     if [ $at = 0 ]; then cp "$tmp/chunk.csv" "$tmp/steps.csv"; else tail -n +2 "$tmp/chunk.csv" >> "$tmp/steps.csv"; fi
   done
 }

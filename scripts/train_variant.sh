@@ -43,6 +43,14 @@ esac
 # writer's pipe, and pipefail would then report a known variant as unknown.
 /usr/bin/python3 scripts/hideseek_registry.py variants | grep -x "$variant" > /dev/null \
   || { echo "train_variant: no variant '$variant' in config/variants" >&2; exit 2; }
+# A run keeps its game: a name the registry records under another game is not trained (or
+# resumed) under this one; the checkpoint refuses it too (training_run.cpp).
+recorded_game=$(/usr/bin/python3 -c 'import sys; sys.path.insert(0, "scripts"); import hideseek_registry as r
+e = r.runs(sys.argv[2]).get(sys.argv[1]); print(e["game"] if e else "")' "$name" "$records/policies/policies.yaml")
+if [ -n "$recorded_game" ] && [ "$recorded_game" != "$game" ]; then
+  echo "train_variant: $name is recorded as a run of game $recorded_game (policies/policies.yaml); this is game $game: name the run otherwise" >&2
+  exit 2
+fi
 run="$runs/$name"
 port=${ROS_PORT:-$((11700 + seed + $([ "$network" = gru ] && echo 50 || echo 0)))}
 export ROS_MASTER_URI=http://localhost:$port

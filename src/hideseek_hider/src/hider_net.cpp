@@ -158,6 +158,7 @@ void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo
   archive.write("image_height", c10::IValue(static_cast<int64_t>(info.image_height)));
   archive.write("image_width", c10::IValue(static_cast<int64_t>(info.image_width)));
   archive.write("variant", c10::IValue(info.variant));
+  archive.write("game", c10::IValue(info.game));
   archive.write("steps", c10::IValue(info.steps));
   archive.write("wall_s", c10::IValue(info.wall_s));
   archive.write("episodes", c10::IValue(info.episodes));
@@ -238,6 +239,7 @@ CheckpointInfo infoOf(torch::serialize::InputArchive& archive, const std::string
   info.image_height = static_cast<int>(read("image_height").toInt());
   info.image_width = static_cast<int>(read("image_width").toInt());
   info.variant = read("variant").toStringRef();
+  if (archive.try_read("game", v)) info.game = v.toStringRef();  // absent: written before v3, so v2
   info.steps = read("steps").toInt();
   info.network = info.architecture == kArchitectureGru ? NetworkKind::kGru : NetworkKind::kFeedForward;
   // Progress entries are younger than the format: a checkpoint without them starts from zero.

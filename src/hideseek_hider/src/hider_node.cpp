@@ -69,6 +69,7 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   if (o.mode == HiderMode::kPolicy) return o;
   TrainingOptions& t = o.training;
   t.variant = o.variant.name;
+  t.game = o.variant.game.name;
   t.image_height = o.variant.game.camera.height;
   t.image_width = o.variant.game.camera.width;
   t.output_dir = hideseek_game::requireString(pnh, "output_dir", "a folder, in train mode");
@@ -160,9 +161,14 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
                                   e.what());
     }
     policy_ = std::move(policy);
-    ROS_INFO("hider: policy %s (variant '%s', network %s, %ld training steps) on %s in %s%s", o.policy.c_str(),
-             info.variant.c_str(), networkName(info.network), static_cast<long>(info.steps), o.device.str().c_str(),
-             precision.reason.c_str(), o.memoryless ? ", memoryless (the GRU state zeroed at every step)" : "");
+    ROS_INFO("hider: policy %s (variant '%s', game %s, network %s, %ld training steps) on %s in %s%s", o.policy.c_str(),
+             info.variant.c_str(), info.game.c_str(), networkName(info.network), static_cast<long>(info.steps),
+             o.device.str().c_str(), precision.reason.c_str(),
+             o.memoryless ? ", memoryless (the GRU state zeroed at every step)" : "");
+    if (info.game != o.variant.game.name) {
+      ROS_WARN("hider: %s was trained on game %s and plays game %s here (an evaluation across games)", o.policy.c_str(),
+               info.game.c_str(), o.variant.game.name.c_str());
+    }
   } else {
     startTraining(o);
   }

@@ -25,6 +25,14 @@ bool exists(const std::string& path) {
 }
 
 HiderNet startingNet(const TrainingOptions& o, const std::string& resume_from) {
+  // A resumed run must be the game it was: a run's steps all come from one game.
+  if (!resume_from.empty()) {
+    const std::string game = readCheckpointInfo(resume_from).game;
+    if (game != o.game) {
+      throw std::runtime_error("checkpoint " + resume_from + " was trained on game " + game + "; this run's game is " +
+                               o.game + ": a run is not resumed under another game (train it into another folder)");
+    }
+  }
   // A resumed run must be the network it was: a GRU checkpoint is not resumed as feed-forward.
   HiderNet net = !resume_from.empty() ? loadCheckpoint(resume_from, o.image_height, o.image_width, nullptr, o.network)
                                       : HiderNet(o.image_height, o.image_width, o.network);
@@ -289,7 +297,11 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
 void TrainingRun::saveCheckpoint() {
   if (rank_ != 0) return;
   const auto now = std::chrono::steady_clock::now();
-  CheckpointInfo info{trainer_.net()->architecture(), options_.image_height, options_.image_width, options_.variant,
+  CheckpointInfo info{trainer_.net()->architecture(),
+                      options_.image_height,
+                      options_.image_width,
+                      options_.variant,
+                      options_.game,
                       steps()};
   info.wall_s = start_wall_s_ + std::chrono::duration<double>(now - start_).count();
   info.episodes = episodes_;

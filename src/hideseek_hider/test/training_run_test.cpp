@@ -161,6 +161,31 @@ TEST(TrainingRun, ResumedLogContinuesWithoutDuplicatesAndKeepsWallTimeAndEpisode
   EXPECT_GE(std::stod(column(log[5], 2)), std::stod(column(log[4], 2)));
 }
 
+TEST(TrainingRun, ACheckpointRecordsItsGameAndIsNotResumedUnderAnother) {
+  const std::string dir = testing::TempDir() + "run_game";
+  std::remove((dir + "/checkpoint.pt").c_str());
+  std::remove((dir + "/training_log.csv").c_str());
+  torch::manual_seed(0);
+  TrainingOptions v3 = tinyRun(dir, 80);
+  v3.game = "v3";
+  {
+    TrainingRun run(v3, tinyPpo(), kArenas, torch::kCPU);
+    feed(run, 1);
+    run.saveCheckpoint();
+    EXPECT_EQ(readCheckpointInfo(run.checkpointPath()).game, "v3");
+  }
+  try {
+    TrainingRun wrong(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);  // game v2
+    FAIL() << "a v3 checkpoint was resumed as v2";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("was trained on game v3; this run's game is v2"), std::string::npos) << what;
+  }
+  TrainingRun same(v3, tinyPpo(), kArenas, torch::kCPU);
+  EXPECT_TRUE(same.resumed());
+  EXPECT_EQ(same.steps(), 8);
+}
+
 TEST(TrainingRun, ResumedLogAveragesOverTheEpisodesBeforeTheCheckpointToo) {
   const std::string dir = testing::TempDir() + "run_resume_window";
   std::remove((dir + "/checkpoint.pt").c_str());

@@ -99,6 +99,9 @@ struct CheckpointInfo {
   int image_height = 0;
   int image_width = 0;
   std::string variant;
+  // The game it trained on (game.yaml's `game`); a checkpoint written before the field existed is
+  // game v2's, the only game then trained.
+  std::string game = "v2";
   int64_t steps = 0;  // environment steps trained
   // Training progress, so that a resumed run's log continues where the checkpoint left it.
   double wall_s = 0.0;   // wall seconds of training up to this checkpoint, over all resumes

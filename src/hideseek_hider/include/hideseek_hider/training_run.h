@@ -21,6 +21,7 @@ struct TrainingOptions {
   int64_t total_steps = 1000000;
   double checkpoint_interval_s = 300.0;  // wall seconds between checkpoints
   std::string variant;
+  std::string game = "v2";  // recorded in the checkpoint; a checkpoint of another game is not resumed
   int image_height = 84;
   int image_width = 84;
   Precision precision = Precision::kFp32;  // of the network's passes; weights stay fp32
