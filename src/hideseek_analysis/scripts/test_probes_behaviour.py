@@ -194,3 +194,19 @@ def test_tsne_of_a_run_embeds_the_test_images_and_scores_what_the_features_encod
     # the embedding is the same on a second call: the committed coordinates can be made again
     assert probes.main(["tsne", str(tmp_path), str(tmp_path / "trained.npy"), str(tmp_path / "again")]) == 0
     assert (tmp_path / "again" / "tsne.csv").read_text() == (out / "tsne.csv").read_text()
+
+
+def test_occlusion_counts_the_pairs_a_box_hides_from_each_other():
+    import occlusion
+    empty = {"type": "fixed", "half_extent": 3.0, "obstacles": []}
+    n, pairs, share = occlusion.occluded_share(empty, grid=0.5)
+    assert pairs == n * (n - 1) // 2 and share == 0.0
+    # A wall across the whole arena: every pair with one point on each side is occluded, about half.
+    split = {"type": "fixed", "half_extent": 3.0, "obstacles": [{"center": [0.0, 0.0], "size": [0.2, 6.0]}]}
+    n, pairs, share = occlusion.occluded_share(split, grid=0.5)
+    side = n // 2
+    assert share == pytest.approx(side * side / pairs, abs=1e-9)
+    # The same wall turned a quarter, by yaw: the same share.
+    turned = {"type": "fixed", "half_extent": 3.0,
+              "obstacles": [{"center": [0.0, 0.0], "size": [6.0, 0.2], "yaw": 1.5707963267948966}]}
+    assert occlusion.occluded_share(turned, grid=0.5)[2] == pytest.approx(share, abs=1e-9)

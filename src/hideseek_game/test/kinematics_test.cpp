@@ -127,6 +127,7 @@ MotionOptions momentumHider() {
 TEST(MomentumModel, ATurnOrAStayKeepsTheVelocityInTheMapFrame) {
   MotionOptions m = momentumHider();
   m.drag = 0.0;
+  m.acceleration = 2.0;  // the model, not v3's calibration: a round figure, under the cap after 1 s
   AgentState a;
   a.position = {-6.0, 0.0};
   step(a, Action::kForward, m, emptyArena(), 50);  // 1 s of pushing along +x
@@ -172,6 +173,7 @@ TEST(MomentumModel, DragSlowsOnlyTheFramesThatPushNothingAndTheSpeedIsCapped) {
 TEST(MomentumModel, AWallRemovesOnlyThePartIntoIt) {
   MotionOptions m = momentumHider();
   m.drag = 0.0;
+  m.acceleration = 2.0;  // under the cap after 1 s of pushing
   AgentState a;
   a.position = {6.0, 0.0};
   a.yaw = 0.25 * kPi;
