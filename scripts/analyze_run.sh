@@ -44,7 +44,7 @@ first=${ROLLOUT_SEED:-10000}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 if [ $baseline = 1 ]; then
-  game=${GAME:-v2}
+  game=${GAME:-$(devel/lib/hideseek_game/resolve "$variant" game)}  # none: config/games.yaml's default
   out=$records/docs/analysis/baselines/$variant/${policy//\//_}
   [ "$game" = v2 ] || out=$records/docs/analysis/baselines/$game/$variant/${policy//\//_}
 else

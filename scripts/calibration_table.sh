@@ -10,4 +10,4 @@ out=$(realpath -m "${1:-$(dirname "$0")/../docs}")
 cd "$(dirname "$0")/.."
 source scripts/env.sh
 mkdir -p "$out"
-devel/lib/hideseek_play/calibration_table --game "${GAME:-v2}" --csv "$out/calibration_table.csv" | tee "$out/calibration_table.md"
+devel/lib/hideseek_play/calibration_table --game "${GAME:-}" --csv "$out/calibration_table.csv" | tee "$out/calibration_table.md"

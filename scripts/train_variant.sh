@@ -7,7 +7,7 @@
 # (scripts/hideseek_registry.py ship); otherwise shipping is a separate, deliberate step.
 # usage: scripts/train_variant.sh VARIANT [SEED=0] [STEPS=2000000] [RUNS_DIR=~/hideseek_runs] [NETWORK=ff] [NAME]
 #   NAME defaults to <variant>_seed<S> (<variant>_gru_seed<S> for the GRU).
-#   GAME (environment, default v2) is the game (train.launch's game); PRECISION (default auto) its
+#   GAME (environment; default: config/games.yaml's) is the game (train.launch's game); PRECISION (default auto) its
 #   precision; the one the hider chose is recorded. ROS_PORT (default 11700 + seed, + 50 for the
 #   GRU) is the run's ROS master port: set it to train two runs of one seed at once; its
 #   evaluation uses ROS_PORT + 1000 (HIDESEEK_PORT overrides). NUM_ARENAS and PPO_CONFIG (default:
@@ -25,12 +25,13 @@ seed=${2:-0}
 steps=${3:-2000000}
 runs=$(realpath -m "${4:-$HOME/hideseek_runs}")
 network=${5:-ff}
-game=${GAME:-v2}
+game=${GAME:-}  # none: the default game (config/games.yaml), resolved below
 [ -z "${PPO_CONFIG:-}" ] || PPO_CONFIG=$(realpath -m "$PPO_CONFIG")  # as RUNS_DIR: from where it was called
 [ -z "${RECORD_ROOT:-}" ] || RECORD_ROOT=$(realpath "$RECORD_ROOT")
 cd "$(dirname "$0")/.."
 source scripts/env.sh
 records=${RECORD_ROOT:-$PWD}
+[ -n "$game" ] || game=$(devel/lib/hideseek_game/resolve "$variant" game) || { echo "train_variant: cannot resolve the default game" >&2; exit 2; }
 [ -f "$records/policies/policies.yaml" ] || { echo "train_variant: RECORD_ROOT: no policies/policies.yaml in $records" >&2; exit 2; }
 registry=(/usr/bin/python3 scripts/hideseek_registry.py --registry "$records/policies/policies.yaml")
 name=$variant

@@ -70,6 +70,7 @@ ROOT = _repository_root()
 VARIANTS_DIR = os.path.join(ROOT, "config", "variants")
 REGISTRY = os.path.join(ROOT, "policies", "policies.yaml")
 PAPER = os.path.join(ROOT, "config", "paper_reference.yaml")
+GAMES = os.path.join(ROOT, "config", "games.yaml")  # the default game: config/games.yaml's `default`
 NETWORKS = ("ff", "gru")
 # Keys a run may carry (the C++ loader refuses any other, so that a typo is found).
 RUN_KEYS = ("variant", "network", "game", "training_seed", "steps", "wall_s", "paused_s", "precision", "commit",
@@ -187,8 +188,22 @@ def weights_path(entry, registry=REGISTRY):
     return os.path.join(os.path.dirname(registry), entry["weights"]) if entry.get("weights") else None
 
 
-def shipped(variant, network="ff", game="v2", registry=REGISTRY):
-    """(run name, absolute weights path) of the shipped run, or (None, None)."""
+def default_game(games=GAMES):
+    """The game played where none is named: config/games.yaml's `default` (as the C++ resolver reads it)."""
+    try:
+        with open(games) as f:
+            game = (yaml.safe_load(f) or {}).get("default")
+    except OSError as e:
+        raise RegistryError("%s: cannot be read (%s)" % (games, e.strerror))
+    if not game:
+        raise RegistryError("%s: the key 'default' (the default game) is missing" % games)
+    return str(game)
+
+
+def shipped(variant, network="ff", game=None, registry=REGISTRY):
+    """(run name, absolute weights path) of the shipped run of a game (None: the default game), or
+    (None, None)."""
+    game = game or default_game()
     for name, entry in runs(registry).items():
         if (entry["variant"], entry["network"], entry["game"]) == (variant, network, game) and entry.get("weights"):
             return name, weights_path(entry, registry)
@@ -381,7 +396,7 @@ def main(argv=None):
     p.add_argument("variant", nargs="?")
     p.add_argument("--all", action="store_true")
     p.add_argument("--network", default="ff", choices=NETWORKS)
-    p.add_argument("--game", default="v2")
+    p.add_argument("--game", default=None, help="default: config/games.yaml's")
     p = sub.add_parser("record")
     p.add_argument("run")
     p.add_argument("fields", nargs="+", metavar="key=value")
@@ -414,7 +429,7 @@ def main(argv=None):
             name, path = shipped(args.variant, args.network, args.game, args.registry)
             if not path:
                 print("hideseek_registry: no %s policy is shipped for variant %s on game %s"
-                      % (args.network, args.variant, args.game), file=sys.stderr)
+                      % (args.network, args.variant, args.game or default_game()), file=sys.stderr)
                 return 1
             print(path)
         elif args.command == "record":

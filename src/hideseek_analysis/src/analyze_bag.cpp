@@ -1,7 +1,7 @@
 // Analyses an existing recording (one made by analyze.launch, or any bag holding world/steps),
 // without a ROS master.
 // usage: analyze_bag [--game GAME] VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]
-//   GAME: v2 (the default) or v1, the game the bag was played in.
+//   GAME: the game the bag was played in (v2, v1, v3; none: config/games.yaml's default).
 //   HIDESEEK_PIXEL_TOLERANCE (GRU policies): see analyze.launch's pixel_tolerance.
 #include <cstdio>
 #include <cstdlib>
@@ -14,7 +14,7 @@
 #include "hideseek_game/package_paths.h"
 
 int main(int argc, char** argv) {
-  std::string game = hideseek_game::kDefaultGame;
+  std::string game;  // no --game: the default game (config/games.yaml)
   if (argc > 2 && std::string(argv[1]) == "--game") {
     game = argv[2];
     argv += 2;

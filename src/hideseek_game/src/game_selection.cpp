@@ -6,6 +6,7 @@
 
 #include "hideseek_game/config_error.h"
 #include "hideseek_game/run_registry.h"
+#include "hideseek_game/yaml_fields.h"
 
 namespace hideseek_game {
 
@@ -25,20 +26,36 @@ std::vector<std::string> gameNames(const std::string& config_dir) {
   for (const auto& entry : std::filesystem::directory_iterator(config_dir, error)) {
     const std::string file = entry.path().filename().string();
     if (file == "game.yaml") {
-      names.push_back(kDefaultGame);
+      names.push_back(kBaseGame);
     } else if (file.size() > 10 && file.compare(0, 5, "game_") == 0 && entry.path().extension() == ".yaml") {
       names.push_back(file.substr(5, file.size() - 10));
     }
   }
   std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
-    if ((a == kDefaultGame) != (b == kDefaultGame)) return a == kDefaultGame;
+    if ((a == kBaseGame) != (b == kBaseGame)) return a == kBaseGame;
     return a < b;
   });
   return names;
 }
 
-std::string gameFile(const std::string& config_dir, const std::string& game) {
-  const std::string file = config_dir + (game == kDefaultGame ? "/game.yaml" : "/game_" + game + ".yaml");
+std::string defaultGame(const std::string& config_dir) {
+  const std::string file = config_dir + "/games.yaml";
+  const YAML::Node root = loadYamlFile(file);
+  if (!root.IsMap()) throw ConfigError(file, "(top level)", "must be a mapping with the key 'default'");
+  YamlFields f(root, file, "");
+  f.require("default");
+  const std::string game = f.text("default", "", {});
+  f.rejectUnknown();
+  const std::vector<std::string> names = gameNames(config_dir);
+  if (std::find(names.begin(), names.end(), game) == names.end()) {
+    throw ConfigError(file, "default", "'" + game + "' is not a game here (" + joined(names) + ")");
+  }
+  return game;
+}
+
+std::string gameFile(const std::string& config_dir, const std::string& named) {
+  const std::string game = named.empty() ? defaultGame(config_dir) : named;
+  const std::string file = config_dir + (game == kBaseGame ? "/game.yaml" : "/game_" + game + ".yaml");
   const bool plain = !game.empty() && game.find('/') == std::string::npos;
   if (!plain || !std::filesystem::is_regular_file(file)) {
     throw ConfigError(config_dir, "game", "'" + game + "' is not a game here (" + joined(gameNames(config_dir)) + ")");
@@ -47,7 +64,7 @@ std::string gameFile(const std::string& config_dir, const std::string& game) {
 }
 
 std::string gameArgument(const std::string& config_dir, const std::string& value) {
-  if (value.empty()) return gameFile(config_dir, kDefaultGame);
+  if (value.empty()) return gameFile(config_dir, defaultGame(config_dir));
   const bool file =
       value.find('/') != std::string::npos || (value.size() > 5 && value.compare(value.size() - 5, 5, ".yaml") == 0);
   return file ? value : gameFile(config_dir, value);
@@ -64,7 +81,8 @@ std::string variantFile(const std::string& config_dir, const std::string& varian
   return file;
 }
 
-GameSelection selectGame(const std::string& config_dir, const std::string& game, const std::string& variant) {
+GameSelection selectGame(const std::string& config_dir, const std::string& named, const std::string& variant) {
+  const std::string game = named.empty() ? defaultGame(config_dir) : named;
   GameSelection s;
   s.game = game;
   s.variant = variant;

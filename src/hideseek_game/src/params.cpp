@@ -67,7 +67,8 @@ bool readBool(const ros::NodeHandle& nh, const std::string& name, bool fallback)
 
 VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
   const std::string game_file = readString(nh, "game_config", ""), variant_file = readString(nh, "variant_config", "");
-  const std::string game = readString(nh, "game", kDefaultGame), variant = readString(nh, "variant", "");
+  // ~game empty or unset: the default game (config/games.yaml), as the launch files' game:= does.
+  const std::string game = readString(nh, "game", ""), variant = readString(nh, "variant", "");
   if (!game_file.empty() && !variant_file.empty()) return loadVariantConfig(game_file, variant_file);
   if (variant.empty() && variant_file.empty()) {
     throw bad(

@@ -1,6 +1,7 @@
 // What a game name and a variant resolve to, for scripts: the files, the map and the shipped
 // policy, as every node resolves ~game and ~variant (hideseek_game/game_selection.h).
 // usage: resolve [--game GAME] [--network ff|gru] [--registry FILE] VARIANT [KEY]
+//   (no --game: the default game, config/games.yaml's; `resolve VARIANT game` prints its name)
 //   prints game, variant, game_file, variant_file, map_file and shipped_policy ("" where none is
 //   shipped) as YAML; with KEY, that value alone. The registry defaults to hideseek_world's
 //   policies/policies.yaml.
@@ -26,7 +27,7 @@ int usage(const std::string& why) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string game = hideseek_game::kDefaultGame, network = "ff", registry;
+  std::string game, network = "ff", registry;  // no --game: config/games.yaml's default
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

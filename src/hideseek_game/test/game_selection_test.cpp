@@ -31,7 +31,7 @@ TEST(GameSelection, AVariantOfTheFirstGamePlaysTheFirstGamesMap) {
   const GameSelection v1 = selectGame(kConfig, "v1", "basic");
   EXPECT_EQ(v1.config.game.name, "v1");
   EXPECT_NE(v1.config.map_file.find("maps/v1/"), std::string::npos) << v1.config.map_file;
-  const GameSelection v2 = selectGame(kConfig, kDefaultGame, "basic");
+  const GameSelection v2 = selectGame(kConfig, kBaseGame, "basic");
   EXPECT_EQ(v2.config.game.name, "v2");
   EXPECT_EQ(v2.config.map_file.find("maps/v1/"), std::string::npos) << v2.config.map_file;
 }
@@ -44,7 +44,29 @@ TEST(GameSelection, AnUnknownNameIsRefusedWithTheNamesThere) {
   // A path is no name: the resolver never reads outside config/.
   EXPECT_NE(errorOf([] { variantFile(kConfig, "../game"); }), "");
   EXPECT_NE(errorOf([] { gameFile(kConfig, "../config/game"); }), "");
-  EXPECT_NE(errorOf([] { gameFile(kConfig, ""); }), "");
+}
+
+// No game named: config/games.yaml's `default`, the one place the default game is written.
+TEST(GameSelection, NoGameNamedIsTheDefaultOfGamesYaml) {
+  EXPECT_EQ(defaultGame(kConfig), "v2");
+  EXPECT_EQ(gameFile(kConfig, ""), kConfig + "/game.yaml");
+  EXPECT_EQ(selectGame(kConfig, "", "basic").game, "v2");
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "default_game";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "game.yaml") << "game: v2\n";
+  std::ofstream(dir / "game_v3.yaml") << "game: v3\n";
+  const std::string d = dir.string();
+  std::ofstream(dir / "games.yaml") << "default: v3\n";
+  EXPECT_EQ(defaultGame(d), "v3");
+  EXPECT_EQ(gameArgument(d, ""), d + "/game_v3.yaml");
+  std::ofstream(dir / "games.yaml") << "default: v9\n";
+  std::string e = errorOf([&] { defaultGame(d); });
+  EXPECT_NE(e.find("games.yaml"), std::string::npos) << e;
+  EXPECT_NE(e.find("'v9' is not a game here (v2, v3)"), std::string::npos) << e;
+  std::ofstream(dir / "games.yaml") << "default: v3\ndefualt: v2\n";
+  EXPECT_NE(errorOf([&] { defaultGame(d); }).find("defualt"), std::string::npos);
+  std::filesystem::remove(dir / "games.yaml");
+  EXPECT_NE(errorOf([&] { gameFile(d, ""); }).find("games.yaml"), std::string::npos);
 }
 
 TEST(GameSelection, AToolsGameArgumentIsANameOrAFile) {

@@ -16,7 +16,7 @@ namespace hideseek_game::test {
 inline std::string configPath(const std::string& relative) { return std::string(HIDESEEK_CONFIG_DIR) + "/" + relative; }
 
 // A variant of the default game, or of the game named, as the nodes resolve it.
-inline VariantConfig loadVariant(const std::string& name, const std::string& game = kDefaultGame) {
+inline VariantConfig loadVariant(const std::string& name, const std::string& game = kBaseGame) {
   return selectGame(HIDESEEK_CONFIG_DIR, game, name).config;
 }
 

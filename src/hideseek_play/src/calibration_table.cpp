@@ -5,7 +5,7 @@
 //                          [--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE]
 //                          [VARIANT...]
 // --lap-radius: the ring the lap evader aims for (m from the centre; default 5.5, game v2's outer ring).
-// --game: the game: a name (v2, the default, or v1, the first game) or a game file of one's own.
+// --game: the game: a name (v2, v1, v3; none: config/games.yaml's default) or a game file of one's own.
 // --episodes-csv writes one variant's episodes of one evader (seed,living_steps,outcome) as
 // evaluate.launch does.
 #include <yaml-cpp/yaml.h>

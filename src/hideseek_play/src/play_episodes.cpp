@@ -2,7 +2,7 @@
 // rendered images) and writes every step of them to a CSV: the trajectories and distances that
 // show a policy's strategy. The same cores, draws and step order as the ROS graph in lockstep.
 // usage: play_episodes [--game GAME] VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]
-//   GAME: v2 (the default) or v1, resolved as the nodes resolve ~game (hideseek_game/game_selection.h).
+//   GAME: v2, v1 or v3 (none: config/games.yaml's default), resolved as the nodes resolve ~game.
 //   memoryless (GRU policies only, an ablation): every step starts from the zero state, so the
 //   trained GRU acts on the current image alone.
 //   POLICY: a checkpoint, "random", or scripted/EVADER (backpedal, flee, hide, lap). Columns:
@@ -125,7 +125,7 @@ void playFirstEpisodes(hw::GameLoop& game, hideseek_hider::HiderPolicy& hider,
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string game_name = hw::kDefaultGame;
+  std::string game_name;  // no --game: the default game (config/games.yaml)
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--game" && i + 1 < argc) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "hideseek_game/config_error.h"
+#include "hideseek_game/game_selection.h"
 #include "hideseek_game/package_paths.h"
 #include "hideseek_python/vec_game.h"
 
@@ -136,6 +137,8 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception<hideseek_game::ConfigError>(m, "ConfigError", PyExc_ValueError);
   m.def("config_directory", &hideseek_game::configDirectory,
         "the installed config folder of the hideseek_game package (needs the workspace's setup.bash sourced)");
+  m.def("default_game", &hideseek_game::defaultGame, py::arg("config_dir"),
+        "the game played where none is named: config_dir/games.yaml's default");
   m.attr("num_actions") = hideseek_game::kNumActions;
 
   py::class_<VecGame>(m, "VecGame")

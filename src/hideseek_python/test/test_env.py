@@ -133,7 +133,7 @@ def test_bad_variant_file_names_file_and_field(tmp_path):
     config = tmp_path / "config"
     real = hideseek._core.config_directory()
     os.makedirs(config / "variants")
-    for f in ("game.yaml",):
+    for f in ("game.yaml", "games.yaml"):
         (config / f).write_text(open(os.path.join(real, f)).read())
     os.symlink(os.path.join(real, "maps"), config / "maps")
     (config / "variants" / "broken.yaml").write_text("variant: broken\nmap: deterministic.yaml\nepisode:\n  max_steps: -5\n")

@@ -105,7 +105,7 @@ class HideSeekVecEnv(_VectorBase):
 
     metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": ["rgb_array"], "render_fps": 5}
 
-    def __init__(self, variant="basic", num_envs=16, seed=0, game="v2", config_dir=None,
+    def __init__(self, variant="basic", num_envs=16, seed=0, game=None, config_dir=None,
                  render_threads=2, render_mode=None):
         if render_mode not in (None, "rgb_array"):
             raise ValueError("render_mode must be None or 'rgb_array', got %r" % (render_mode,))
@@ -114,8 +114,9 @@ class HideSeekVecEnv(_VectorBase):
         seed = _seed(seed)
         if seed + int(num_envs) - 1 >= 2 ** 32:
             raise ValueError("seed + num_envs - 1 must be below 2^32")
-        self._game = _core.VecGame(_config_dir(config_dir), game, variant, int(num_envs), seed,
-                                   int(render_threads))
+        config_dir = _config_dir(config_dir)
+        game = game or _core.default_game(config_dir)  # None: config/games.yaml's default
+        self._game = _core.VecGame(config_dir, game, variant, int(num_envs), seed, int(render_threads))
         self.variant, self.game = variant, game
         self.num_envs = self._game.num_envs
         self.render_mode = render_mode
@@ -180,7 +181,7 @@ class HideSeekEnv(_EnvBase):
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 5}
 
-    def __init__(self, variant="basic", seed=0, game="v2", config_dir=None, render_threads=2,
+    def __init__(self, variant="basic", seed=0, game=None, config_dir=None, render_threads=2,
                  render_mode=None):
         self._vec = HideSeekVecEnv(variant, 1, seed, game, config_dir, render_threads)
         if render_mode not in (None, "rgb_array"):
