@@ -297,12 +297,9 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
 void TrainingRun::saveCheckpoint() {
   if (rank_ != 0) return;
   const auto now = std::chrono::steady_clock::now();
-  CheckpointInfo info{trainer_.net()->architecture(),
-                      options_.image_height,
-                      options_.image_width,
-                      options_.variant,
-                      options_.game,
+  CheckpointInfo info{trainer_.net()->architecture(), options_.image_height, options_.image_width, options_.variant,
                       steps()};
+  info.game = options_.game;
   info.wall_s = start_wall_s_ + std::chrono::duration<double>(now - start_).count();
   info.episodes = episodes_;
   for (const auto& [length, ret] : recent_) {

@@ -99,9 +99,6 @@ struct CheckpointInfo {
   int image_height = 0;
   int image_width = 0;
   std::string variant;
-  // The game it trained on (game.yaml's `game`); a checkpoint written before the field existed is
-  // game v2's, the only game then trained.
-  std::string game = "v2";
   int64_t steps = 0;  // environment steps trained
   // Training progress, so that a resumed run's log continues where the checkpoint left it.
   double wall_s = 0.0;   // wall seconds of training up to this checkpoint, over all resumes
@@ -111,6 +108,9 @@ struct CheckpointInfo {
   std::vector<int64_t> recent_lengths{};
   std::vector<double> recent_returns{};
   NetworkKind network = NetworkKind::kFeedForward;  // from the architecture
+  // The game it trained on (game.yaml's `game`); a checkpoint written before the field existed is
+  // game v2's, the only game then trained.
+  std::string game = "v2";
 };
 
 // Writes `data` to path.tmp, syncs it, then renames it over `path`. On any error (a full disk:
