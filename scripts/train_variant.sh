@@ -79,6 +79,8 @@ if [ -n "${PPO_CONFIG:-}" ]; then
 fi
 # What reproduces the run: the rollout's settings when they are not the defaults.
 env_prefix=""
+[ -z "${GAME:-}" ] || env_prefix+="GAME=$GAME "
+[ -z "${PRECISION:-}" ] || env_prefix+="PRECISION=$PRECISION "
 [ -z "${NUM_ARENAS:-}" ] || env_prefix+="NUM_ARENAS=$NUM_ARENAS "
 [ -z "${HIDER_THREADS:-}" ] || env_prefix+="HIDER_THREADS=$HIDER_THREADS "
 [ -z "${PPO_CONFIG:-}" ] || env_prefix+="PPO_CONFIG=$(realpath -m --relative-to=. "$PPO_CONFIG") "
