@@ -51,7 +51,7 @@ DEPARTURES = {
               "(the random one averages 0.13 m/s against 0.8; every accelerating sweep run stays at 44-58 "
               "living steps; docs/calibration.md): game v3's momentum model is the experiment",
     "seeker_motion": "game v2's seeker turns or moves, never both, so a hider circling it is never caught "
-                     "(measured: a 3-segment orbit survives 11 of 24 start angles on v2, none on v3; "
+                     "(measured: a 1.9 m circle at the seeker's speed survives 11 of 24 start angles on v2, none on v3; "
                      "docs/calibration.md): game v3's seeker, which turns while it moves, is the experiment",
     "spawn": "the seeker starts knowing the hider's spawn point (the paper's, read literally, explores): "
              "stochasticseeker_explore against stochasticseeker tests it (table2_seeds/readings.md)",
@@ -69,7 +69,7 @@ def causes(*keys):
 # lies wholly on one side of zero but whose effect is smaller than this is "negligible": neither
 # support nor contradiction.
 PRACTICAL = {
-    "rho": (0.3, "|rho| 0.3"),
+    "rho": (0.3, "a rho of 0.3 either way"),
     "living": (25.0, "25 living steps (2.5 % of an episode)"),
     "accuracy": (0.02, "0.02 balanced accuracy"),
     "bend": (0.01, "a bend of 0.01 balanced accuracy across the runs' range"),
