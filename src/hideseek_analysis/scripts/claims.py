@@ -454,7 +454,7 @@ def oscillation_claim(R, seed, reps):
                  departure, size)
 
 
-def oscillation_thresholds(root, R, out_dir):
+def oscillation_thresholds(R, out_dir):
     """oscillation_thresholds.md and .csv: per run of basic and the faster hiders whose analysis has
     swings.csv, its swings per 100 steps at each threshold beside the old measure."""
     rows = []
@@ -693,7 +693,7 @@ def main(argv=None):
     out_dir = args.out or os.path.join(root, "docs", "report")
     write(out_dir, rows, header)
     write_memory(out_dir, memory_table)
-    oscillation_thresholds(root, Runs(root, found), out_dir)
+    oscillation_thresholds(Runs(root, found), out_dir)
     for r in rows:
         print("claims: %-70s %s" % (r["claim"], r["result"]))
     return 0
