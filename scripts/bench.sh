@@ -23,8 +23,8 @@ echo "# full game graph in lockstep: world, seeker node, random hider node, $ARE
 roslaunch -p 11433 hideseek_world bench_game.launch num_arenas:="$ARENAS" duration:="$SECONDS_PER_RUN" 2>/dev/null | \
   grep -E "^game_ros_steps_per_s"
 
-floor_bench() {  # PRECISION NETWORK: the floor's output
-  devel/lib/hideseek_hider/train_floor_bench config/ppo.yaml "$ARENAS" "$FLOOR_UPDATES" 2 "$1" "$2"
+floor_bench() {  # PRECISION NETWORK [MEMORY_FORMAT]: the floor's output
+  devel/lib/hideseek_hider/train_floor_bench config/ppo.yaml "$ARENAS" "$FLOOR_UPDATES" 2 "$1" "$2" "${3:-auto}"
 }
 field() { awk -v k="$1" '$1 ~ k { print $2 }'; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
@@ -39,7 +39,8 @@ floor=$(echo "$default" | field '_samples_per_s$')
 echo "train_floor_samples_per_s $floor"
 echo "train_speedup $(ratio "$floor" "$floor_fp32")"
 echo "# the floor's arithmetic: FLOPs per sample counted from the network's layers and PPO's passes,"
-echo "# achieved GFLOP/s, and their fraction of the CPU's peak for the precision (the '# peak' line above)"
+echo "# achieved GFLOP/s, and their fraction of the peak of the unit the precision's kernels run on: FMA, or"
+echo "# AMX-BF16 tiles in bf16 where the CPU has them (the '# peak' line above names it)"
 echo "train_flops_per_sample $(echo "$default" | field '^flops_per_sample')"
 echo "train_gflops $(echo "$default" | field '^gflops')"
 echo "train_peak_fraction $(echo "$default" | field '^peak_fraction')"
@@ -50,14 +51,22 @@ gru=$(echo "$gru_out" | field '_samples_per_s$')
 echo "train_gru_samples_per_s $gru"
 echo "train_gru_ratio $(ratio "$gru" "$floor")"
 echo "train_gru_gflops $(echo "$gru_out" | field '^gflops')"
+echo "# memory format: the floors again with the images copied into NCHW order (memory_format nchw), against"
+echo "# the channels-last layout the hider trains in (the '# memory format' line above); their ratios"
+floor_nchw=$(floor_bench auto ff nchw | field '_samples_per_s$')
+echo "train_floor_nchw_samples_per_s $floor_nchw"
+echo "train_channels_last_speedup $(ratio "$floor" "$floor_nchw")"
+gru_nchw=$(floor_bench auto gru nchw | field '_samples_per_s$')
+echo "train_gru_nchw_samples_per_s $gru_nchw"
+echo "train_gru_channels_last_speedup $(ratio "$gru" "$gru_nchw")"
 
 # PPO through the ROS graph (world, seeker, hider in train mode), timed after the warm-up
 # (scripts/measure.sh) over ROS_UPDATES updates; prints samples/s and where the hider's time went
 # (its loop_profile.csv over the same updates).
-ros_train() {  # NETWORK: "samples_per_s update inference wait other" (shares of the loop's time)
+ros_train() {  # NETWORK [MEMORY_FORMAT]: "samples_per_s update inference wait other" (shares of the loop's time)
   local run
   run=$(mktemp -d)
-  train_through_graph "$run" 11433 "$ARENAS" "$ROS_UPDATES" network:="$1" > /dev/null 2>&1
+  train_through_graph "$run" 11433 "$ARENAS" "$ROS_UPDATES" network:="$1" memory_format:="${2:-auto}" > /dev/null 2>&1
   echo "$(samples_per_s "$run/training_log.csv") $(loop_shares "$run/loop_profile.csv")"
   rm -rf "$run"
 }
@@ -84,6 +93,9 @@ echo "train_ros_update_share $update"
 echo "train_ros_inference_share $inference"
 echo "train_ros_wait_share $wait"
 echo "train_ros_other_share $other"
+read -r ros_nchw _ <<< "$(ros_train ff nchw)"
+echo "train_ros_nchw_samples_per_s $ros_nchw"
+echo "train_ros_channels_last_speedup $(ratio "$ros" "$ros_nchw")"
 read -r gru_ros update inference wait other <<< "$(ros_train gru)"
 echo "train_gru_ros_samples_per_s $gru_ros"
 gru_after=$(floor_bench auto gru | field '_samples_per_s$')

@@ -26,7 +26,3 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::remove(path.c_str());
   return 0;
 }
-
-#ifdef HIDESEEK_FUZZ_REPLAY
-#include "hideseek_game/fuzz_replay.h"
-#endif

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "hideseek_analysis/bag_reader.h"
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_net.h"
 
 namespace hideseek_analysis {

@@ -17,6 +17,7 @@
 #include "hideseek_game/params.h"
 #include "hideseek_game/run_registry.h"
 #include "hideseek_game/topic_names.h"
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_net.h"
 
 namespace {

@@ -49,6 +49,7 @@
 #include "hideseek_game/package_paths.h"
 #include "hideseek_game/renderer.h"
 #include "hideseek_game/run_registry.h"
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_net.h"
 #include "hideseek_play/scripted_game.h"
 

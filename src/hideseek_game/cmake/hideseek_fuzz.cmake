@@ -2,7 +2,8 @@
 # (catkin exports this file with it).
 #
 # hideseek_fuzz_target(NAME SOURCE CORPUS_DIR LIBRARIES...): SOURCE defines LLVMFuzzerTestOneInput.
-#  - With testing on, NAME_replay is a gtest replaying every file of CORPUS_DIR once (make test).
+#  - With testing on, NAME_replay is a gtest replaying every file of CORPUS_DIR once (make test):
+#    SOURCE linked with fuzz_replay_main.cpp.
 #  - With HIDESEEK_FUZZ on (a clang build: make fuzz), NAME is a libFuzzer binary.
 # HIDESEEK_SANITIZE (a clang or gcc build: make test-sanitize, make fuzz) compiles everything with
 # AddressSanitizer and UndefinedBehaviorSanitizer, stopping at the first error.
@@ -19,10 +20,13 @@ if(HIDESEEK_FUZZ)
   add_compile_options(-fsanitize=fuzzer-no-link)  # coverage of the libraries the targets call
 endif()
 
+# The replay's gtest, beside this file (in the source tree for the devel space, installed beside it).
+set(HIDESEEK_FUZZ_REPLAY_MAIN "${CMAKE_CURRENT_LIST_DIR}/fuzz_replay_main.cpp")
+
 function(hideseek_fuzz_target name source corpus)
   if(CATKIN_ENABLE_TESTING)
-    catkin_add_gtest(${name}_replay ${source})
-    target_compile_definitions(${name}_replay PRIVATE HIDESEEK_FUZZ_REPLAY HIDESEEK_FUZZ_CORPUS="${corpus}")
+    catkin_add_gtest(${name}_replay ${source} ${HIDESEEK_FUZZ_REPLAY_MAIN})
+    target_compile_definitions(${name}_replay PRIVATE HIDESEEK_FUZZ_CORPUS="${corpus}")
     target_link_libraries(${name}_replay ${ARGN} gtest_main)
   endif()
   if(HIDESEEK_FUZZ)

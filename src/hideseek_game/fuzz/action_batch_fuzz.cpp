@@ -41,7 +41,3 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   return 0;
 }
-
-#ifdef HIDESEEK_FUZZ_REPLAY
-#include "hideseek_game/fuzz_replay.h"
-#endif

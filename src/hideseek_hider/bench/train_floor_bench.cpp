@@ -1,14 +1,15 @@
 // The floor of training speed: the hider network and PPO update in one process on synthetic
 // 84 x 84 observations (no ROS, no rendering).
 // Usage: train_floor_bench CONFIG ARENAS UPDATES THREADS PRECISION(auto|fp32|bf16) [NETWORK(ff|gru)]
-// Prints `# precision: <reason>`, `# peak: <formula>`, `# blas: ...`, `# per update: inference, update, other`
-// (seconds per timed update, to set beside the hider's loop profile), then `train_floor_<fp32|bf16>_samples_per_s N`
-// (ff) or `train_gru_<fp32|bf16>_samples_per_s N` (gru: recurrent PPO over sequences),
-// loop_over_update (the timed loop's seconds over its PPO updates' seconds), and
-// flops_per_sample (counted from the layers, trainingFlopsPerSample), gflops (achieved),
-// peak_gflops and peak_fraction (over the CPU's peak for the precision, detectCpuPeak).
-// The observations, rewards and done flags are drawn once, before the clock starts, and cycled:
-// drawing 16 random images per step would be timed as training, which the graph does not pay.
+//        [MEMORY_FORMAT(auto|channels_last|nchw)]
+// Prints `# precision: <reason>`, `# memory format: <reason>`, `# peak: <unit: formula>`, `# blas: ...`, `# per update:
+// inference, update, other` (seconds per timed update, to set beside the hider's loop profile), then
+// `train_floor_<fp32|bf16>_samples_per_s N` (ff) or `train_gru_<fp32|bf16>_samples_per_s N` (gru: recurrent PPO over
+// sequences), loop_over_update (the timed loop's seconds over its PPO updates' seconds), and flops_per_sample (counted
+// from the layers, trainingFlopsPerSample), gflops (achieved), peak_gflops and peak_fraction (over the peak of the unit
+// the precision's kernels run on: the FMA units, or AMX-BF16 tiles in bf16 where the CPU has them; detectCpuPeak). The
+// observations, rewards and done flags are drawn once, before the clock starts, and cycled: drawing 16 random images
+// per step would be timed as training, which the graph does not pay.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -26,6 +27,8 @@ int main(int argc, char** argv) {
   const int threads = argc > 4 ? std::atoi(argv[4]) : 2;
   const std::string precision = argc > 5 ? argv[5] : "auto";
   const hideseek_hider::NetworkKind network = hideseek_hider::parseNetwork(argc > 6 ? argv[6] : "ff", "NETWORK");
+  const hideseek_hider::MemoryFormatRequest memory_format =
+      hideseek_hider::parseMemoryFormat(argc > 7 ? argv[7] : "auto", "MEMORY_FORMAT");
   if (arenas < 1 || updates < 1 || threads < 1) {
     std::fprintf(stderr, "train_floor_bench: ARENAS, UPDATES and THREADS must be positive\n");
     return 2;
@@ -40,6 +43,9 @@ int main(int argc, char** argv) {
   const hideseek_hider::PpoOptions options = hideseek_hider::loadPpoOptions(config);
   hideseek_hider::HiderNet net(84, 84, network);
   net->setPrecision(choice.precision);
+  const hideseek_hider::MemoryFormatChoice layout =
+      hideseek_hider::chooseMemoryFormat(memory_format, choice.precision, hideseek_hider::detectCpuBf16());
+  net->setMemoryFormat(layout.format);
   hideseek_hider::PpoTrainer trainer(net, options, arenas, torch::kCPU);
   // A pool of distinct batches, drawn before timing.
   constexpr int kPool = 8;
@@ -77,6 +83,7 @@ int main(int argc, char** argv) {
   const double flops = hideseek_hider::trainingFlopsPerSample(*net, options);
   const hideseek_hider::CpuPeak peak = hideseek_hider::detectCpuPeak(threads);
   std::printf("# precision: %s\n", choice.reason.c_str());
+  std::printf("# memory format: %s\n", layout.reason.c_str());
   std::printf("# peak: %s\n", peak.describe(choice.precision).c_str());
   std::printf("# blas: %s\n", hideseek_hider::blasDescription().c_str());
   std::printf("# per update: inference %.3f s, update %.3f s, other %.3f s\n", act_s / updates, update_s / updates,

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/checkpoint_archive.h"
 #include "hideseek_hider/hider_net.h"
 
@@ -31,7 +32,3 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::remove(path.c_str());
   return 0;
 }
-
-#ifdef HIDESEEK_FUZZ_REPLAY
-#include "hideseek_game/fuzz_replay.h"
-#endif

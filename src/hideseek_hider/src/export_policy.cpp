@@ -7,6 +7,7 @@
 #include <cstring>
 #include <exception>
 
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_net.h"
 
 int main(int argc, char** argv) {

@@ -13,6 +13,7 @@
 #include "hideseek_game/run_registry.h"
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/wall_throttle.h"
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/code_version.h"
 
 namespace hideseek_hider {
@@ -58,6 +59,7 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   o.mode = mode == "random" ? HiderMode::kRandom : mode == "policy" ? HiderMode::kPolicy : HiderMode::kTrain;
   o.threads = hideseek_game::readInt(pnh, "threads", 2, 1, 64);
   o.precision = parsePrecision(readString(pnh, "precision", "auto"), pnh.resolveName("precision"));
+  o.memory_format = parseMemoryFormat(readString(pnh, "memory_format", "auto"), pnh.resolveName("memory_format"));
   o.memoryless = hideseek_game::readBool(pnh, "memoryless", false);
   if (o.memoryless && o.mode != HiderMode::kPolicy) {
     throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true, but the hider is in " + mode +
@@ -153,6 +155,8 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
     CheckpointInfo info;
     HiderNet net = loadCheckpoint(o.policy, image_height_, image_width_, &info, o.network);
     net->setPrecision(precision.precision);
+    const MemoryFormatChoice layout = chooseMemoryFormat(o.memory_format, precision.precision, detectCpuBf16());
+    net->setMemoryFormat(layout.format);
     auto policy = std::make_unique<NetworkHiderPolicy>(net, o.device, o.greedy);
     try {
       policy->setMemoryless(o.memoryless);
@@ -161,9 +165,9 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
                                   e.what());
     }
     policy_ = std::move(policy);
-    ROS_INFO("hider: policy %s (variant '%s', game %s, network %s, %ld training steps) on %s in %s%s", o.policy.c_str(),
-             info.variant.c_str(), info.game.c_str(), networkName(info.network), static_cast<long>(info.steps),
-             o.device.str().c_str(), precision.reason.c_str(),
+    ROS_INFO("hider: policy %s (variant '%s', game %s, network %s, %ld training steps) on %s in %s, %s%s",
+             o.policy.c_str(), info.variant.c_str(), info.game.c_str(), networkName(info.network),
+             static_cast<long>(info.steps), o.device.str().c_str(), precision.reason.c_str(), layout.reason.c_str(),
              o.memoryless ? ", memoryless (the GRU state zeroed at every step)" : "");
     if (info.game != o.variant.game.name) {
       ROS_WARN("hider: %s was trained on game %s and plays game %s here (an evaluation across games)", o.policy.c_str(),
@@ -181,6 +185,8 @@ void HiderNode::startTraining(const HiderNodeOptions& options) {
   const PrecisionChoice precision = choosePrecision(options.precision, options.device, detectCpuBf16());
   TrainingOptions o = options.training;
   o.precision = precision.precision;
+  const MemoryFormatChoice layout = chooseMemoryFormat(options.memory_format, o.precision, detectCpuBf16());
+  o.memory_format = layout.format;
   // auto: a run resumed from a checkpoint keeps its network; a new run is feed-forward.
   o.network = options.network.value_or(NetworkKind::kFeedForward);
   const std::string resume_from = o.output_dir + "/checkpoint.pt";
@@ -196,8 +202,8 @@ void HiderNode::startTraining(const HiderNodeOptions& options) {
     ROS_INFO("hider: rank %d of %d: every rank joined; gradients are averaged over Gloo", r.rank, r.world_size);
   }
   training_ = std::make_unique<TrainingRun>(o, options.ppo, options.num_arenas, options.device, collective_.get());
-  ROS_INFO("hider: training %s PPO, network %s, on %s in %s; BLAS: %s", o.variant.c_str(), networkName(o.network),
-           options.device.str().c_str(), precision.reason.c_str(), blasDescription().c_str());
+  ROS_INFO("hider: training %s PPO, network %s, on %s in %s, %s; BLAS: %s", o.variant.c_str(), networkName(o.network),
+           options.device.str().c_str(), precision.reason.c_str(), layout.reason.c_str(), blasDescription().c_str());
   if (training_->totalSteps() != o.total_steps) {
     ROS_INFO(
         "hider: %ld steps asked, training %ld: whole rollouts of %d arenas x %d steps, so that every sample "

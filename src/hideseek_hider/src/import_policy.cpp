@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_net.h"
 
 namespace {

@@ -71,19 +71,40 @@ CpuBf16Support detectCpuBf16() {
   return s;
 }
 
+namespace {
+
+constexpr double kAmxBf16FlopsPerCycle = 1024.0;
+
+}  // namespace
+
 double CpuPeak::gflops(Precision precision) const {
+  if (precision == Precision::kBf16 && amx_bf16) return cores * ghz * kAmxBf16FlopsPerCycle;
   const double bf16 = precision == Precision::kBf16 && avx512_bf16 ? 2.0 : 1.0;
   return cores * ghz * (vector_bits / 32.0) * 2.0 * fma_units * bf16;
 }
 
+std::string CpuPeak::unit(Precision precision) const {
+  if (precision == Precision::kBf16 && amx_bf16) return "AMX-BF16 tiles";
+  if (precision == Precision::kBf16 && avx512_bf16) return "AVX512_BF16 FMA";
+  return "FMA";
+}
+
 std::string CpuPeak::describe(Precision precision) const {
-  char text[320];
+  char text[400];
+  if (precision == Precision::kBf16 && amx_bf16) {
+    std::snprintf(text, sizeof(text),
+                  "AMX-BF16 tiles: %d cores x %.3f GHz (%s) x %.0f flops per cycle = %.1f GFLOP/s %s", cores, ghz,
+                  clock_source.c_str(), kAmxBf16FlopsPerCycle, gflops(precision), precisionName(precision));
+    return text;
+  }
   std::snprintf(text, sizeof(text),
-                "%d cores x %.3f GHz (%s) x %d-bit FMA (%d fp32 lanes) x 2 flops x %d FMA units%s%s = %.1f GFLOP/s %s",
-                cores, ghz, clock_source.c_str(), vector_bits, vector_bits / 32, fma_units,
+                "%s: %d cores x %.3f GHz (%s) x %d-bit FMA (%d fp32 lanes) x 2 flops x %d FMA units%s%s = %.1f GFLOP/s "
+                "%s%s",
+                unit(precision).c_str(), cores, ghz, clock_source.c_str(), vector_bits, vector_bits / 32, fma_units,
                 zen4 ? " (Zen 4: a 512-bit FMA per cycle)" : "",
                 precision == Precision::kBf16 && avx512_bf16 ? " x 2 (AVX512_BF16 pairs)" : "", gflops(precision),
-                precisionName(precision));
+                precisionName(precision),
+                precision == Precision::kBf16 && !avx512_bf16 ? " (emulated: no native bf16 unit)" : "");
   return text;
 }
 
@@ -114,6 +135,7 @@ CpuPeak cpuPeakFrom(const std::string& cpuinfo, double max_khz, int threads, int
     p.vector_bits = 256;
   }
   p.avx512_bf16 = flags.count("avx512_bf16") > 0;
+  p.amx_bf16 = flags.count("amx_bf16") > 0;
   // Zen 4 (AMD family 19h with AVX-512) executes a 512-bit FMA as two 256-bit halves on its two
   // 256-bit pipes: one 512-bit FMA per cycle.
   p.zen4 = vendor == "AuthenticAMD" && family == 0x19 && p.vector_bits == 512;
@@ -156,6 +178,31 @@ PrecisionChoice choosePrecision(PrecisionRequest request, torch::Device device, 
   if (cpu.native()) return {Precision::kBf16, "auto: bf16, this CPU executes it natively (" + native + ")"};
   return {Precision::kFp32,
           "auto: fp32, this CPU has neither AVX512_BF16 nor AMX-BF16 (bf16 would be emulated and slower)"};
+}
+
+MemoryFormatRequest parseMemoryFormat(const std::string& text, const std::string& param) {
+  if (text == "auto") return MemoryFormatRequest::kAuto;
+  if (text == "channels_last") return MemoryFormatRequest::kChannelsLast;
+  if (text == "nchw") return MemoryFormatRequest::kNchw;
+  throw std::invalid_argument("parameter " + param + " must be auto, channels_last or nchw, got '" + text + "'");
+}
+
+const char* memoryFormatName(MemoryFormat format) { return format == MemoryFormat::kNchw ? "nchw" : "channels_last"; }
+
+MemoryFormatChoice chooseMemoryFormat(MemoryFormatRequest request, Precision precision, const CpuBf16Support& cpu) {
+  switch (request) {
+    case MemoryFormatRequest::kChannelsLast:
+      return {MemoryFormat::kChannelsLast, "channels_last as asked"};
+    case MemoryFormatRequest::kNchw:
+      return {MemoryFormat::kNchw, "nchw as asked (the images copied into NCHW order before the encoder)"};
+    case MemoryFormatRequest::kAuto:
+      break;
+  }
+  // Every CPU kind measured so far runs faster channels-last; a kind where NCHW measures faster
+  // gets its branch here, with its measurement.
+  const std::string kind = cpu.amx_bf16 ? "AMX-BF16" : cpu.avx512_bf16 ? "AVX512_BF16" : "no native bf16";
+  return {MemoryFormat::kChannelsLast, std::string("auto: channels_last (") + precisionName(precision) + ", CPU with " +
+                                           kind + "; the images' own HWC layout, no copy)"};
 }
 
 AutocastScope::AutocastScope(Precision precision, torch::Device device) {

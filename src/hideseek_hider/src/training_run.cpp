@@ -12,12 +12,14 @@
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
+
+#include "hideseek_hider/checkpoint.h"
 
 namespace hideseek_hider {
 
 namespace {
-
-constexpr size_t kRecentEpisodes = 100;
 
 bool exists(const std::string& path) {
   struct stat s;
@@ -37,6 +39,7 @@ HiderNet startingNet(const TrainingOptions& o, const std::string& resume_from) {
   HiderNet net = !resume_from.empty() ? loadCheckpoint(resume_from, o.image_height, o.image_width, nullptr, o.network)
                                       : HiderNet(o.image_height, o.image_width, o.network);
   net->setPrecision(o.precision);
+  net->setMemoryFormat(o.memory_format);
   return net;
 }
 
@@ -127,6 +130,68 @@ int truncateLogAfter(const std::string& path, int64_t steps) {
   return dropped;
 }
 
+void EpisodeStatistics::add(const std::vector<float>& rewards, const std::vector<uint8_t>& dones) {
+  for (size_t i = 0; i < running_return_.size(); ++i) {
+    running_return_[i] += rewards[i];
+    ++running_length_[i];
+    if (dones[i]) {
+      recent_.emplace_back(running_length_[i], running_return_[i]);
+      if (recent_.size() > kRecent) recent_.pop_front();
+      ++finished_;
+      running_return_[i] = 0.0;
+      running_length_[i] = 0;
+    }
+  }
+}
+
+int64_t EpisodeStatistics::takeFinished() { return std::exchange(finished_, 0); }
+
+std::pair<double, double> EpisodeStatistics::recentMeans() const {
+  double length = 0.0, ret = 0.0;
+  for (const auto& [l, r] : recent_) {
+    length += static_cast<double>(l) / recent_.size();
+    ret += r / recent_.size();
+  }
+  return {length, ret};
+}
+
+void EpisodeStatistics::restore(const std::vector<int64_t>& lengths, const std::vector<double>& returns) {
+  recent_.clear();
+  for (size_t i = 0; i < lengths.size() && i < returns.size(); ++i) recent_.emplace_back(lengths[i], returns[i]);
+  while (recent_.size() > kRecent) recent_.pop_front();
+}
+
+TrainingLog::TrainingLog(const std::string& log_path, const std::string& loop_path, int64_t steps) {
+  // A log without a checkpoint (steps 0) belongs to a run killed before its first checkpoint: none
+  // of its updates survive, so neither do its rows.
+  dropped_rows_ = truncateLogAfter(log_path, steps);
+  truncateLogAfter(loop_path, steps);
+  const bool new_log = !exists(log_path);
+  log_.open(log_path, std::ios::app);
+  if (!log_) throw std::runtime_error("cannot write " + log_path);
+  if (new_log) {
+    log_ << "update,steps,wall_s,steps_per_s,episodes,mean_length,mean_return,policy_loss,value_loss,entropy,"
+            "approx_kl,clip_fraction,learning_rate\n";
+  }
+  const bool new_loop_log = !exists(loop_path);
+  loop_log_.open(loop_path, std::ios::app);
+  if (!loop_log_) throw std::runtime_error("cannot write " + loop_path);
+  if (new_loop_log) loop_log_ << "update,steps,wait_s,inference_s,update_s,other_s\n";
+}
+
+void TrainingLog::writeUpdate(const UpdateReport& r) {
+  log_ << r.update << ',' << r.steps << ',' << r.wall_s << ',' << r.steps_per_s << ',' << r.episodes << ','
+       << r.mean_length << ',' << r.mean_return << ',' << r.ppo.policy_loss << ',' << r.ppo.value_loss << ','
+       << r.ppo.entropy << ',' << r.ppo.approx_kl << ',' << r.ppo.clip_fraction << ',' << r.ppo.learning_rate << '\n';
+  log_.flush();
+}
+
+void TrainingLog::writeLoop(const UpdateReport& r) {
+  loop_log_ << r.update << ',' << r.steps << ',' << r.loop.wait_s << ',' << r.loop.inference_s << ',' << r.loop.update_s
+            << ',' << r.loop.other_s << '\n';
+  loop_log_.flush();
+}
+
 TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, int num_arenas, torch::Device device,
                          Collective* collective)
     : options_(roundedToRollouts(options, ppo, num_arenas, worldOf(collective))),
@@ -137,10 +202,9 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
       resume_from_(resumeSource(options_, collective_)),
       resumed_(!resume_from_.empty()),
       trainer_(startingNet(options_, resume_from_), ppo, num_arenas, device),
-      start_(std::chrono::steady_clock::now()),
+      start_(Clock::now()),
       last_checkpoint_(start_),
-      running_return_(num_arenas, 0.0),
-      running_length_(num_arenas, 0) {
+      episodes_seen_(num_arenas) {
   trainer_.setCollective(collective_);
   if (rank_ == 0 && mkdir(options_.output_dir.c_str(), 0755) != 0 && errno != EEXIST) {
     throw std::runtime_error("cannot create output folder " + options_.output_dir + ": " + std::strerror(errno));
@@ -153,10 +217,7 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
     start_wall_s_ = info.wall_s;
     episodes_ = info.episodes;
     if (rank_ == 0) {
-      for (size_t i = 0; i < info.recent_lengths.size(); ++i) {
-        recent_.emplace_back(info.recent_lengths[i], info.recent_returns[i]);
-      }
-      while (recent_.size() > kRecentEpisodes) recent_.pop_front();
+      episodes_seen_.restore(info.recent_lengths, info.recent_returns);
     } else {
       // Rank 0's generator state came with its checkpoint: the other ranks sample on their own.
       std::remove(resume_from_.c_str());
@@ -170,31 +231,12 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
   // the log continues across resumes
   updates_ = start_steps_ / (static_cast<int64_t>(ppo.rollout_steps) * num_arenas * world_);
   if (rank_ != 0) return;  // rank 0 alone writes the logs
-  if (resumed_) {
-    dropped_log_rows_ = truncateLogAfter(logPath(), start_steps_);
-    truncateLogAfter(loopProfilePath(), start_steps_);
-  } else {
-    // A log without a checkpoint belongs to a run killed before its first checkpoint: none of
-    // its updates survive, so neither do its rows.
-    dropped_log_rows_ = truncateLogAfter(logPath(), 0);
-    truncateLogAfter(loopProfilePath(), 0);
-  }
-  const bool new_log = !exists(logPath());
-  log_.open(logPath(), std::ios::app);
-  if (!log_) throw std::runtime_error("cannot write " + logPath());
-  if (new_log) {
-    log_ << "update,steps,wall_s,steps_per_s,episodes,mean_length,mean_return,policy_loss,value_loss,entropy,"
-            "approx_kl,clip_fraction,learning_rate\n";
-  }
-  const bool new_loop_log = !exists(loopProfilePath());
-  loop_log_.open(loopProfilePath(), std::ios::app);
-  if (!loop_log_) throw std::runtime_error("cannot write " + loopProfilePath());
-  if (new_loop_log) loop_log_ << "update,steps,wait_s,inference_s,update_s,other_s\n";
+  log_.emplace(logPath(), loopProfilePath(), resumed_ ? start_steps_ : 0);
+  dropped_log_rows_ = log_->droppedRows();
 }
 
 std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<float>& rewards,
                                        const std::vector<uint8_t>& dones, std::optional<UpdateReport>* report) {
-  using Clock = std::chrono::steady_clock;
   auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
   const Clock::time_point enter = Clock::now();
   if (last_exit_) loop_.wait_s += seconds(enter - *last_exit_);
@@ -205,82 +247,12 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
       torch::from_blob(const_cast<uint8_t*>(images), {n, options_.image_height, options_.image_width, 3}, torch::kUInt8)
           .clone();
   if (acted_) {
-    for (int64_t i = 0; i < n; ++i) {
-      running_return_[i] += rewards[i];
-      ++running_length_[i];
-      if (dones[i]) {
-        recent_.emplace_back(running_length_[i], running_return_[i]);
-        if (recent_.size() > kRecentEpisodes) recent_.pop_front();
-        ++new_episodes_;
-        running_return_[i] = 0.0;
-        running_length_[i] = 0;
-      }
-    }
+    // The rewards and done flags of the actions taken at the last step.
+    episodes_seen_.add(rewards, dones);
     const torch::Tensor r = torch::tensor(rewards);
     const torch::Tensor d =
         torch::from_blob(const_cast<uint8_t*>(dones.data()), {n}, torch::kUInt8).to(torch::kFloat32);
-    if (trainer_.record(r, d)) {
-      UpdateReport rep;
-      const Clock::time_point update_start = Clock::now();
-      loop_.other_s += seconds(update_start - mark);
-      rep.ppo = trainer_.update(obs);
-      rep.update = ++updates_;
-      rep.steps = steps();
-      const auto now = std::chrono::steady_clock::now();
-      loop_.update_s += seconds(now - update_start);
-      mark = now;
-      const double process_s = std::chrono::duration<double>(now - start_).count();
-      rep.wall_s = start_wall_s_ + process_s;
-      rep.steps_per_s = (rep.steps - start_steps_) / std::max(process_s, 1e-9);
-      rep.eta_s = std::max<int64_t>(0, options_.total_steps - rep.steps) / std::max(rep.steps_per_s, 1e-9);
-      // The episodes of every rank: their count, and the means over each rank's recent window.
-      double totals[4] = {static_cast<double>(new_episodes_), 0.0, 0.0, static_cast<double>(recent_.size())};
-      for (const auto& [length, ret] : recent_) {
-        totals[1] += static_cast<double>(length);
-        totals[2] += ret;
-      }
-      if (collective_) {
-        std::vector<torch::Tensor> t{torch::tensor({totals[0], totals[1], totals[2], totals[3]}, torch::kFloat64)};
-        collective_->allReduceSum(t);
-        for (int k = 0; k < 4; ++k) totals[k] = t[0][k].item<double>();
-        episodes_ += static_cast<int64_t>(std::llround(totals[0]));
-        if (totals[3] > 0) {
-          rep.mean_length = totals[1] / totals[3];
-          rep.mean_return = totals[2] / totals[3];
-        }
-      } else {
-        episodes_ += new_episodes_;
-        // Summed as before, term by term, so that one process logs exactly what it always has.
-        for (const auto& [length, ret] : recent_) {
-          rep.mean_length += static_cast<double>(length) / recent_.size();
-          rep.mean_return += ret / recent_.size();
-        }
-      }
-      new_episodes_ = 0;
-      rep.episodes = episodes_;
-      if (rank_ == 0) {
-        log_ << rep.update << ',' << rep.steps << ',' << rep.wall_s << ',' << rep.steps_per_s << ',' << rep.episodes
-             << ',' << rep.mean_length << ',' << rep.mean_return << ',' << rep.ppo.policy_loss << ','
-             << rep.ppo.value_loss << ',' << rep.ppo.entropy << ',' << rep.ppo.approx_kl << ',' << rep.ppo.clip_fraction
-             << ',' << rep.ppo.learning_rate << '\n';
-        log_.flush();
-        // The final checkpoint is the node's to write once finished().
-        if (std::chrono::duration<double>(now - last_checkpoint_).count() >= options_.checkpoint_interval_s) {
-          saveCheckpoint();
-        }
-      }
-      const Clock::time_point logged = Clock::now();
-      loop_.other_s += seconds(logged - mark);
-      mark = logged;
-      rep.loop = loop_;
-      loop_ = LoopTimes{};
-      if (rank_ == 0) {
-        loop_log_ << rep.update << ',' << rep.steps << ',' << rep.loop.wait_s << ',' << rep.loop.inference_s << ','
-                  << rep.loop.update_s << ',' << rep.loop.other_s << '\n';
-        loop_log_.flush();
-      }
-      *report = rep;
-    }
+    if (trainer_.record(r, d)) *report = update(obs, mark);
   }
   acted_ = true;
   const Clock::time_point act_start = Clock::now();
@@ -294,20 +266,74 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
   return out;
 }
 
+UpdateReport TrainingRun::update(const torch::Tensor& next_observations, Clock::time_point& mark) {
+  auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
+  UpdateReport rep;
+  const Clock::time_point update_start = Clock::now();
+  loop_.other_s += seconds(update_start - mark);
+  rep.ppo = trainer_.update(next_observations);
+  rep.update = ++updates_;
+  const Clock::time_point now = Clock::now();
+  loop_.update_s += seconds(now - update_start);
+  mark = now;
+  progress(rep, now);
+  if (rank_ == 0) {
+    log_->writeUpdate(rep);  // before the checkpoint, which must never be ahead of its log
+    // The final checkpoint is the node's to write once finished().
+    if (seconds(now - last_checkpoint_) >= options_.checkpoint_interval_s) saveCheckpoint();
+  }
+  const Clock::time_point logged = Clock::now();
+  loop_.other_s += seconds(logged - mark);
+  mark = logged;
+  rep.loop = loop_;
+  loop_ = LoopTimes{};
+  if (rank_ == 0) log_->writeLoop(rep);
+  return rep;
+}
+
+void TrainingRun::progress(UpdateReport& rep, Clock::time_point now) {
+  rep.steps = steps();
+  const double process_s = std::chrono::duration<double>(now - start_).count();
+  rep.wall_s = start_wall_s_ + process_s;
+  rep.steps_per_s = (rep.steps - start_steps_) / std::max(process_s, 1e-9);
+  rep.eta_s = std::max<int64_t>(0, options_.total_steps - rep.steps) / std::max(rep.steps_per_s, 1e-9);
+  const int64_t finished = episodes_seen_.takeFinished();
+  if (collective_) {
+    // The episodes of every rank: their count, and the means over each rank's recent window.
+    double totals[4] = {static_cast<double>(finished), 0.0, 0.0, static_cast<double>(episodes_seen_.recent().size())};
+    for (const auto& [length, ret] : episodes_seen_.recent()) {
+      totals[1] += static_cast<double>(length);
+      totals[2] += ret;
+    }
+    std::vector<torch::Tensor> t{torch::tensor({totals[0], totals[1], totals[2], totals[3]}, torch::kFloat64)};
+    collective_->allReduceSum(t);
+    for (int k = 0; k < 4; ++k) totals[k] = t[0][k].item<double>();
+    episodes_ += static_cast<int64_t>(std::llround(totals[0]));
+    if (totals[3] > 0) {
+      rep.mean_length = totals[1] / totals[3];
+      rep.mean_return = totals[2] / totals[3];
+    }
+  } else {
+    episodes_ += finished;
+    std::tie(rep.mean_length, rep.mean_return) = episodes_seen_.recentMeans();
+  }
+  rep.episodes = episodes_;
+}
+
 void TrainingRun::saveCheckpoint() {
   if (rank_ != 0) return;
-  const auto now = std::chrono::steady_clock::now();
+  const auto now = Clock::now();
   CheckpointInfo info{trainer_.net()->architecture(), options_.image_height, options_.image_width, options_.variant,
                       steps()};
   info.game = options_.game;
   info.wall_s = start_wall_s_ + std::chrono::duration<double>(now - start_).count();
   info.episodes = episodes_;
-  for (const auto& [length, ret] : recent_) {
+  for (const auto& [length, ret] : episodes_seen_.recent()) {
     info.recent_lengths.push_back(length);
     info.recent_returns.push_back(ret);
   }
   hideseek_hider::saveCheckpoint(checkpointPath(), trainer_.net(), info, &trainer_.optimizer());
-  last_checkpoint_ = std::chrono::steady_clock::now();
+  last_checkpoint_ = Clock::now();
 }
 
 }  // namespace hideseek_hider

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_net.h"
 
 using hideseek_hider::checkCheckpointBytes;

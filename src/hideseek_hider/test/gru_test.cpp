@@ -6,6 +6,7 @@
 #include <functional>
 #include <random>
 
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/gru_sequence.h"
 #include "hideseek_hider/hider_net.h"
 #include "hideseek_hider/hider_policy.h"

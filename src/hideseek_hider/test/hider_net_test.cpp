@@ -9,6 +9,7 @@
 #include <functional>
 #include <iterator>
 
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_policy.h"
 
 namespace hideseek_hider {

@@ -14,6 +14,7 @@
 
 #include "hideseek_game/hash_uniform.h"
 #include "hideseek_game/world.h"
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_net.h"
 
 namespace hideseek_hider {

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "hideseek_game/config_error.h"
+#include "hideseek_hider/checkpoint.h"
 #include "shipped_ppo.h"
 
 namespace hideseek_hider {

@@ -3,6 +3,7 @@
 #include <ATen/autocast_mode.h>
 #include <gtest/gtest.h>
 
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_net.h"
 
 namespace hideseek_hider {
@@ -72,6 +73,68 @@ TEST(CpuPeak, ReadsVectorWidthClockAndCoresFromTheMachinesOwnDescription) {
   EXPECT_EQ(cpuPeakFrom(intel, 0.0, 2, 2, 0).fma_units, 2);
   // Without AVX2 and FMA, 128-bit vectors.
   EXPECT_EQ(cpuPeakFrom("flags : sse sse2 avx\n", 0.0, 1, 1, 2).vector_bits, 128);
+}
+
+// Where oneDNN runs bf16 on AMX tiles, the peak is the tiles', an order of magnitude above the
+// FMA units': a fraction of the FMA peak would read as 3x the machine's limit there.
+TEST(CpuPeak, Bf16OnAnAmxCpuCountsTheTilesAndSaysSo) {
+  const std::string spr =
+      "vendor_id : GenuineIntel\ncpu family : 6\ncpu MHz : 2000.0\n"
+      "flags : avx2 fma avx512f avx512_bf16 amx_bf16 amx_tile amx_int8\n";
+  const CpuPeak p = cpuPeakFrom(spr, 0.0, 2, 2, 0);
+  EXPECT_TRUE(p.amx_bf16);
+  EXPECT_DOUBLE_EQ(p.gflops(Precision::kBf16), 2 * 2.0 * 1024);  // 4,096 GFLOP/s
+  EXPECT_DOUBLE_EQ(p.gflops(Precision::kFp32), 2 * 2.0 * 16 * 2 * 2);
+  EXPECT_GT(p.gflops(Precision::kBf16), 10 * p.gflops(Precision::kFp32));
+  EXPECT_EQ(p.unit(Precision::kBf16), "AMX-BF16 tiles");
+  EXPECT_EQ(p.unit(Precision::kFp32), "FMA");
+  EXPECT_NE(p.describe(Precision::kBf16).find("AMX-BF16 tiles"), std::string::npos) << p.describe(Precision::kBf16);
+  // Without AMX the bf16 unit is the AVX512_BF16 pairs, and without those bf16 is emulated.
+  const CpuPeak q = cpuPeakFrom("flags : avx2 fma avx512f avx512_bf16\n", 0.0, 2, 2, 2);
+  EXPECT_EQ(q.unit(Precision::kBf16), "AVX512_BF16 FMA");
+  const CpuPeak r = cpuPeakFrom("flags : avx2 fma avx512f\n", 0.0, 2, 2, 2);
+  EXPECT_NE(r.describe(Precision::kBf16).find("emulated"), std::string::npos) << r.describe(Precision::kBf16);
+}
+
+TEST(MemoryFormat, ParsesTheThreeChoicesAndNamesTheParameterOtherwise) {
+  EXPECT_EQ(parseMemoryFormat("auto", "~memory_format"), MemoryFormatRequest::kAuto);
+  EXPECT_EQ(parseMemoryFormat("channels_last", "~memory_format"), MemoryFormatRequest::kChannelsLast);
+  EXPECT_EQ(parseMemoryFormat("nchw", "~memory_format"), MemoryFormatRequest::kNchw);
+  try {
+    parseMemoryFormat("nhwc", "/hider/memory_format");
+    FAIL() << "nhwc accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("/hider/memory_format"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("auto, channels_last or nchw"), std::string::npos) << e.what();
+  }
+}
+
+// The rule: channels-last on every CPU kind and in every precision measured; an explicit choice wins.
+TEST(MemoryFormat, AutoIsChannelsLastEverywhereMeasuredAndAChoiceIsHonoured) {
+  const CpuBf16Support none{}, avx512{true, false}, amx{false, true};
+  for (const CpuBf16Support& cpu : {none, avx512, amx}) {
+    for (const Precision p : {Precision::kFp32, Precision::kBf16}) {
+      EXPECT_EQ(chooseMemoryFormat(MemoryFormatRequest::kAuto, p, cpu).format, MemoryFormat::kChannelsLast);
+      EXPECT_EQ(chooseMemoryFormat(MemoryFormatRequest::kNchw, p, cpu).format, MemoryFormat::kNchw);
+    }
+  }
+  EXPECT_NE(chooseMemoryFormat(MemoryFormatRequest::kAuto, Precision::kBf16, amx).reason.find("AMX-BF16"),
+            std::string::npos);
+}
+
+// The layout changes where the numbers sit, not what the network computes: channels-last is what a
+// network always ran (evaluations stay byte-identical), and NCHW agrees with it to rounding.
+TEST(MemoryFormat, ChannelsLastIsTheDefaultAndNchwAgreesWithItToRounding) {
+  torch::manual_seed(11);
+  HiderNet net(84, 84);
+  EXPECT_EQ(net->memoryFormat(), MemoryFormat::kChannelsLast);
+  const torch::Tensor images = torch::randint(0, 256, {8, 84, 84, 3}, torch::kUInt8);
+  const HiderOutput channels_last = net->forward(images);
+  net->setMemoryFormat(MemoryFormat::kNchw);
+  const HiderOutput nchw = net->forward(images);
+  EXPECT_TRUE(torch::allclose(channels_last.logits, nchw.logits, 1e-5, 1e-6));
+  EXPECT_TRUE(torch::allclose(channels_last.value, nchw.value, 1e-5, 1e-6));
+  EXPECT_TRUE(torch::allclose(channels_last.features, nchw.features, 1e-5, 1e-6));
 }
 
 TEST(Precision, AutocastScopeRestoresTheThreadsStateWhenItEnds) {

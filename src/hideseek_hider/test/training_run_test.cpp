@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "hideseek_hider/checkpoint.h"
 #include "shipped_ppo.h"
 
 namespace hideseek_hider {

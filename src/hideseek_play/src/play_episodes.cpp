@@ -23,6 +23,7 @@
 #include "hideseek_game/game_loop.h"
 #include "hideseek_game/game_selection.h"
 #include "hideseek_game/package_paths.h"
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_seeker/seeker_policy.h"
 

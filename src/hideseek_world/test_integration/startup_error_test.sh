@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A node that cannot start says why, where roslaunch shows it: a missing checkpoint, a bad
-# precision, an unknown game or variant name, a misspelt variant field, a misspelt scripted evader and the memoryless ablation
+# precision or memory format, an unknown game or variant name, a misspelt variant field, a misspelt scripted evader and the memoryless ablation
 # asked of a hider without a GRU each stop the game with a FATAL line naming the problem.
 # usage: startup_error_test.sh XUNIT_OUTPUT
 set -uo pipefail
@@ -19,6 +19,8 @@ expect_fatal() {  # name, expected text, launch arguments...
 }
 expect_fatal missing_policy "checkpoint /nonexistent/policy.pt cannot be read" basic.launch policy:=/nonexistent/policy.pt
 expect_fatal bad_precision "/hider/precision must be auto, fp32 or bf16, got 'fp16'" basic.launch precision:=fp16
+expect_fatal bad_memory_format "/hider/memory_format must be auto, channels_last or nchw, got 'nhwc'" game.launch.xml \
+  variant:=basic memory_format:=nhwc
 expect_fatal unknown_game "game names no game: " basic.launch game:=v9
 expect_fatal unknown_variant "'nosuch' is not a variant here (basic, " game.launch.xml variant:=nosuch
 config="$(cd "$(dirname "$0")/../../hideseek_game/config" && pwd)"  # the game package holds the maps

@@ -5,7 +5,6 @@
 
 #include <torch/torch.h>
 
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +63,9 @@ class HiderNetImpl : public torch::nn::Module {
   // bf16 autocasts every forward pass (and so its backward); the parameters stay fp32.
   void setPrecision(Precision precision) { precision_ = precision; }
   Precision precision() const { return precision_; }
+  // The encoder's layout (precision.h, chooseMemoryFormat): channels-last by default.
+  void setMemoryFormat(MemoryFormat format) { memory_format_ = format; }
+  MemoryFormat memoryFormat() const { return memory_format_; }
 
   int imageHeight() const { return image_height_; }
   int imageWidth() const { return image_width_; }
@@ -86,52 +88,12 @@ class HiderNetImpl : public torch::nn::Module {
   int image_width_;
   NetworkKind network_;
   Precision precision_ = Precision::kFp32;
+  MemoryFormat memory_format_ = MemoryFormat::kChannelsLast;
   torch::nn::GRUCell gru_{nullptr};
   torch::nn::Conv2d conv1_{nullptr}, conv2_{nullptr}, conv3_{nullptr};
   torch::nn::Linear features_{nullptr}, actor_hidden_{nullptr}, actor_out_{nullptr}, critic_hidden_{nullptr},
       critic_out_{nullptr};
 };
 TORCH_MODULE(HiderNet);
-
-// What a checkpoint says about itself.
-struct CheckpointInfo {
-  std::string architecture;
-  int image_height = 0;
-  int image_width = 0;
-  std::string variant;
-  int64_t steps = 0;  // environment steps trained
-  // Training progress, so that a resumed run's log continues where the checkpoint left it.
-  double wall_s = 0.0;   // wall seconds of training up to this checkpoint, over all resumes
-  int64_t episodes = 0;  // episodes finished up to this checkpoint
-  // Length and return of the last finished episodes (the log's mean_length and mean_return), so a
-  // resumed log does not restart its average from the first, necessarily short, episodes to end.
-  std::vector<int64_t> recent_lengths{};
-  std::vector<double> recent_returns{};
-  NetworkKind network = NetworkKind::kFeedForward;  // from the architecture
-  // The game it trained on (game.yaml's `game`); a checkpoint written before the field existed is
-  // game v2's, the only game then trained.
-  std::string game = "v2";
-};
-
-// Writes `data` to path.tmp, syncs it, then renames it over `path`. On any error (a full disk:
-// ENOSPC) it removes path.tmp and throws std::runtime_error naming the file and the cause; the
-// previous file at `path` is left untouched.
-void writeFileAtomically(const std::string& path, const std::string& data);
-
-// Writes the network and its description to `path` atomically (temporary file, then rename).
-// With an optimiser it also writes the optimiser state and the CPU random generator's state,
-// so that training resumes where it stopped.
-void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo& info,
-                    torch::optim::Optimizer* optimizer = nullptr);
-// Restores what saveCheckpoint wrote for training into `optimizer` and the CPU generator.
-// Throws std::runtime_error naming the file when the checkpoint holds no training state.
-void loadTrainingState(const std::string& path, torch::optim::Optimizer& optimizer);
-// Reads only the description; throws std::runtime_error naming the file when unreadable.
-CheckpointInfo readCheckpointInfo(const std::string& path);
-// Builds the network a checkpoint describes (feed-forward or GRU) and loads its weights. Throws
-// std::runtime_error saying what does not match (architecture, the network asked for, image size,
-// tensor shapes) or that the file is truncated or corrupt; never returns a half-loaded network.
-HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width,
-                        CheckpointInfo* info = nullptr, std::optional<NetworkKind> expected_network = std::nullopt);
 
 }  // namespace hideseek_hider

@@ -27,6 +27,7 @@ struct HiderNodeOptions {
   std::string policy = "random";  // checkpoint path (policy mode)
   int threads = 2;                // intra-op threads of the network
   PrecisionRequest precision = PrecisionRequest::kAuto;
+  MemoryFormatRequest memory_format = MemoryFormatRequest::kAuto;
   std::optional<NetworkKind> network;  // empty: auto (the checkpoint's; a new training run: ff)
   torch::Device device = torch::kCPU;  // policy and train modes
   bool greedy = true;                  // policy mode

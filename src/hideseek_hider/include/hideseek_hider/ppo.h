@@ -1,6 +1,7 @@
-// Proximal Policy Optimisation for the hider, readable top to bottom (after CleanRL's ppo_atari):
-// a rollout buffer over arenas, GAE, the clipped policy objective, a clipped value loss, an
-// entropy bonus, advantage normalisation, gradient clipping and Adam.
+// Proximal Policy Optimisation for the hider (after CleanRL's ppo_atari): a rollout buffer over
+// arenas, GAE, the clipped policy objective, a clipped value loss, an entropy bonus, advantage
+// normalisation, gradient clipping and Adam. ppo.cpp tells one update top to bottom, in the order
+// it runs; the feed-forward and GRU networks share its loop.
 #pragma once
 
 #include <torch/torch.h>
@@ -131,16 +132,14 @@ class PpoTrainer {
   const torch::Tensor& bufferActions() const { return actions_; }
   const torch::Tensor& bufferLogProbs() const { return log_probs_; }
   const torch::Tensor& bufferValues() const { return values_; }
+  // GRU only: the state before each step [T, N, 512], and 1 where that step began an episode [T, N].
+  const torch::Tensor& bufferHiddens() const { return hiddens_; }
+  const torch::Tensor& bufferStarts() const { return starts_; }
   const Gae& lastGae() const { return last_gae_; }
   const std::vector<torch::Tensor>& lastMinibatches() const { return last_minibatches_; }
+  bool recurrent() const { return net_->recurrent(); }
 
  private:
-  UpdateStats updateFeedForward(const Gae& gae, double learning_rate);
-  UpdateStats updateRecurrent(const Gae& gae, double learning_rate);
-  void optimiseMinibatch(const torch::Tensor& logits, const torch::Tensor& values, const torch::Tensor& actions,
-                         const torch::Tensor& old_lp, const torch::Tensor& old_v, torch::Tensor adv,
-                         const torch::Tensor& target, UpdateStats& stats);
-
   HiderNet net_;
   PpoOptions options_;
   int num_arenas_;

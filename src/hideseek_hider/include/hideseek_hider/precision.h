@@ -42,9 +42,15 @@ struct CpuPeak {
   int fma_units = 2;
   bool zen4 = false;  // AMD family 19h with AVX-512: fma_units 1 unless overridden
   bool avx512_bf16 = false;
-  // cores x GHz x (vector_bits / 32 lanes) x 2 (multiply and add) x fma_units [x 2 in bf16].
+  bool amx_bf16 = false;  // the "amx_bf16" flag: oneDNN runs bf16 convolutions and products on AMX tiles
+  // The unit the kernels use: fp32, and bf16 without native support, run on the FMA units:
+  // cores x GHz x (vector_bits / 32 lanes) x 2 (multiply and add) x fma_units [x 2 in bf16 with
+  // AVX512_BF16 pairs]. bf16 with AMX-BF16 runs on the tiles: cores x GHz x 1024 flops per cycle
+  // (one TDPBF16PS, 16 x 16 x 32 multiply-adds, every 16 cycles: Intel's 1024 bf16 ops per cycle
+  // and core), which oneDNN's brgemm kernels use (ONEDNN_VERBOSE names avx512_core_amx_bf16).
   double gflops(Precision precision) const;
-  std::string describe(Precision precision) const;  // the formula with its numbers
+  std::string unit(Precision precision) const;      // "AMX-BF16 tiles", "AVX512_BF16 FMA", "FMA"
+  std::string describe(Precision precision) const;  // the unit and the formula with its numbers
 };
 // From /proc/cpuinfo's text, cpufreq's maximum in kHz (0: none), the work's threads and the
 // online CPUs, and the FMA units per core (0: from the CPU, as above).
@@ -64,6 +70,34 @@ struct PrecisionChoice {
 // On CPU without native bf16, bf16 is emulated by oneDNN and slower than fp32, so `auto` keeps
 // fp32 there; an explicit `bf16` is honoured (and the reason says it is emulated).
 PrecisionChoice choosePrecision(PrecisionRequest request, torch::Device device, const CpuBf16Support& cpu);
+
+// The memory layout of the encoder's images and activations. The world sends HWC bytes: viewed as
+// [B, 3, H, W] they are channels-last (NHWC) without a copy, and oneDNN follows its input's layout,
+// so every convolution, forward and backward, runs NHWC. `nchw` copies the images into NCHW order
+// first, the layout a network built from NCHW tensors would run in; it is there to measure the
+// difference (make bench prints both). The convolution weights keep their default layout in both:
+// storing them channels-last too gave bitwise the same logits and gradients and no speed
+// (docs/performance.md, "Memory format").
+enum class MemoryFormat { kChannelsLast, kNchw };
+enum class MemoryFormatRequest { kAuto, kChannelsLast, kNchw };
+// Parses "auto", "channels_last" or "nchw"; throws std::invalid_argument naming `param` and the choices.
+MemoryFormatRequest parseMemoryFormat(const std::string& text, const std::string& param);
+const char* memoryFormatName(MemoryFormat format);
+struct MemoryFormatChoice {
+  MemoryFormat format = MemoryFormat::kChannelsLast;
+  std::string reason;
+};
+// The one rule for the layout, with the measurements behind it (docs/performance.md, "Memory
+// format"): `auto` is channels-last in every precision and on every CPU measured so far. Through
+// the project's trainer on a 2-core Intel Xeon without native bf16, NCHW made the fp32 floor
+// 1.09x slower (whole-process wall time, train_floor_bench, median of 5 pairs); a standalone
+// measurement of this network on an Intel CPU with AMX-BF16 gave channels-last 1.38-1.43x the
+// samples/s of NCHW in bf16. The same standalone measurement found NCHW faster in fp32 on that
+// CPU (2,731 against 2,275 samples/s, with the weights stored channels-last too); fp32 stays
+// channels-last there all the same, because fp32 is the evaluation's precision and NCHW changes
+// its sums (logits differ by about 1e-8): a shipped policy re-evaluates byte-identically only in
+// the layout it always ran in.
+MemoryFormatChoice chooseMemoryFormat(MemoryFormatRequest request, Precision precision, const CpuBf16Support& cpu);
 
 // Autocast to bf16 for the lifetime of the scope on the given device (no-op for fp32).
 // Autocast state is thread-local: the scope covers the calling thread only.

@@ -24,7 +24,8 @@ struct TrainingOptions {
   std::string game = "v2";  // recorded in the checkpoint; a checkpoint of another game is not resumed
   int image_height = 84;
   int image_width = 84;
-  Precision precision = Precision::kFp32;  // of the network's passes; weights stay fp32
+  Precision precision = Precision::kFp32;                    // of the network's passes; weights stay fp32
+  MemoryFormat memory_format = MemoryFormat::kChannelsLast;  // of the encoder (chooseMemoryFormat)
   NetworkKind network = NetworkKind::kFeedForward;
 };
 
@@ -65,6 +66,46 @@ struct UpdateReport {
   LoopTimes loop;  // since the previous update (the last rollout's inference and waits, this update)
 };
 
+// The episodes a training run finishes: each arena's return and length so far, the episodes
+// finished since the last update, and the (length, return) of the last 100, which the log averages
+// and a checkpoint keeps.
+class EpisodeStatistics {
+ public:
+  static constexpr size_t kRecent = 100;
+  explicit EpisodeStatistics(int num_arenas) : running_return_(num_arenas, 0.0), running_length_(num_arenas, 0) {}
+  // One step of every arena: its reward, and whether it ended the episode.
+  void add(const std::vector<float>& rewards, const std::vector<uint8_t>& dones);
+  // Episodes finished since the last call.
+  int64_t takeFinished();
+  // Mean length and return over the recent window (0 when empty), summed term by term.
+  std::pair<double, double> recentMeans() const;
+  const std::deque<std::pair<int64_t, double>>& recent() const { return recent_; }
+  // A resumed run's window, from its checkpoint.
+  void restore(const std::vector<int64_t>& lengths, const std::vector<double>& returns);
+
+ private:
+  std::vector<double> running_return_;
+  std::vector<int64_t> running_length_;
+  std::deque<std::pair<int64_t, double>> recent_;
+  int64_t finished_ = 0;
+};
+
+// training_log.csv (one row per update: its statistics) and loop_profile.csv (where its wall time
+// went), continued across resumes: rows beyond the checkpoint a run resumes from are dropped first.
+class TrainingLog {
+ public:
+  // `steps`: the steps of the checkpoint the run resumes from (0: a fresh run, whose old rows, from
+  // a run killed before its first checkpoint, all go).
+  TrainingLog(const std::string& log_path, const std::string& loop_path, int64_t steps);
+  void writeUpdate(const UpdateReport& report);  // training_log.csv's row, flushed
+  void writeLoop(const UpdateReport& report);    // loop_profile.csv's row, flushed
+  int droppedRows() const { return dropped_rows_; }
+
+ private:
+  std::ofstream log_, loop_log_;
+  int dropped_rows_ = 0;
+};
+
 // With a collective of several ranks (DD-PPO), each rank's TrainingRun steps its own arenas and
 // the ranks train one network: rank 0's initial weights are broadcast, a resume starts every rank
 // from rank 0's checkpoint (rank 0 decides whether there is one, and sends it), steps, episodes
@@ -99,6 +140,13 @@ class TrainingRun {
   std::string loopProfilePath() const { return options_.output_dir + "/loop_profile.csv"; }
 
  private:
+  using Clock = std::chrono::steady_clock;
+  // The update that a full rollout triggers, and its report; `mark` is when the step's time was
+  // last accounted for, and moves on.
+  UpdateReport update(const torch::Tensor& next_observations, Clock::time_point& mark);
+  // The steps, time and episodes of the report, over all ranks.
+  void progress(UpdateReport& report, Clock::time_point now);
+
   TrainingOptions options_;
   int num_arenas_;
   Collective* collective_;
@@ -111,17 +159,13 @@ class TrainingRun {
   int64_t updates_ = 0;
   int64_t start_steps_ = 0;
   double start_wall_s_ = 0.0;  // wall seconds the run had trained before this process
-  std::chrono::steady_clock::time_point start_;
-  std::chrono::steady_clock::time_point last_checkpoint_;
-  std::vector<double> running_return_;
-  std::vector<int64_t> running_length_;
-  std::deque<std::pair<int64_t, double>> recent_;  // (length, return) of finished episodes
-  int64_t episodes_ = 0;                           // of all ranks
-  int64_t new_episodes_ = 0;                       // this rank's since the last update
-  std::ofstream log_;
-  std::ofstream loop_log_;
+  Clock::time_point start_;
+  Clock::time_point last_checkpoint_;
+  EpisodeStatistics episodes_seen_;  // this rank's arenas
+  int64_t episodes_ = 0;             // of all ranks
+  std::optional<TrainingLog> log_;   // rank 0's
   LoopTimes loop_;
-  std::optional<std::chrono::steady_clock::time_point> last_exit_;  // when step() last returned
+  std::optional<Clock::time_point> last_exit_;  // when step() last returned
 };
 
 }  // namespace hideseek_hider

@@ -1,9 +1,9 @@
 // The replay side of a fuzz target (issue #49). A fuzz target is one file defining
 // LLVMFuzzerTestOneInput; built with clang's -fsanitize=fuzzer it is a libFuzzer binary (make fuzz),
-// built with -DHIDESEEK_FUZZ_REPLAY and this header included after it, a gtest that feeds it every
+// linked with this file (hideseek_fuzz_target in hideseek_fuzz.cmake), a gtest that feeds it every
 // file of its committed corpus (HIDESEEK_FUZZ_CORPUS) once, in name order: make test's deterministic
-// replay. A finding aborts the target, which fails the test.
-#pragma once
+// replay. A finding aborts the target, which fails the test. A source of the tests, not a header:
+// nothing of it is installed with the package's headers.
 
 #include <gtest/gtest.h>
 
