@@ -9,12 +9,14 @@
 
 #include "hideseek_game/game_selection.h"
 #include "hideseek_game/msg_conversion.h"
+#include "hideseek_game/package_paths.h"
 #include "hideseek_game/params.h"
 #include "hideseek_game/run_registry.h"
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/wall_throttle.h"
 #include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/code_version.h"
+#include "hideseek_hider/hider_defaults.h"
 
 namespace hideseek_hider {
 
@@ -36,10 +38,13 @@ torch::Device deviceFrom(const std::string& name, const std::string& param) {
 HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   using hideseek_game::readString;
   HiderNodeOptions o;
+  // Every default below comes from the defaults file (config/hider.yaml); a parameter overrides it.
+  const HiderDefaults d =
+      loadHiderDefaults(readString(pnh, "defaults", hideseek_game::configDirectory() + "/hider.yaml"));
   o.variant = hideseek_game::loadVariantParams(pnh);
   o.policy = readString(pnh, "policy", "random");
   // Parsed in every mode, so that a typo is refused even where the network is not used.
-  const std::string network = hideseek_game::readChoice(pnh, "network", "auto", {"auto", "ff", "gru"});
+  const std::string network = hideseek_game::readChoice(pnh, "network", d.network, {"auto", "ff", "gru"});
   if (network != "auto") o.network = parseNetwork(network, pnh.resolveName("network"));
   std::string mode =
       hideseek_game::readChoice(pnh, "mode", o.policy == "random" ? "random" : "policy", {"random", "policy", "train"});
@@ -57,17 +62,18 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
     }
   }
   o.mode = mode == "random" ? HiderMode::kRandom : mode == "policy" ? HiderMode::kPolicy : HiderMode::kTrain;
-  o.threads = hideseek_game::readInt(pnh, "threads", 2, 1, 64);
-  o.precision = parsePrecision(readString(pnh, "precision", "auto"), pnh.resolveName("precision"));
-  o.memory_format = parseMemoryFormat(readString(pnh, "memory_format", "auto"), pnh.resolveName("memory_format"));
-  o.memoryless = hideseek_game::readBool(pnh, "memoryless", false);
+  o.threads = hideseek_game::readInt(pnh, "threads", d.threads, 1, 64);
+  o.precision = parsePrecision(readString(pnh, "precision", d.precision), pnh.resolveName("precision"));
+  o.memory_format =
+      parseMemoryFormat(readString(pnh, "memory_format", d.memory_format), pnh.resolveName("memory_format"));
+  o.memoryless = hideseek_game::readBool(pnh, "memoryless", d.memoryless);
   if (o.memoryless && o.mode != HiderMode::kPolicy) {
     throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true, but the hider is in " + mode +
                                 " mode: memoryless applies to a GRU policy only");
   }
   if (o.mode == HiderMode::kRandom) return o;
-  o.device = deviceFrom(readString(pnh, "device", "cpu"), pnh.resolveName("device"));
-  o.greedy = hideseek_game::readBool(pnh, "greedy", true);
+  o.device = deviceFrom(readString(pnh, "device", d.device), pnh.resolveName("device"));
+  o.greedy = hideseek_game::readBool(pnh, "greedy", d.greedy);
   if (o.mode == HiderMode::kPolicy) return o;
   TrainingOptions& t = o.training;
   t.variant = o.variant.name;
@@ -76,8 +82,8 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   t.image_width = o.variant.game.camera.width;
   t.output_dir = hideseek_game::requireString(pnh, "output_dir", "a folder, in train mode");
   // A double: launch files write large step counts as 2e6.
-  t.total_steps = static_cast<int64_t>(hideseek_game::readDouble(pnh, "total_steps", 1e6, 1.0, 1e12));
-  t.checkpoint_interval_s = hideseek_game::readDouble(pnh, "checkpoint_interval", 300.0, 1e-3, 1e6);
+  t.total_steps = static_cast<int64_t>(hideseek_game::readDouble(pnh, "total_steps", d.total_steps, 1.0, 1e12));
+  t.checkpoint_interval_s = hideseek_game::readDouble(pnh, "checkpoint_interval", d.checkpoint_interval_s, 1e-3, 1e6);
   o.ppo = loadPpoOptions(hideseek_game::requireString(pnh, "ppo_config", "a file path, in train mode"));
   o.num_arenas =
       hideseek_game::readInt(pnh, "num_arenas", hideseek_game::kWatchingArenas, 1, hideseek_game::kMaxArenas);

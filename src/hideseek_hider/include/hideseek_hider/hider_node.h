@@ -24,14 +24,15 @@ enum class HiderMode { kRandom, kPolicy, kTrain };
 struct HiderNodeOptions {
   hideseek_game::VariantConfig variant;
   HiderMode mode = HiderMode::kRandom;
+  // The defaults of the parameters below are config/hider.yaml's (loadHiderDefaults), not these.
   std::string policy = "random";  // checkpoint path (policy mode)
-  int threads = 2;                // intra-op threads of the network
-  PrecisionRequest precision = PrecisionRequest::kAuto;
-  MemoryFormatRequest memory_format = MemoryFormatRequest::kAuto;
+  int threads{};                  // intra-op threads of the network
+  PrecisionRequest precision{};
+  MemoryFormatRequest memory_format{};
   std::optional<NetworkKind> network;  // empty: auto (the checkpoint's; a new training run: ff)
   torch::Device device = torch::kCPU;  // policy and train modes
-  bool greedy = true;                  // policy mode
-  bool memoryless = false;             // policy mode, GRU only: every step from the zero state (an ablation)
+  bool greedy{};                       // policy mode
+  bool memoryless{};                   // policy mode, GRU only: every step from the zero state (an ablation)
   // Train mode only.
   TrainingOptions training;  // output_dir, total_steps, checkpoint_interval_s, image size, variant
   PpoOptions ppo;
