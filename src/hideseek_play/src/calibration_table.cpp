@@ -3,7 +3,7 @@
 // living steps (config/paper_reference.yaml).
 // Usage: calibration_table [--config DIR] [--game GAME|FILE] [--csv FILE] [--episodes N] [--first-seed S]
 //                          [--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE]
-//                          [VARIANT...]
+//                          [VARIANT...]; --help lists the options.
 // --lap-radius: the ring the lap evader aims for (m from the centre; default 5.5, game v2's outer ring).
 // --game: the game: a name (v2, v1, v3; none: config/games.yaml's default) or a game file of one's own.
 // --episodes-csv writes one variant's episodes of one evader (seed,living_steps,outcome) as
@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_game/command_line.h"
 #include "hideseek_game/config_error.h"
 #include "hideseek_game/game_selection.h"
 #include "hideseek_game/package_paths.h"
@@ -34,11 +35,9 @@ namespace hh = hideseek_hider;
 
 constexpr double kTolerance = 0.20;  // the calibration target: the random hider within +-20 % of the paper
 
+// A bad command line or output file: the message, and the exit status 2.
 int usage(const std::string& why) {
-  std::cerr
-      << "calibration_table: " << why
-      << "\nusage: calibration_table [--config DIR] [--game GAME|FILE] [--csv FILE] [--episodes N] [--first-seed S] "
-         "[--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE] [VARIANT...]\n";
+  std::cerr << "calibration_table: " << why << " (--help lists the options)\n";
   return 2;
 }
 
@@ -52,40 +51,46 @@ struct Options {
   hh::EvaderOptions evader_options;
 };
 
-// The command line into `o`; an error names the bad option (the caller prints the usage).
-std::optional<std::string> parseArgs(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (a == "--config" && has_value) {
-      o.config_dir = argv[++i];
-    } else if (a == "--game" && has_value) {
-      o.game_file = argv[++i];
-    } else if (a == "--csv" && has_value) {
-      o.csv_path = argv[++i];
-    } else if (a == "--episodes-csv" && has_value) {
-      o.episodes_csv_path = argv[++i];
-    } else if (a == "--episodes" && has_value) {
-      o.episodes = std::atoi(argv[++i]);
-      if (o.episodes < 1) return "--episodes must be at least 1";
-    } else if (a == "--first-seed" && has_value) {
-      o.first_seed = std::atol(argv[++i]);
-      if (o.first_seed < 0) return "--first-seed must not be negative";
-    } else if (a == "--lap-radius" && has_value) {
-      o.evader_options.lap_radius = std::atof(argv[++i]);
-      if (!(o.evader_options.lap_radius > 0.0)) return "--lap-radius must be positive (m)";
-    } else if (a == "--evaders" && has_value) {
-      o.evaders.clear();
-      std::stringstream list(argv[++i]);
-      for (std::string name; std::getline(list, name, ',');) {
-        const auto kind = hh::evaderKind(name);
-        if (!kind) return "--evaders: unknown evader '" + name + "' (random, backpedal, flee, hide, lap)";
-        o.evaders.push_back(*kind);
-      }
-    } else if (!a.empty() && a[0] == '-') {
-      return "unknown option or missing value: " + a;
-    } else {
-      o.variants.push_back(a);
+// The command line into `o`: std::nullopt to go on, else the exit status (--help: 0; a bad command
+// line, named with the options: 2).
+std::optional<int> parseArgs(int argc, char** argv, Options& o) {
+  namespace po = boost::program_options;
+  hideseek_game::CommandLine line;
+  line.tool = "calibration_table";
+  line.about =
+      "calibration_table: every scripted hider (the random hider and the evaders) on every variant, beside the\n"
+      "paper's random-hider living steps\n"
+      "usage: calibration_table [--config DIR] [--game GAME|FILE] [--csv FILE] [--episodes N] [--first-seed S]\n"
+      "                         [--evaders random,backpedal,flee,hide,lap] [--lap-radius M] [--episodes-csv FILE] "
+      "[VARIANT...]";
+  std::string evaders;
+  line.options.add_options()                                                                                  //
+      ("config", po::value(&o.config_dir), "the config folder (default: hideseek_game's installed config/)")  //
+      ("game", po::value(&o.game_file),
+       "a game name (v2, v1, v3; none: config/games.yaml's default) or a game file")  //
+      ("csv", po::value(&o.csv_path), "also write the table as CSV")                  //
+      ("episodes-csv", po::value(&o.episodes_csv_path),
+       "write one variant's episodes of one evader (seed,living_steps,outcome) as evaluate.launch does")      //
+      ("episodes", po::value(&o.episodes)->default_value(100), "episodes per variant and evader")             //
+      ("first-seed", po::value(&o.first_seed)->default_value(0), "the first episode seed")                    //
+      ("evaders", po::value(&evaders), "comma-separated: random, backpedal, flee, hide, lap (default: all)")  //
+      ("lap-radius", po::value(&o.evader_options.lap_radius)->default_value(o.evader_options.lap_radius),
+       "the ring the lap evader aims for (m from the centre)")  //
+      ("variant", po::value(&o.variants), "variants (default: every config/variants file)");
+  line.positional.add("variant", -1);
+  int exit_code = 0;
+  if (!hideseek_game::parseCommandLine(argc, argv, line, &exit_code)) return exit_code;
+  const auto fail = usage;
+  if (o.episodes < 1) return fail("--episodes must be at least 1");
+  if (o.first_seed < 0) return fail("--first-seed must not be negative");
+  if (!(o.evader_options.lap_radius > 0.0)) return fail("--lap-radius must be positive (m)");
+  if (!evaders.empty()) {
+    o.evaders.clear();
+    std::stringstream list(evaders);
+    for (std::string name; std::getline(list, name, ',');) {
+      const auto kind = hh::evaderKind(name);
+      if (!kind) return fail("--evaders: unknown evader '" + name + "' (random, backpedal, flee, hide, lap)");
+      o.evaders.push_back(*kind);
     }
   }
   return std::nullopt;
@@ -168,7 +173,7 @@ int playTable(const Options& o) {
 
 int main(int argc, char** argv) {
   Options o;
-  if (const auto error = parseArgs(argc, argv, o)) return usage(*error);
+  if (const auto exit_code = parseArgs(argc, argv, o)) return *exit_code;
   try {
     resolveDefaults(o);
   } catch (const std::exception& e) {

@@ -1,6 +1,7 @@
 // The orbit table (issue #65): a hider circling in the open on a fixed pattern of its five actions
 // against each game's seeker, from start angles evenly round the circle (hideseek_play/orbit.h).
-// Usage: orbit_table [--config DIR] [--game GAME|FILE]... [--variant NAME] [--angles N] [--shapes 1,2,4]
+// Usage: orbit_table [--config DIR] [--game GAME|FILE]... [--variant NAME] [--angles N] [--shapes 1,2,4];
+// --help lists the options.
 // Several --game give one table with a block per game (default: v2 and v3).
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_game/command_line.h"
 #include "hideseek_game/config_error.h"
 #include "hideseek_game/game_selection.h"
 #include "hideseek_game/package_paths.h"
@@ -27,36 +29,37 @@ struct Options {
   std::vector<int> shapes{1, 2, 3, 4, 5};  // k = 5: radius 3.2 m, the widest that fits with the 3 m gap
 };
 
-int usage(const std::string& why) {
-  std::cerr << "orbit_table: " << why
-            << "\nusage: orbit_table [--config DIR] [--game GAME|FILE]... [--variant NAME] [--angles N] "
-               "[--shapes 1,2,4]\n";
-  return 2;
-}
-
-std::optional<std::string> parseArgs(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (a == "--config" && has_value) {
-      o.config_dir = argv[++i];
-    } else if (a == "--game" && has_value) {
-      o.games.push_back(argv[++i]);
-    } else if (a == "--variant" && has_value) {
-      o.variant = argv[++i];
-    } else if (a == "--angles" && has_value) {
-      o.angles = std::atoi(argv[++i]);
-      if (o.angles < 1 || o.angles > 3600) return "--angles must be in [1, 3600]";
-    } else if (a == "--shapes" && has_value) {
-      o.shapes.clear();
-      std::stringstream list(argv[++i]);
-      for (std::string k; std::getline(list, k, ',');) {
-        const int steps = std::atoi(k.c_str());
-        if (steps < 1 || steps > 50) return "--shapes: forward steps per turn must be in [1, 50], got '" + k + "'";
-        o.shapes.push_back(steps);
-      }
-    } else {
-      return "unknown argument '" + a + "'";
+// The command line into `o`: std::nullopt to go on, else the exit status (--help: 0; a bad command
+// line, named with the options: 2).
+std::optional<int> parseArgs(int argc, char** argv, Options& o) {
+  namespace po = boost::program_options;
+  hideseek_game::CommandLine line;
+  line.tool = "orbit_table";
+  line.about =
+      "orbit_table: a hider circling in the open (forward k steps, then one left turn) against each game's seeker,\n"
+      "from start angles evenly round the circle\n"
+      "usage: orbit_table [--config DIR] [--game GAME|FILE]... [--variant NAME] [--angles N] [--shapes 1,2,4]";
+  std::string shapes;
+  line.options.add_options()                                                                                  //
+      ("config", po::value(&o.config_dir), "the config folder (default: hideseek_game's installed config/)")  //
+      ("game", po::value(&o.games), "a game name or file; several give a block each (default: v2 and v3)")    //
+      ("variant", po::value(&o.variant)->default_value(o.variant), "the variant")                             //
+      ("angles", po::value(&o.angles)->default_value(o.angles), "start angles round the circle (1-3600)")     //
+      ("shapes", po::value(&shapes), "comma-separated forward steps per turn, each 1-50 (default: 1,2,3,4,5)");
+  int exit_code = 0;
+  if (!hideseek_game::parseCommandLine(argc, argv, line, &exit_code)) return exit_code;
+  auto fail = [](const std::string& why) {
+    std::cerr << "orbit_table: " << why << " (--help lists the options)\n";
+    return 2;
+  };
+  if (o.angles < 1 || o.angles > 3600) return fail("--angles must be in [1, 3600]");
+  if (!shapes.empty()) {
+    o.shapes.clear();
+    std::stringstream list(shapes);
+    for (std::string k; std::getline(list, k, ',');) {
+      const int steps = std::atoi(k.c_str());
+      if (steps < 1 || steps > 50) return fail("--shapes: forward steps per turn must be in [1, 50], got '" + k + "'");
+      o.shapes.push_back(steps);
     }
   }
   if (o.games.empty()) o.games = {"v2", "v3"};
@@ -67,7 +70,7 @@ std::optional<std::string> parseArgs(int argc, char** argv, Options& o) {
 
 int main(int argc, char** argv) {
   Options o;
-  if (const auto error = parseArgs(argc, argv, o)) return usage(*error);
+  if (const auto exit_code = parseArgs(argc, argv, o)) return *exit_code;
   try {
     if (o.config_dir.empty()) o.config_dir = hideseek_game::configDirectory();
     std::printf("Orbit evader (forward k steps, then one left turn) against the seeker, %s, %d start angles\n\n",

@@ -1,7 +1,10 @@
 // Plays seeded episodes of a variant in process (world and seeker cores, the hider's policy on
 // rendered images) and writes every step of them to a CSV: the trajectories and distances that
 // show a policy's strategy. The same cores, draws and step order as the ROS graph in lockstep.
-// usage: play_episodes [--game GAME] VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] [memory|memoryless]
+// usage: play_episodes [--game GAME] --variant VARIANT --policy POLICY --first-seed S --count N
+//                      --output OUTPUT.csv [--action greedy|sampled] [--memory memory|memoryless]
+//   or, as before, play_episodes [--game GAME] VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled]
+//   [memory|memoryless] (positional arguments, in that order); --help lists the options.
 //   GAME: v2, v1 or v3 (none: config/games.yaml's default), resolved as the nodes resolve ~game.
 //   memoryless (GRU policies only, an ablation): every step starts from the zero state, so the
 //   trained GRU acts on the current image alone.
@@ -20,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_game/command_line.h"
 #include "hideseek_game/game_loop.h"
 #include "hideseek_game/game_selection.h"
 #include "hideseek_game/package_paths.h"
@@ -126,33 +130,43 @@ void playFirstEpisodes(hw::GameLoop& game, hideseek_hider::HiderPolicy& hider,
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string game_name;  // no --game: the default game (config/games.yaml)
-  std::vector<std::string> args;
-  for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]) == "--game" && i + 1 < argc) {
-      game_name = argv[++i];
-    } else {
-      args.emplace_back(argv[i]);
-    }
+  namespace po = boost::program_options;
+  hideseek_game::CommandLine line;
+  line.tool = "play_episodes";
+  line.about =
+      "play_episodes: plays seeded episodes of a variant in process and writes every step to a CSV\n"
+      "usage: play_episodes [--game GAME] --variant VARIANT --policy POLICY --first-seed S --count N --output "
+      "OUTPUT.csv\n"
+      "       [--action greedy|sampled] [--memory memory|memoryless]\n"
+      "   or: play_episodes [--game GAME] VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] "
+      "[memory|memoryless]";
+  long first_seed = 0, count = 0;
+  std::string game_name, variant_name, policy_path, csv_path, mode, memory;
+  line.options.add_options()                                                                           //
+      ("game", po::value(&game_name), "v2, v1 or v3 (none: config/games.yaml's default)")              //
+      ("variant", po::value(&variant_name)->required(), "the variant (config/variants/VARIANT.yaml)")  //
+      ("policy", po::value(&policy_path)->required(),
+       "a checkpoint, random, or scripted/EVADER (backpedal, flee, hide, lap)")            //
+      ("first-seed", po::value(&first_seed)->required(), "the first episode seed (>= 0)")  //
+      ("count", po::value(&count)->required(),
+       "episodes, one arena each: seeds first-seed .. first-seed+count-1 (1-64)")                            //
+      ("output", po::value(&csv_path)->required(), "the CSV of every step (OUTPUT_layouts.yaml beside it)")  //
+      ("action", po::value(&mode)->default_value("greedy"), "greedy (the most likely action) or sampled")    //
+      ("memory", po::value(&memory)->default_value("memory"),
+       "memory, or memoryless (GRU policies: every step from the zero state, an ablation)");
+  for (const char* name : {"variant", "policy", "first-seed", "count", "output", "action", "memory"}) {
+    line.positional.add(name, 1);
   }
-  if (args.size() < 5 || args.size() > 7) {
-    std::fprintf(stderr,
-                 "usage: play_episodes [--game GAME] VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] "
-                 "[memory|memoryless]\n");
-    return 2;
-  }
-  const std::string mode = args.size() > 5 ? args[5] : "greedy", memory = args.size() > 6 ? args[6] : "memory";
+  int exit_code = 0;
+  if (!hideseek_game::parseCommandLine(argc, argv, line, &exit_code)) return exit_code;
   if ((mode != "greedy" && mode != "sampled") || (memory != "memory" && memory != "memoryless")) {
-    std::fprintf(
-        stderr,
-        "play_episodes: the 6th argument is greedy or sampled (got %s), the 7th memory or memoryless (got %s)\n",
-        mode.c_str(), memory.c_str());
+    std::fprintf(stderr,
+                 "play_episodes: --action is greedy or sampled (got %s), --memory memory or memoryless (got %s)\n",
+                 mode.c_str(), memory.c_str());
     return 2;
   }
-  const std::string variant_name = args[0], policy_path = args[1], csv_path = args[4];
-  const long first_seed = std::atol(args[2].c_str()), count = std::atol(args[3].c_str());
   if (first_seed < 0 || count < 1 || count > 64) {
-    std::fprintf(stderr, "play_episodes: FIRST_SEED must be >= 0 and COUNT in [1, 64]\n");
+    std::fprintf(stderr, "play_episodes: --first-seed must be >= 0 and --count in [1, 64]\n");
     return 2;
   }
   try {
