@@ -1,6 +1,7 @@
 // Analyses an existing recording (one made by analyze.launch, or any bag holding world/steps),
 // without a ROS master.
-// usage: analyze_bag [--game GAME] VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]
+// usage: analyze_bag [--game GAME] VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR], or the same as named
+//   options (--help lists them).
 //   GAME: the game the bag was played in (v2, v1, v3; none: config/games.yaml's default).
 //   HIDESEEK_PIXEL_TOLERANCE (GRU policies): see analyze.launch's pixel_tolerance.
 #include <cstdio>
@@ -10,29 +11,38 @@
 #include <string>
 
 #include "hideseek_analysis/analysis_job.h"
+#include "hideseek_game/command_line.h"
 #include "hideseek_game/game_selection.h"
 #include "hideseek_game/package_paths.h"
 
 int main(int argc, char** argv) {
-  std::string game;  // no --game: the default game (config/games.yaml)
-  if (argc > 2 && std::string(argv[1]) == "--game") {
-    game = argv[2];
-    argv += 2;
-    argc -= 2;
-  }
-  if (argc < 5 || argc > 6) {
-    std::fprintf(stderr,
-                 "usage: analyze_bag [--game GAME] VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]\n"
-                 "  writes the arrays to OUTPUT_DIR and the report to REPORT_DIR (default OUTPUT_DIR/report)\n");
-    return 2;
-  }
+  namespace po = boost::program_options;
+  std::string game, variant, policy, bag, output_dir, report_dir;  // no --game: config/games.yaml's default
+  hideseek_game::CommandLine line;
+  line.tool = "analyze_bag";
+  line.about =
+      "analyze_bag: analyses a recording (analyze.launch's, or any bag holding world/steps) without a ROS master\n"
+      "usage: analyze_bag [--game GAME] --variant VARIANT --policy POLICY --bag BAG --output OUTPUT_DIR "
+      "[--report REPORT_DIR]\n"
+      "   or: analyze_bag [--game GAME] VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]";
+  line.options.add_options()                                                                                          //
+      ("game", po::value(&game), "the game the bag was played in: v2, v1 or v3 (none: config/games.yaml's default)")  //
+      ("variant", po::value(&variant)->required(), "the variant")                                                     //
+      ("policy", po::value(&policy)->required(),
+       "the policy the bag recorded (a checkpoint, random, scripted/EVADER)")  //
+      ("bag", po::value(&bag)->required(), "the recording")                    //
+      ("output", po::value(&output_dir)->required(), "where the arrays go")    //
+      ("report", po::value(&report_dir), "where the report goes (default: OUTPUT_DIR/report)");
+  line.positional.add("variant", 1).add("policy", 1).add("bag", 1).add("output", 1).add("report", 1);
+  int exit_code = 0;
+  if (!hideseek_game::parseCommandLine(argc, argv, line, &exit_code)) return exit_code;
   try {
     hideseek_analysis::AnalysisJob job;
-    job.variant = hideseek_game::selectGame(hideseek_game::configDirectory(), game, argv[1]).config;
-    job.policy = argv[2];
-    job.bag = argv[3];
-    job.inputs_dir = argv[4];
-    job.report_dir = argc > 5 ? argv[5] : job.inputs_dir + "/report";
+    job.variant = hideseek_game::selectGame(hideseek_game::configDirectory(), game, variant).config;
+    job.policy = policy;
+    job.bag = bag;
+    job.inputs_dir = output_dir;
+    job.report_dir = report_dir.empty() ? job.inputs_dir + "/report" : report_dir;
     job.report_script = hideseek_game::packageExecutable("hideseek_analysis", "report.py");
     // GRU policies: a bag recorded with another Mesa may differ from its re-rendering by a level or two.
     if (const char* tolerance = std::getenv("HIDESEEK_PIXEL_TOLERANCE")) {

@@ -4,48 +4,47 @@
 //   (no --game: the default game, config/games.yaml's; `resolve VARIANT game` prints its name)
 //   prints game, variant, game_file, variant_file, map_file and shipped_policy ("" where none is
 //   shipped) as YAML; with KEY, that value alone. The registry defaults to hideseek_world's
-//   policies/policies.yaml.
+//   policies/policies.yaml. --help lists the options.
 #include <cstdio>
 #include <exception>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "hideseek_game/command_line.h"
 #include "hideseek_game/game_selection.h"
 #include "hideseek_game/package_paths.h"
 
 namespace {
 
 int usage(const std::string& why) {
-  std::fprintf(stderr,
-               "resolve: %s\nusage: resolve [--game GAME] [--network ff|gru] [--registry FILE] VARIANT "
-               "[game|variant|game_file|variant_file|map_file|shipped_policy]\n",
-               why.c_str());
+  std::fprintf(stderr, "resolve: %s (--help lists the options)\n", why.c_str());
   return 2;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string game, network = "ff", registry;  // no --game: config/games.yaml's default
-  std::vector<std::string> args;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (a == "--game" && has_value) {
-      game = argv[++i];
-    } else if (a == "--network" && has_value) {
-      network = argv[++i];
-    } else if (a == "--registry" && has_value) {
-      registry = argv[++i];
-    } else if (!a.empty() && a[0] == '-') {
-      return usage("unknown option or missing value: " + a);
-    } else {
-      args.push_back(a);
-    }
-  }
-  if (args.empty() || args.size() > 2) return usage("give one variant, and at most one key");
+  namespace po = boost::program_options;
+  std::string game, network, registry, variant, key;  // no --game: config/games.yaml's default
+  hideseek_game::CommandLine line;
+  line.tool = "resolve";
+  line.about =
+      "resolve: what a game name and a variant resolve to, as every node resolves ~game and ~variant\n"
+      "usage: resolve [--game GAME] [--network ff|gru] [--registry FILE] VARIANT "
+      "[game|variant|game_file|variant_file|map_file|shipped_policy]";
+  line.options.add_options()                                                                                     //
+      ("game", po::value(&game), "v2, v1 or v3 (none: config/games.yaml's default)")                             //
+      ("network", po::value(&network)->default_value("ff"), "the shipped policy's network: ff or gru")           //
+      ("registry", po::value(&registry), "the run registry (default: hideseek_world's policies/policies.yaml)")  //
+      ("variant", po::value(&variant)->required(), "the variant")                                                //
+      ("key", po::value(&key), "print this value alone (default: all of them, as YAML)");
+  line.positional.add("variant", 1).add("key", 1);
+  int exit_code = 0;
+  if (!hideseek_game::parseCommandLine(argc, argv, line, &exit_code)) return exit_code;
   if (network != "ff" && network != "gru") return usage("--network is ff or gru, got '" + network + "'");
+  std::vector<std::string> args{variant};
+  if (!key.empty()) args.push_back(key);
   try {
     const auto s = hideseek_game::selectGame(hideseek_game::configDirectory(), game, args[0]);
     if (registry.empty()) registry = hideseek_game::packageDirectory("hideseek_world") + "/policies/policies.yaml";

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hideseek_game/command_line.h"
 #include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_net.h"
 
@@ -28,31 +29,42 @@ std::string shape(const torch::Tensor& t) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 4 && argc != 5 && argc != 7) {
-    std::fprintf(stderr, "usage: import_policy TORCHSCRIPT.pt OUTPUT.pt VARIANT [STEPS] [HEIGHT WIDTH]\n");
-    return 2;
-  }
+  namespace po = boost::program_options;
+  std::string torchscript, output, variant_name;
+  int64_t steps = 0;
+  int height = 84, width = 84;
+  hideseek_game::CommandLine line;
+  line.tool = "import_policy";
+  line.about =
+      "import_policy: converts a feed-forward policy trained in Python (TorchScript with the hider's layers and\n"
+      "parameter names) into the project's checkpoint format\n"
+      "usage: import_policy TORCHSCRIPT.pt OUTPUT.pt VARIANT [STEPS] [HEIGHT WIDTH], or the same as named options";
+  line.options.add_options()                                                                             //
+      ("torchscript", po::value(&torchscript)->required(), "the TorchScript file")                       //
+      ("output", po::value(&output)->required(), "the checkpoint to write")                              //
+      ("variant", po::value(&variant_name)->required(), "the variant it was trained on (recorded)")      //
+      ("steps", po::value(&steps)->default_value(0), "environment steps it was trained for (recorded)")  //
+      ("height", po::value(&height)->default_value(84), "image height (at least 36)")                    //
+      ("width", po::value(&width)->default_value(84), "image width (at least 36)");
+  line.positional.add("torchscript", 1)
+      .add("output", 1)
+      .add("variant", 1)
+      .add("steps", 1)
+      .add("height", 1)
+      .add("width", 1);
+  int exit_code = 0;
+  if (!hideseek_game::parseCommandLine(argc, argv, line, &exit_code)) return exit_code;
   try {
-    const auto number = [](const char* text, const char* what) {
-      char* end = nullptr;
-      const long long v = std::strtoll(text, &end, 10);
-      if (end == text || *end != '\0')
-        throw std::invalid_argument(std::string(what) + " '" + text + "' is not a number");
-      return static_cast<int64_t>(v);
-    };
-    const int64_t steps = argc > 4 ? number(argv[4], "STEPS") : 0;
-    const int height = argc > 6 ? static_cast<int>(number(argv[5], "HEIGHT")) : 84;
-    const int width = argc > 6 ? static_cast<int>(number(argv[6], "WIDTH")) : 84;
-    const std::string variant = argv[3];
+    const std::string& variant = variant_name;
     if (variant.empty() || variant.find_first_of("/ ") != std::string::npos)
       throw std::invalid_argument("VARIANT '" + variant + "' is not a variant name (config/variants/NAME.yaml)");
     if (steps < 0 || height < 36 || width < 36)
       throw std::invalid_argument("STEPS must be >= 0, HEIGHT and WIDTH >= 36");
     torch::jit::Module source;
     try {
-      source = torch::jit::load(argv[1], torch::kCPU);
+      source = torch::jit::load(torchscript, torch::kCPU);
     } catch (const c10::Error& e) {
-      throw std::runtime_error(std::string(argv[1]) +
+      throw std::runtime_error(torchscript +
                                " is not a TorchScript file (torch.jit.save): " + e.what_without_backtrace());
     }
     std::map<std::string, torch::Tensor> given;
@@ -61,17 +73,17 @@ int main(int argc, char** argv) {
     torch::NoGradGuard no_grad;
     for (auto& p : net->named_parameters(true)) {
       const auto it = given.find(p.key());
-      if (it == given.end()) throw std::runtime_error(std::string(argv[1]) + " has no parameter '" + p.key() + "'");
+      if (it == given.end()) throw std::runtime_error(torchscript + " has no parameter '" + p.key() + "'");
       if (!it->second.sizes().equals(p.value().sizes())) {
-        throw std::runtime_error(std::string(argv[1]) + ": parameter '" + p.key() + "' has shape " + shape(it->second) +
+        throw std::runtime_error(torchscript + ": parameter '" + p.key() + "' has shape " + shape(it->second) +
                                  ", the hider's network needs " + shape(p.value()));
       }
       p.value().copy_(it->second.to(torch::kFloat32));
       given.erase(it);
     }
     if (!given.empty()) {
-      throw std::runtime_error(std::string(argv[1]) + " has a parameter the hider's network lacks: '" +
-                               given.begin()->first + "'");
+      throw std::runtime_error(torchscript + " has a parameter the hider's network lacks: '" + given.begin()->first +
+                               "'");
     }
     hideseek_hider::CheckpointInfo info;
     info.architecture = hideseek_hider::kArchitecture;
@@ -79,9 +91,9 @@ int main(int argc, char** argv) {
     info.image_width = width;
     info.variant = variant;
     info.steps = steps;
-    hideseek_hider::saveCheckpoint(argv[2], net, info);
-    std::printf("%s: %s policy imported from %s, %dx%d images, %ld training steps\n", argv[2], argv[3], argv[1], height,
-                width, static_cast<long>(steps));
+    hideseek_hider::saveCheckpoint(output, net, info);
+    std::printf("%s: %s policy imported from %s, %dx%d images, %ld training steps\n", output.c_str(), variant.c_str(),
+                torchscript.c_str(), height, width, static_cast<long>(steps));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "import_policy: %s\n", e.what());
     return 1;
