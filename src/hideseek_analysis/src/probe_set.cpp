@@ -23,8 +23,9 @@
 //       id, its split and both poses) and OUT_DIR/composition.md. The same arguments give the
 //       same files on any machine.
 //   probe_set features PROBE_DIR OUT.npy (--policy CHECKPOINT | --random-init SEED [--network ff|gru])
-//       writes the 512 mid-level features ([N, 512] float32) of every image of the set through a
-//       policy's network, or through a network initialised with torch seed SEED.
+//       (`probe_set make --help`, `probe_set features --help` list the options) writes the 512 mid-level features ([N,
+//       512] float32) of every image of the set through a policy's network, or through a network initialised with torch
+//       seed SEED.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -34,6 +35,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -43,6 +45,7 @@
 
 #include "hideseek_analysis/analysis_inputs.h"
 #include "hideseek_game/arena.h"
+#include "hideseek_game/command_line.h"
 #include "hideseek_game/game_options.h"
 #include "hideseek_game/game_selection.h"
 #include "hideseek_game/map.h"
@@ -91,17 +94,10 @@ int usage(const std::string& why) {
   return 2;
 }
 
-long parseLong(const std::string& flag, const std::string& text, long lo, long hi) {
-  size_t used = 0;
-  long v = 0;
-  try {
-    v = std::stol(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || v < lo || v > hi) {
+long inRange(const std::string& flag, long v, long lo, long hi) {
+  if (v < lo || v > hi) {
     throw std::invalid_argument(flag + " must be a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                                "], got '" + text + "'");
+                                "], got " + std::to_string(v));
   }
   return v;
 }
@@ -325,66 +321,76 @@ int features(const std::string& dir, const std::string& out, const std::string& 
   return 0;
 }
 
+// A subcommand's command line (argv[0] is the subcommand): std::nullopt to go on, else the exit status.
+std::optional<int> parseSubcommand(int argc, char** argv, hw::CommandLine& line) {
+  int exit_code = 0;
+  if (!hw::parseCommandLine(argc, argv, line, &exit_code)) return exit_code;
+  return std::nullopt;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 3) return usage("name a command: make or features");
+  namespace po = boost::program_options;
+  if (argc < 2) return usage("name a command: make or features (probe_set COMMAND --help)");
   const std::string command = argv[1];
   try {
     if (command == "make") {
       MakeOptions o;
-      o.out_dir = argv[2];
-      for (int i = 3; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (i + 1 >= argc) return usage("option " + a + " needs a value");
-        const std::string v = argv[++i];
-        if (a == "--config") {
-          o.config_dir = v;
-        } else if (a == "--game") {
-          o.game_file = v;
-        } else if (a == "--first-seed") {
-          o.first_seed = parseLong(a, v, 0, (1L << 31) - 100000);
-        } else if (a == "--episodes") {
-          o.episodes = static_cast<int>(parseLong(a, v, 1, 1000));
-        } else if (a == "--every") {
-          o.every = static_cast<int>(parseLong(a, v, 1, 1000));
-        } else if (a == "--per-cell") {
-          o.per_cell = static_cast<int>(parseLong(a, v, 1, 100000));
-        } else if (a == "--seed") {
-          o.seed = static_cast<uint32_t>(parseLong(a, v, 0, 1L << 31));
-        } else if (a == "--test-fraction") {
-          o.test_fraction = std::atof(v.c_str());
-          if (!(o.test_fraction > 0.0 && o.test_fraction < 1.0)) {
-            return usage("--test-fraction must be in (0, 1), got '" + v + "'");
-          }
-        } else {
-          return usage("unknown option " + a);
-        }
+      long seed = o.seed;
+      hw::CommandLine line;
+      line.tool = "probe_set make";
+      line.about =
+          "probe_set make: plays every variant with each scripted hider and writes the shared probe set\n"
+          "usage: probe_set make OUT_DIR [--config DIR] [--game GAME|FILE] [--first-seed N] [--episodes N] [--every "
+          "N]\n"
+          "                      [--per-cell N] [--test-fraction F] [--seed N]";
+      line.options.add_options()                                                                                  //
+          ("out-dir", po::value(&o.out_dir)->required(), "where images.npy, labels.csv and composition.md go")    //
+          ("config", po::value(&o.config_dir), "the config folder (default: hideseek_game's installed config/)")  //
+          ("game", po::value(&o.game_file), "a game name or file (none: config/games.yaml's default)")            //
+          ("first-seed", po::value(&o.first_seed)->default_value(o.first_seed),
+           "the first variant's first seed; the k-th variant's start 1000 k later")                                   //
+          ("episodes", po::value(&o.episodes)->default_value(o.episodes), "episodes per variant and hider")           //
+          ("every", po::value(&o.every)->default_value(o.every), "keep every N-th step")                              //
+          ("per-cell", po::value(&o.per_cell)->default_value(o.per_cell), "steps drawn per (S, H) cell and variant")  //
+          ("test-fraction", po::value(&o.test_fraction)->default_value(o.test_fraction, "0.3"),
+           "the share of episodes in the test split, in (0, 1)")  //
+          ("seed", po::value(&seed)->default_value(seed), "the draw's seed");
+      line.positional.add("out-dir", 1);
+      if (const auto exit_code = parseSubcommand(argc - 1, argv + 1, line)) return *exit_code;
+      inRange("--first-seed", o.first_seed, 0, (1L << 31) - 100000);
+      inRange("--episodes", o.episodes, 1, 1000);
+      inRange("--every", o.every, 1, 1000);
+      inRange("--per-cell", o.per_cell, 1, 100000);
+      o.seed = static_cast<uint32_t>(inRange("--seed", seed, 0, 1L << 31));
+      if (!(o.test_fraction > 0.0 && o.test_fraction < 1.0)) {
+        return usage("--test-fraction must be in (0, 1), got " + std::to_string(o.test_fraction));
       }
       if (o.config_dir.empty()) o.config_dir = hw::configDirectory();
       o.game_file = hw::gameArgument(o.config_dir, o.game_file);
       return make(o);
     }
     if (command == "features") {
-      if (argc < 4) return usage("features needs PROBE_DIR and OUT.npy");
-      std::string policy, network = "ff";
+      std::string probe_dir, out, policy, network;
       long seed = -1;
-      for (int i = 4; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (i + 1 >= argc) return usage("option " + a + " needs a value");
-        const std::string v = argv[++i];
-        if (a == "--policy") {
-          policy = v;
-        } else if (a == "--random-init") {
-          seed = parseLong(a, v, 0, 1L << 31);
-        } else if (a == "--network") {
-          network = v;
-        } else {
-          return usage("unknown option " + a);
-        }
-      }
+      hw::CommandLine line;
+      line.tool = "probe_set features";
+      line.about =
+          "probe_set features: the 512 mid-level features of every image of the set through a policy's network,\n"
+          "or through a network initialised with torch seed SEED\n"
+          "usage: probe_set features PROBE_DIR OUT.npy (--policy CHECKPOINT | --random-init SEED [--network ff|gru])";
+      line.options.add_options()                                                                        //
+          ("probe-dir", po::value(&probe_dir)->required(), "the probe set (probe_set make's OUT_DIR)")  //
+          ("out", po::value(&out)->required(), "the features, [N, 512] float32 (.npy)")                 //
+          ("policy", po::value(&policy), "a checkpoint")                                                //
+          ("random-init", po::value(&seed), "a network initialised with this torch seed instead")       //
+          ("network", po::value(&network)->default_value("ff"), "with --random-init: ff or gru");
+      line.positional.add("probe-dir", 1).add("out", 1);
+      if (const auto exit_code = parseSubcommand(argc - 1, argv + 1, line)) return *exit_code;
+      if (seed != -1) inRange("--random-init", seed, 0, 1L << 31);
       if (policy.empty() == (seed < 0)) return usage("features needs exactly one of --policy and --random-init");
-      return features(argv[2], argv[3], policy, seed, network);
+      return features(probe_dir, out, policy, seed, network);
     }
     return usage("unknown command '" + command + "'");
   } catch (const std::invalid_argument& e) {  // a malformed option value
