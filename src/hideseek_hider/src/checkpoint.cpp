@@ -1,3 +1,6 @@
+// Every read and write of a checkpoint (checkpoint.h): the network with its description, and for
+// training the optimiser and the random generator; written atomically, read only after the zip
+// layout is checked.
 #include "hideseek_hider/checkpoint.h"
 
 #include <ATen/CPUGeneratorImpl.h>
