@@ -85,7 +85,11 @@ def test_features_of_a_random_init_network_one_row_per_image(made, tmp_path):
 
 def test_bad_input_is_refused_by_name(made, tmp_path):
     r = subprocess.run([BIN, "make", str(tmp_path / "x"), "--per-cell", "zero"], capture_output=True, text=True)
-    assert r.returncode == 2 and "--per-cell must be a whole number" in r.stderr
+    assert r.returncode == 2 and "('zero') for option '--per-cell' is invalid" in r.stderr
+    r = subprocess.run([BIN, "make", str(tmp_path / "x"), "--per-cell", "0"], capture_output=True, text=True)
+    assert r.returncode == 2 and "--per-cell must be a whole number in [1, 100000], got 0" in r.stderr
+    r = subprocess.run([BIN, "make", str(tmp_path / "x"), "--per-row", "5"], capture_output=True, text=True)
+    assert r.returncode == 2 and "unrecognised option '--per-row'" in r.stderr and not (tmp_path / "x").exists()
     bad = tmp_path / "bad"
     bad.mkdir()
     (bad / "images.npy").write_bytes(b"\x93NUMPY\x01\x00" + b"\x10\x00" + b"{'descr': '<f4'}".ljust(16))
