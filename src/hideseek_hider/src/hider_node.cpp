@@ -157,11 +157,12 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
     policy_ = std::make_unique<ScriptedHiderPolicy>(*evader, o.variant);
     ROS_INFO("hider: scripted evader %s (a baseline that reads the true state, not the image)", o.policy.c_str());
   } else if (o.mode == HiderMode::kPolicy) {
-    const PrecisionChoice precision = choosePrecision(o.precision, o.device, detectCpuBf16());
+    const CpuBf16Support cpu = detectCpuBf16();
+    const PrecisionChoice precision = choosePrecision(o.precision, o.device, cpu);
     CheckpointInfo info;
     HiderNet net = loadCheckpoint(o.policy, image_height_, image_width_, &info, o.network);
     net->setPrecision(precision.precision);
-    const MemoryFormatChoice layout = chooseMemoryFormat(o.memory_format, precision.precision, detectCpuBf16());
+    const MemoryFormatChoice layout = chooseMemoryFormat(o.memory_format, precision.precision, cpu);
     net->setMemoryFormat(layout.format);
     auto policy = std::make_unique<NetworkHiderPolicy>(net, o.device, o.greedy);
     try {
@@ -188,10 +189,11 @@ HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
 }
 
 void HiderNode::startTraining(const HiderNodeOptions& options) {
-  const PrecisionChoice precision = choosePrecision(options.precision, options.device, detectCpuBf16());
+  const CpuBf16Support cpu = detectCpuBf16();
+  const PrecisionChoice precision = choosePrecision(options.precision, options.device, cpu);
   TrainingOptions o = options.training;
   o.precision = precision.precision;
-  const MemoryFormatChoice layout = chooseMemoryFormat(options.memory_format, o.precision, detectCpuBf16());
+  const MemoryFormatChoice layout = chooseMemoryFormat(options.memory_format, o.precision, cpu);
   o.memory_format = layout.format;
   // auto: a run resumed from a checkpoint keeps its network; a new run is feed-forward.
   o.network = options.network.value_or(NetworkKind::kFeedForward);

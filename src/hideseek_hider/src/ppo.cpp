@@ -257,19 +257,16 @@ MinibatchSource::MinibatchSource(const PpoTrainer& trainer, const Gae& gae, cons
 }
 
 Minibatch MinibatchSource::take(HiderNetImpl& net, const torch::Tensor& idx) const {
-  Minibatch mb;
   if (!recurrent_) {
     const HiderOutput out = net.forward(observations_.index_select(0, idx));
     auto pick = [&](const torch::Tensor& x) { return x.index_select(0, idx); };
-    mb = {out.logits, out.value, pick(actions_), pick(log_probs_), pick(values_), pick(advantages_), pick(returns_)};
-    return mb;
+    return {out.logits, out.value, pick(actions_), pick(log_probs_), pick(values_), pick(advantages_), pick(returns_)};
   }
   const HiderOutput out = net.forwardSequence(observations_.index_select(1, idx), first_hidden_.index_select(0, idx),
                                               starts_.index_select(1, idx));
   auto pick = [&](const torch::Tensor& x) { return x.index_select(1, idx).flatten(0, 1); };
-  mb = {out.logits.flatten(0, 1), out.value.flatten(0, 1), pick(actions_), pick(log_probs_), pick(values_),
-        pick(advantages_),        pick(returns_)};
-  return mb;
+  return {out.logits.flatten(0, 1), out.value.flatten(0, 1), pick(actions_), pick(log_probs_), pick(values_),
+          pick(advantages_),        pick(returns_)};
 }
 
 }  // namespace

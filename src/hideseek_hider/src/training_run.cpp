@@ -21,6 +21,8 @@ namespace hideseek_hider {
 
 namespace {
 
+double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
 bool exists(const std::string& path) {
   struct stat s;
   return stat(path.c_str(), &s) == 0;
@@ -237,7 +239,6 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
 
 std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<float>& rewards,
                                        const std::vector<uint8_t>& dones, std::optional<UpdateReport>* report) {
-  auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
   const Clock::time_point enter = Clock::now();
   if (last_exit_) loop_.wait_s += seconds(enter - *last_exit_);
   Clock::time_point mark = enter;  // the step's time is accounted for up to here
@@ -267,7 +268,6 @@ std::vector<uint8_t> TrainingRun::step(const uint8_t* images, const std::vector<
 }
 
 UpdateReport TrainingRun::update(const torch::Tensor& next_observations, Clock::time_point& mark) {
-  auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
   UpdateReport rep;
   const Clock::time_point update_start = Clock::now();
   loop_.other_s += seconds(update_start - mark);
