@@ -39,19 +39,15 @@ std::string errorOf(const std::string& path) {
 
 }  // namespace
 
-// The node starts from the shipped file: it must load, with the values the docs and launch files
-// describe.
-TEST(HiderDefaults, TheShippedFileLoads) {
-  const HiderDefaults d = loadHiderDefaults(shipped());
-  EXPECT_EQ(d.threads, 2);
-  EXPECT_EQ(d.precision, "auto");
-  EXPECT_EQ(d.memory_format, "auto");
-  EXPECT_EQ(d.device, "cpu");
-  EXPECT_EQ(d.network, "auto");
-  EXPECT_TRUE(d.greedy);
-  EXPECT_FALSE(d.memoryless);
-  EXPECT_DOUBLE_EQ(d.total_steps, 1e6);
-  EXPECT_DOUBLE_EQ(d.checkpoint_interval_s, 300.0);
+// The node starts from the shipped file, so it must load; and what it gives is the file's, not
+// values of the code's: a file that changes two keys changes what is read.
+TEST(HiderDefaults, TheShippedFileLoadsAndItsValuesAreWhatIsRead) {
+  const HiderDefaults shipped_defaults = loadHiderDefaults(shipped());
+  const HiderDefaults changed = loadHiderDefaults(shippedWith("threads", "threads: 7"));
+  EXPECT_EQ(changed.threads, 7);
+  EXPECT_EQ(loadHiderDefaults(shippedWith("precision", "precision: bf16")).precision, "bf16");
+  EXPECT_EQ(changed.precision, shipped_defaults.precision);  // the other keys as shipped
+  EXPECT_EQ(changed.checkpoint_interval_s, shipped_defaults.checkpoint_interval_s);
 }
 
 // A deleted key, a misspelt one and a bad value each stop the node with the file and the field.
