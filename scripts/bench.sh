@@ -51,6 +51,7 @@ gru=$(echo "$gru_out" | field '_samples_per_s$')
 echo "train_gru_samples_per_s $gru"
 echo "train_gru_ratio $(ratio "$gru" "$floor")"
 echo "train_gru_gflops $(echo "$gru_out" | field '^gflops')"
+# The NCHW lines are there for one release (#64): until a CPU with native bf16 has measured them too.
 echo "# memory format: the floors again with the images copied into NCHW order (memory_format nchw), against"
 echo "# the channels-last layout the hider trains in (the '# memory format' line above); their ratios"
 floor_nchw=$(floor_bench auto ff nchw | field '_samples_per_s$')

@@ -11,6 +11,7 @@ PACKAGES=(
   python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-nav-msgs python3-visualization-msgs
   python3-diagnostic-msgs python3-tf2-msgs python3-rosgraph-msgs
   libosmesa6-dev libeigen3-dev libyaml-cpp-dev
+  libboost-program-options-dev  # the C++ tools' command lines (hideseek_game_cli)
   libtorch-dev libopenblas0-pthread
   zlib1g-dev  # the checkpoint check inflates TorchScript entries (issue #49)
   libroslz4-dev libbz2-dev  # the bag check decompresses chunks itself (issue #49)
