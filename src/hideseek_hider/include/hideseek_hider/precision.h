@@ -82,13 +82,12 @@ enum class MemoryFormat { kChannelsLast, kNchw };
 enum class MemoryFormatRequest { kAuto, kChannelsLast, kNchw };
 // Parses "auto", "channels_last" or "nchw"; throws std::invalid_argument naming `param` and the choices.
 MemoryFormatRequest parseMemoryFormat(const std::string& text, const std::string& param);
-const char* memoryFormatName(MemoryFormat format);
 struct MemoryFormatChoice {
   MemoryFormat format = MemoryFormat::kChannelsLast;
   std::string reason;
 };
 // The one rule for the layout, with the measurements behind it (docs/performance.md, "Memory
-// format"): `auto` is channels-last in every precision and on every CPU measured so far. Through
+// format"): `auto` is channels-last in every precision and on every CPU. Through
 // the project's trainer on a 2-core Intel Xeon without native bf16, NCHW made the fp32 floor
 // 1.09x slower (whole-process wall time, train_floor_bench, median of 5 pairs); a standalone
 // measurement of this network on an Intel CPU with AMX-BF16 gave channels-last 1.38-1.43x the
