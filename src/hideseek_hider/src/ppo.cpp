@@ -95,7 +95,7 @@ torch::Tensor PpoTrainer::act(const torch::Tensor& observations) {
     out = net_->forward(obs);
   }
   const torch::Tensor log_probs = torch::log_softmax(out.logits, 1);
-  const torch::Tensor actions = torch::multinomial(log_probs.exp(), 1).squeeze(1);
+  const torch::Tensor actions = torch::multinomial(log_probs.exp(), 1, false, generator_).squeeze(1);
   observations_[step_].copy_(obs);
   actions_[step_].copy_(actions);
   log_probs_[step_].copy_(log_probs.gather(1, actions.unsqueeze(1)).squeeze(1));
@@ -181,7 +181,7 @@ UpdateStats PpoTrainer::update(const torch::Tensor& next_observations) {
   int count = 0;
   for (int epoch = 0; epoch < options_.epochs; ++epoch) {
     const torch::Tensor order =
-        torch::randperm(source.units(), torch::TensorOptions().device(device_).dtype(torch::kInt64));
+        torch::randperm(source.units(), generator_, torch::TensorOptions().device(device_).dtype(torch::kInt64));
     for (int64_t start = 0; start < source.units(); start += per_minibatch) {
       const torch::Tensor idx = order.slice(0, start, start + per_minibatch);
       last_minibatches_.push_back(idx);

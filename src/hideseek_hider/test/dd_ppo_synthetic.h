@@ -7,6 +7,7 @@
 #include <ATen/CPUGeneratorImpl.h>
 #include <torch/torch.h>
 
+#include <mutex>
 #include <vector>
 
 #include "hideseek_hider/collective.h"
@@ -37,9 +38,17 @@ struct UpdateRecord {
 template <class AfterUpdate>
 torch::Tensor trainSynthetic(const SyntheticSetup& s, Collective* collective, int rank, int updates,
                              std::vector<UpdateRecord>* records, torch::Tensor* initial, AfterUpdate after_update) {
-  torch::manual_seed(100 + rank);  // different initial weights, so that the broadcast matters
+  // Different initial weights, so that the broadcast matters; drawn from libtorch's global
+  // generator, which threads share, so one rank at a time.
+  static std::mutex global_generator;
+  std::unique_lock<std::mutex> drawing(global_generator);
+  torch::manual_seed(100 + rank);
   PpoTrainer trainer(HiderNet(s.image, s.image), s.ppo, s.arenas, torch::kCPU);
+  drawing.unlock();
   trainer.setCollective(collective);
+  // The ranks may be threads of one process: each samples from its own generator, so that what it
+  // plays does not depend on how the threads interleave.
+  trainer.setGenerator(at::make_generator<at::CPUGeneratorImpl>(31 + rank));
   if (collective) broadcastModule(*collective, *trainer.net());
   auto flat = [&] {
     std::vector<torch::Tensor> parts;

@@ -105,9 +105,16 @@ TEST(DdPpo, TwoRanksKeepIdenticalWeightsEqualToOneProcessUpdatingOnTheUnionOfThe
   std::vector<torch::Tensor> parts;
   for (const torch::Tensor& p : net->parameters()) parts.push_back(p.detach().reshape({-1}));
   const torch::Tensor single = torch::cat(parts);
-  EXPECT_TRUE(torch::allclose(w0, single, 1e-4, 1e-5))
-      << "the ranks' weights differ from one process on the union by up to " << (w0 - single).abs().max().item<double>()
-      << " (they moved by " << (w0 - initial[0]).abs().max().item<double>() << ")";
+  // Compared as the norm of the difference over the norm of the move, not element by element: the
+  // union's batches have other shapes than the ranks', so their sums round differently, and now
+  // and then that can flip a leaky ReLU's kink for one sample, which Adam, dividing each gradient by
+  // its own size, turns into a whole step for a few weights. Over 120 data seeds here the ratio was
+  // about 5e-7 (rounding) and at most 4e-3 (such a flip); normalising advantages per rank instead
+  // of over the union, a real error, gives 0.18 to 0.29.
+  const double relative = ((w0 - single).norm() / (w0 - initial[0]).norm()).item<double>();
+  EXPECT_LT(relative, 0.02) << "the ranks' weights differ from one process on the union by " << relative
+                            << " of how far they moved (largest weight difference "
+                            << (w0 - single).abs().max().item<double>() << ")";
 }
 
 TEST(DdPpo, RanksThatDisagreeAreRefusedAtTheRendezvousNamingWhatDiffers) {

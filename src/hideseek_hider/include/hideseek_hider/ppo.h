@@ -124,6 +124,9 @@ class PpoTrainer {
   // process, exactly as without it.
   void setCollective(Collective* collective) { collective_ = collective; }
   Collective* collective() const { return collective_; }
+  // The generator (on the trainer's device) that samples actions and shuffles minibatches; by
+  // default libtorch's global one, which the node seeds. Ranks trained as threads of one process each need their own.
+  void setGenerator(at::Generator generator) { generator_ = std::move(generator); }
 
   // What the last update trained on, for checks: the buffer (time x arenas), its advantages and
   // returns, and each minibatch's sample indices (feed-forward: into the buffer flattened to
@@ -154,6 +157,7 @@ class PpoTrainer {
   torch::Tensor hidden_;      // [N, 512] each arena's state before its next step
   torch::Tensor last_dones_;  // [N] the last recorded done flags: the next step starts an episode
   Collective* collective_ = nullptr;
+  c10::optional<at::Generator> generator_;
   Gae last_gae_;
   std::vector<torch::Tensor> last_minibatches_;
 };
