@@ -87,15 +87,14 @@ struct MemoryFormatChoice {
   std::string reason;
 };
 // The one rule for the layout, with the measurements behind it (docs/performance.md, "Memory
-// format"): `auto` is channels-last in every precision and on every CPU. Through
-// the project's trainer on a 2-core Intel Xeon without native bf16, NCHW made the fp32 floor
-// 1.09x slower (whole-process wall time, train_floor_bench, median of 5 pairs); a standalone
-// measurement of this network on an Intel CPU with AMX-BF16 gave channels-last 1.38-1.43x the
-// samples/s of NCHW in bf16. The same standalone measurement found NCHW faster in fp32 on that
-// CPU (2,731 against 2,275 samples/s, with the weights stored channels-last too); fp32 stays
-// channels-last there all the same, because fp32 is the evaluation's precision and NCHW changes
-// its sums (logits differ by about 1e-8): a shipped policy re-evaluates byte-identically only in
-// the layout it always ran in.
+// format"): `auto` is channels-last in every precision and on every CPU. Through the project's
+// trainer on a 2-core Intel Xeon without native bf16, NCHW made the fp32 floor 1.09x slower
+// (whole-process wall time, train_floor_bench, median of 5 pairs). On an Intel Xeon with AMX-BF16
+// (oneDNN's AMX kernels; this network in Python, PyTorch 2.11, 2 threads, median of 6 pairs), the
+// images' HWC view ran 1.42x the samples/s of NCHW images in bf16 and 1.10x in fp32, and storing
+// the weights channels-last too gave 0.97x and 1.01x. fp32 must stay in the layout it always ran in
+// anyway: it is the evaluation's precision, NCHW changes its sums (logits by about 1e-8), and a
+// shipped policy re-evaluates byte-identically only in its own layout.
 MemoryFormatChoice chooseMemoryFormat(MemoryFormatRequest request, Precision precision, const CpuBf16Support& cpu);
 
 // Autocast to bf16 for the lifetime of the scope on the given device (no-op for fp32).
