@@ -1,6 +1,8 @@
 # The two commands of the README: `make run` and `make test`. Both install what is missing first.
 SHELL := /bin/bash
 ROOT := $(abspath .)
+# The pipeline's command (src/hideseek_pipeline), run from the checkout: it needs no build.
+PIPELINE := PYTHONPATH=$(ROOT)/src/hideseek_pipeline/python /usr/bin/python3 -m hideseek_pipeline
 CATKIN := source scripts/env.sh && catkin_make -DCMAKE_BUILD_TYPE=Release \
 	-DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=ON
 JOBS ?= $(shell nproc)
@@ -17,21 +19,21 @@ build: deps
 run: build
 	source scripts/env.sh && scripts/run_basic.sh
 
-# Both pause a running sweep (scripts/sweep.sh) while they run, and resume it after.
+# Both pause a running sweep (hideseek_pipeline sweep) while they run, and resume it after.
 test: build
-	scripts/sweep.sh hold scripts/run_tests.sh
+	$(PIPELINE) sweep hold scripts/run_tests.sh
 
 bench: build
-	scripts/sweep.sh hold scripts/bench.sh
+	$(PIPELINE) sweep hold scripts/bench.sh
 
 # Table 2, the analysis of every variant with a shipped policy, Table 3 and the figures, in docs/report.
 reproduce: build
 	scripts/reproduce.sh
 
-# The sweep's queue (config/sweep.yaml) in the background, from its own worktree at the pinned
-# commit: scripts/sweep.sh status | pause | resume | stop.
+# The sweep's queue (config/sweep.yaml's phases) in the background, each phase from its own worktree
+# at its pinned commit: $(PIPELINE) sweep status | pause | resume | stop | --help.
 sweep: deps
-	scripts/sweep.sh start
+	$(PIPELINE) sweep start
 
 # The cores and their gtests under AddressSanitizer and UndefinedBehaviorSanitizer (clang, its own
 # build_sanitize/); make fuzz runs them too, then each fuzz target for FUZZ_SECONDS

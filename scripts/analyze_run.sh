@@ -97,7 +97,7 @@ mkdir -p "$out"
 rollouts memory
 /usr/bin/python3 src/hideseek_analysis/scripts/behaviour.py "$tmp/steps.csv" "$out" --run "$name"
 # The t-SNE and the memoryless ablation last: their failure must not cost the probes and the
-# behaviour above (scripts/sweep.sh analyze redoes either alone).
+# behaviour above (hideseek_pipeline sweep analyze redoes either alone).
 [ $baseline = 1 ] || tsne
 [ $baseline = 1 ] || [ "$network" != gru ] || memoryless
 echo "analyze_run: $name: $out"

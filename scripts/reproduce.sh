@@ -8,7 +8,7 @@
 # seeds (REPORT_DIR/table2_seeds/: sweep_table2.py), the claims table (claims.py) and Figures 4-7
 # across seeds (seed_figures.py), from every sweep run's evaluation and per-run analysis. Given
 # the weights, --from-scratch first analyses again every sweep run whose weights are on this machine
-# and lacks its analysis (scripts/sweep.sh analyze), then re-evaluates and re-analyses the shipped
+# and lacks its analysis (hideseek_pipeline sweep analyze), then re-evaluates and re-analyses the shipped
 # policies through the ROS graph as described above.
 # usage: scripts/reproduce.sh [--from-scratch] [REPORT_DIR=docs/report] [WORK_DIR=~/.ros/hideseek_reproduce]
 #   WORK_DIR receives the bags and feature arrays (large; not part of the report).
@@ -39,7 +39,7 @@ if [ $scratch = 0 ]; then
   echo "reproduce: done in $(($(date +%s) - start)) s; open $report/claims.md ($0 --from-scratch also re-evaluates and re-analyses)"
   exit 0
 fi
-scripts/sweep.sh analyze
+PYTHONPATH=src/hideseek_pipeline/python /usr/bin/python3 -m hideseek_pipeline sweep analyze
 echo "reproduce: [1/3] Table 2: every shipped policy and the random hider, seeds 0-99, all variants"
 HIDESEEK_PORT=$port scripts/evaluate_all.sh "$report"
 # Every shipped policy (policies/policies.yaml): its label (the report's folder), variant and weights.

@@ -8,7 +8,7 @@ Writes DIR/rss.csv (elapsed_s,node,pid,rss_kb), DIR/world.csv (elapsed_s and the
 and DIR/summary.md: per node the RSS at the start, after one hour and at the end, its growth per hour
 (least-squares slope after the first 10 minutes, when caches and allocators have settled), and the
 totals of missed decisions and rejected messages. The master is ROS_MASTER_URI's. A master or node
-that does not answer (a sweep run paused by `scripts/sweep.sh hold`) is skipped for that sample.
+that does not answer (a sweep run paused by `hideseek_pipeline sweep hold`) is skipped for that sample.
 --continue appends to DIR's files, timing from the first run's start: a watch cut short goes on.
 """
 import argparse

@@ -4,7 +4,7 @@
 # each, each on its own ROS master. Both through train.launch (basic, bf16 where native, 16 arenas
 # x 64 steps), updates 3 to 22 of each run's log (the first two warm up). Alternates A B B A so that
 # the host's drift falls on both. Prints a Markdown table and the arrangement that trains more
-# samples per hour. Take it with the sweep paused (scripts/sweep.sh pause).
+# samples per hour. Take it with the sweep paused (hideseek_pipeline sweep pause).
 # usage: scripts/sweep_throughput.sh [ROUNDS=2]
 #   WORKSPACE (default this checkout): the built workspace to train with (the sweep's worktree:
 #   WORKSPACE=~/hideseek_sweep/tree). PORT (default 11900): masters on PORT and PORT + 1.

@@ -578,7 +578,7 @@ def memory(root, found, gru_found, seed, reps):
         gain_text = "memory minus memoryless %.1f%s" % (
             g_point, " [%.1f, %.1f]" % g_ci if np.all(np.isfinite(g_ci)) else " (one run of a variant: no interval)")
     if no_ablation:
-        notes.append("no memoryless ablation for every GRU run of: %s (scripts/sweep.sh analyze)" % ", ".join(no_ablation))
+        notes.append("no memoryless ablation for every GRU run of: %s (hideseek_pipeline sweep analyze)" % ", ".join(no_ablation))
     if result == "supported" and (no_ablation or g_verdict != "supported"):
         result = "inconclusive"
         if not no_ablation:

@@ -265,7 +265,9 @@ def ship(name, weights, registry=REGISTRY):
     if name not in entries:
         raise RegistryError("%s: no run %s to ship" % (registry, name))
     entry = entries[name]
-    file_name = label(entry["variant"], entry["network"]) + ".pt"
+    # One file per variant, network and game: game v2's policies keep their names (basic.pt), another
+    # game's carry it (basic_v3.pt), so that shipping v3 leaves v2 playable under game:=v2.
+    file_name = label(entry["variant"], entry["network"]) + ("" if entry["game"] == "v2" else "_" + entry["game"]) + ".pt"
     target = os.path.join(os.path.dirname(registry), file_name)
     if os.path.abspath(weights) != os.path.abspath(target):
         shutil.copyfile(weights, target)
@@ -292,30 +294,35 @@ def greedy_living_steps(name, root=ROOT):
     return float(rows[0]["avg_living_steps"])
 
 
-def median_run(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE):
+def median_run(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE, steps=None):
     """The run to ship for a variant: among its runs whose note starts with `note` and that have a
     greedy evaluation, the one whose mean living steps is the median (the lower of the middle two
-    for an even count; ties broken by name). None when there is no such run."""
+    for an even count; ties broken by name). With `steps`, only runs of that budget count (recorded
+    steps from `steps` to under twice it: a run ends at the first whole rollout past its budget).
+    None when there is no such run."""
     scored = []
     for name, e in runs(registry).items():
         if (e["variant"], e["network"], e["game"]) != (variant, network, game):
             continue
+        if steps is not None and not steps <= int(e.get("steps", 0)) < 2 * steps:
+            continue
         if not str(e.get("note", "")).startswith(note) or draw(e) != "first":
             continue
-        steps = greedy_living_steps(name, root)
-        if steps is not None:
-            scored.append((steps, name))
+        living = greedy_living_steps(name, root)
+        if living is not None:
+            scored.append((living, name))
     if not scored:
         return None
     scored.sort()
     return scored[(len(scored) - 1) // 2][1]
 
 
-def ship_median(variant, weights_dir, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE):
+def ship_median(variant, weights_dir, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE,
+                steps=None):
     """Ships the median run of a variant (median_run, by first draws) from weights_dir/<run>/policy.pt,
     or, where those weights are lost, its retrain <run>_retrain from weights_dir/<run>_retrain/.
     Returns a sentence saying what it did; raises WeightsMissing when neither's weights are there."""
-    name = median_run(variant, network, game, registry, root, note)
+    name = median_run(variant, network, game, registry, root, note, steps)
     if name is None:
         return "variant %s has no evaluated run whose note starts with %r; nothing shipped" % (variant, note)
     current, _ = shipped(variant, network, game, registry)
@@ -332,7 +339,7 @@ def ship_median(variant, weights_dir, network="ff", game="v2", registry=REGISTRY
             return "shipped %s as the median run of %s%s (was %s)" % (run, variant, " (its retrain)" if run == retrain
                                                                      else "", current or "nothing")
     raise WeightsMissing("the median run of %s is %s, but its weights %s are not on this machine; %s "
-                         "(scripts/sweep.sh retrain %s to ship it)" % (
+                         "(hideseek_pipeline sweep retrain %s to ship it)" % (
                              variant, name, " or ".join(os.path.join(weights_dir, r, "policy.pt") for r in candidates),
                              "%s stays shipped" % current if current else "no run is shipped", name))
 

@@ -41,7 +41,7 @@ NAME = re.compile(r"^(?P<variant>.+)_seed(?P<seed>\d+)$")
 # reading's variant, what its seeker does). The paper's figure is the first's.
 READINGS = [("stochasticseeker", "its seeker starts knowing the hider's spawn point",
              "stochasticseeker_explore", "its seeker explores until it sees the hider (the paper's text, literally)")]
-SWEEP_NOTE = "sweep run"  # scripts/sweep.sh notes each run it trained (a same-named run from elsewhere is not one)
+SWEEP_NOTE = "sweep run"  # the sweep's queue notes each run it trained (a same-named run from elsewhere is not one)
 
 
 def paper_orderings(variants, paper):

@@ -68,6 +68,41 @@ def test_record_then_ship_makes_one_run_the_shipped_one(tree, tmp_path):
     assert reg.shipped("basic", game="v1", registry=registry) == (None, None)
 
 
+def test_a_v3_policy_ships_beside_the_v2_one_of_its_variant(tree, tmp_path):
+    """Shipping game v3's basic leaves v2's basic.pt as it is, so that v2 stays playable."""
+    registry, variants = tree
+    for game, content in (("v2", b"v2 weights"), ("v3", b"v3 weights")):
+        weights = tmp_path / ("%s.pt" % game)
+        weights.write_bytes(content)
+        name = "basic_seed0" if game == "v2" else "basic_v3_seed0"
+        reg.record(name, {"variant": "basic", "network": "ff", "game": game, "training_seed": 0, "steps": 2048},
+                   registry)
+        reg.ship(name, str(weights), registry)
+    v2 = reg.shipped("basic", game="v2", registry=registry)[1]
+    v3 = reg.shipped("basic", game="v3", registry=registry)[1]
+    assert v2.endswith("policies/basic.pt") and open(v2, "rb").read() == b"v2 weights"
+    assert v3.endswith("policies/basic_v3.pt") and open(v3, "rb").read() == b"v3 weights"
+    assert reg.problems(registry, variants) == []
+
+
+def test_the_median_of_a_budget_leaves_out_the_runs_of_another(tree, tmp_path):
+    """The 8M budget check's runs never become the 2M median that a variant ships, nor the reverse."""
+    registry, _ = tree
+    scores = {"basic_v3_seed0": (2000896, 100.0), "basic_v3_seed1": (2000896, 300.0),
+              "basic_v3_8m_seed0": (8000512, 200.0)}
+    for name, (steps, living) in scores.items():
+        reg.record(name, {"variant": "basic", "network": "ff", "game": "v3", "steps": steps,
+                          "note": "sweep run (config/sweep.yaml), phase x, pinned at abc"}, registry)
+        folder = tmp_path / "docs" / "runs" / name
+        folder.mkdir(parents=True)
+        (folder / "evaluation.csv").write_text("variant,policy,episodes,avg_living_steps,success_rate\n"
+                                               "basic,%s,100,%.2f,0.1\n" % (name, living))
+    root = str(tmp_path)
+    assert reg.median_run("basic", game="v3", registry=registry, root=root) == "basic_v3_8m_seed0"  # all three
+    assert reg.median_run("basic", game="v3", registry=registry, root=root, steps=2_000_000) == "basic_v3_seed0"
+    assert reg.median_run("basic", game="v3", registry=registry, root=root, steps=8_000_000) == "basic_v3_8m_seed0"
+
+
 def test_problems_name_what_disagrees(tree):
     registry, variants = tree
     policies = os.path.dirname(registry)

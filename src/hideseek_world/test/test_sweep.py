@@ -1,20 +1,17 @@
-"""scripts/sweep.sh's queue (order, what counts as done, pause and resume with the paused time kept
-apart) and sweep_table2.py's statistics across training seeds (two-level bootstrap, probability of
-improvement, rank correlation), on small made-up registries: no training, no ROS master."""
+"""sweep_table2.py's statistics across training seeds (two-level bootstrap, probability of
+improvement, rank correlation) and the claims, on small made-up registries: no training, no ROS
+master. The sweep's queue has its own tests (hideseek_pipeline)."""
 import csv
 import os
-import re
 import shutil
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
 import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-SWEEP = os.path.join(ROOT, "scripts", "sweep.sh")
 ANALYSIS = os.path.join(ROOT, "src", "hideseek_analysis", "scripts")
 sys.path.insert(0, ANALYSIS)
 import sweep_stats as st  # noqa: E402
@@ -53,140 +50,6 @@ def drop_note(rec, name):
     entries = yaml.safe_load(path.read_text())
     del entries[name]["note"]
     path.write_text(yaml.safe_dump(entries, sort_keys=False))
-
-
-def sweep(tmp_path, rec, *args, **env):
-    e = dict(os.environ, SWEEP_DIR=str(tmp_path / "sweep"), SWEEP_RECORD_ROOT=str(rec), SWEEP_SEEDS="0 1",
-             SWEEP_VARIANTS="basic slowerhider", SWEEP_STEPS="2048", PATH="/usr/bin:" + os.environ["PATH"])
-    e.update(env)
-    return subprocess.run([SWEEP] + list(args), env=e, capture_output=True, text=True, timeout=120)
-
-
-def test_status_lists_runs_seed_major_with_their_state(tmp_path):
-    rec = make_records(tmp_path, {
-        "basic_seed0": ("basic", 0, 2048, [30, 1000], [20, 40]),
-        # recorded but short of the steps: not done
-        "slowerhider_seed0": ("slowerhider", 0, 1024, [30], [30]),
-        # all steps and both evaluations, but trained by another command (no sweep note): not done
-        "basic_seed1": ("basic", 1, 2048, [30], [30]),
-    })
-    drop_note(rec, "basic_seed1")
-    ck = tmp_path / "sweep" / "runs" / "slowerhider_seed1"
-    ck.mkdir(parents=True)
-    (ck / "checkpoint.pt").write_bytes(b"x")
-    r = sweep(tmp_path, rec, "status")
-    assert r.returncode == 0, r.stderr
-    rows = [line.split()[:2] for line in r.stdout.splitlines() if not line.startswith("sweep:")]
-    assert rows == [["basic_seed0", "done"], ["slowerhider_seed0", "missing"], ["basic_seed1", "missing"],
-                    ["slowerhider_seed1", "partial"]]
-    assert "greedy 515.00/0.5000" in r.stdout
-
-
-def test_more_seeds_only_lengthen_the_queue(tmp_path):
-    rec = make_records(tmp_path, {})
-    r = sweep(tmp_path, rec, "status", SWEEP_SEEDS="0 1 2 3 4", SWEEP_VARIANTS="basic")
-    assert [line.split()[0] for line in r.stdout.splitlines() if not line.startswith("sweep:")] == [
-        "basic_seed%d" % s for s in range(5)]
-
-
-def test_an_unknown_variant_or_bad_number_is_refused_by_name(tmp_path):
-    rec = make_records(tmp_path, {})
-    r = sweep(tmp_path, rec, "status", SWEEP_VARIANTS="basic nosuchvariant")
-    assert r.returncode == 2 and "no variant 'nosuchvariant'" in r.stderr
-    r = sweep(tmp_path, rec, "status", SWEEP_STEPS="2M")
-    assert r.returncode == 2 and "'2M' is not a whole number" in r.stderr
-    r = sweep(tmp_path, rec, "frobnicate")
-    assert r.returncode == 2 and "unknown command 'frobnicate'" in r.stderr
-
-
-def test_retrain_queues_a_done_run_without_weights_after_every_other_run(tmp_path):
-    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2048, [30, 1000], [20, 40])})
-    r = sweep(tmp_path, rec, "retrain", "basic_seed9")
-    assert r.returncode == 2 and "'basic_seed9' is not a run of the queue" in r.stderr
-    r = sweep(tmp_path, rec, "retrain", "slowerhider_seed0")
-    assert r.returncode == 2 and "is not done" in r.stderr
-    r = sweep(tmp_path, rec, "retrain", "basic_seed0")
-    assert r.returncode == 0 and "basic_seed0 queued for retraining" in r.stdout, r.stderr
-    assert "as basic_seed0_retrain beside its first draw" in r.stdout
-    status = sweep(tmp_path, rec, "status").stdout
-    assert "queued for retraining (weights lost; after every other run): basic_seed0" in status
-    # the missing runs first, seed-major, then the retraining, a run of its own beside the first draw
-    assert "left to train, in order: slowerhider_seed0 basic_seed1 slowerhider_seed1 basic_seed0_retrain" in status
-    assert re.search(r"^basic_seed0_retrain +missing", status, re.M), status
-    # once its weights are here (the retrained run, or the old ones found), it is not trained again
-    w = tmp_path / "sweep" / "runs" / "basic_seed0"
-    w.mkdir(parents=True)
-    (w / "policy.pt").write_bytes(b"weights")
-    status = sweep(tmp_path, rec, "status").stdout
-    assert "queued for retraining" not in status
-    assert "left to train, in order: slowerhider_seed0 basic_seed1 slowerhider_seed1\n" in status
-    r = sweep(tmp_path, rec, "retrain", "basic_seed0")
-    assert r.returncode == 0 and "nothing to retrain" in r.stdout
-
-
-def proc_state(pid, want=None, wait=10.0):
-    """A process's state letter; with `want`, waits (a signal lands asynchronously) until it is one of them."""
-    end = time.time() + wait
-    while True:
-        with open("/proc/%d/stat" % pid) as f:
-            state = f.read().rsplit(")", 1)[1].split()[0]
-        if want is None or state in want or time.time() > end:
-            return state
-        time.sleep(0.05)
-
-
-def test_pause_stops_the_runs_processes_and_resume_books_the_paused_time(tmp_path):
-    rec = make_records(tmp_path, {})
-    state = tmp_path / "sweep" / "state"
-    state.mkdir(parents=True)
-    # A queue holds its lock; a running run as the queue leaves it: state/job.<run> holds the PID
-    # of its process tree.
-    queue = fake_queue(state)
-    job = subprocess.Popen(["bash", "-c", "sleep 300 & wait"])
-    try:
-        time.sleep(0.3)
-        child = int(subprocess.check_output(["ps", "-o", "pid=", "--ppid", str(job.pid)]).split()[0])
-        (state / "job.basic_seed1").write_text("%d\n" % job.pid)
-        t0 = time.time()
-        r = sweep(tmp_path, rec, "pause")
-        assert r.returncode == 0 and "1 runs held" in r.stdout, r.stdout + r.stderr
-        assert proc_state(job.pid, "T") == "T" and proc_state(child, "T") == "T"
-        assert "PAUSED" in sweep(tmp_path, rec, "status").stdout
-        time.sleep(2.2)
-        r = sweep(tmp_path, rec, "resume")
-        held = time.time() - t0
-        assert r.returncode == 0, r.stderr
-        assert proc_state(child, "SR") in ("S", "R")
-        paused = int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text())
-        assert 2 <= paused <= held + 1
-        # A second pause adds to the first.
-        sweep(tmp_path, rec, "pause")
-        time.sleep(1.1)
-        sweep(tmp_path, rec, "resume")
-        assert int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text()) >= paused + 1
-        # a stop while paused does not book the held time: the run restarts from a checkpoint
-        # older than the pause
-        booked = int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text())
-        sweep(tmp_path, rec, "pause")
-        time.sleep(1.1)
-        sweep(tmp_path, rec, "stop")
-        assert int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text()) == booked
-    finally:
-        subprocess.run(["pkill", "-KILL", "-P", str(job.pid)])
-        for p in (job, queue):
-            p.kill()
-            p.wait()
-
-
-def fake_queue(state):
-    """A process that holds the queue's lock, as a running queue does."""
-    q = subprocess.Popen(["flock", str(state / "queue.lock"), "sleep", "300"])
-    (state / "queue.pid").write_text("%d\n" % q.pid)
-    end = time.time() + 10
-    while subprocess.run(["flock", "-n", str(state / "queue.lock"), "true"]).returncode == 0:
-        assert time.time() < end, "the fake queue did not take its lock"
-        time.sleep(0.05)
-    return q
 
 
 # ---- statistics -------------------------------------------------------------------------------
@@ -552,39 +415,6 @@ def test_the_memory_claim_pairs_each_gru_run_with_its_feed_forward_twin(tmp_path
     assert m["result"] == "inconclusive" and "not yet trained on game v2" in m["note"] and m["effect"] == ""
 
 
-def test_analyze_redoes_only_the_missing_memoryless_ablation_of_a_gru_run(tmp_path):
-    """`scripts/sweep.sh analyze` on the GRU queue: a done GRU run analysed without its memoryless
-    ablation (analysed before it existed, or the part failed) gets that part alone while its weights
-    are here; a run that has it, or whose weights are gone, is left as it is."""
-    names = ("basic_gru_seed0", "slowerhider_gru_seed0", "basic_gru_seed1")
-    rec = make_records(tmp_path, {n: (n.split("_gru")[0], int(n[-1]), 2048, [30], [30]) for n in names})
-    calls = tmp_path / "calls.txt"
-    (rec / "scripts").mkdir()
-    fake = rec / "scripts" / "analyze_run.sh"
-    fake.write_text("#!/bin/bash\necho \"$*\" >> %s\n" % calls)
-    fake.chmod(0o755)
-    for n in names:
-        d = rec / "docs" / "runs" / n / "analysis"
-        (d / "memoryless").mkdir(parents=True)
-        for f in ("behaviour.csv", "tsne_neighbours.csv"):
-            (d / f).write_text("x\n")
-        w = tmp_path / "sweep" / "runs" / n
-        w.mkdir(parents=True)
-        if n != "basic_gru_seed1":  # its weights are gone: nothing can be redone
-            (w / "policy.pt").write_bytes(b"w")
-    (rec / "docs" / "runs" / "basic_gru_seed0" / "analysis" / "memoryless" / "behaviour.csv").write_text("x\n")
-    r = sweep(tmp_path, rec, "analyze", SWEEP_NETWORK="gru", SWEEP_SEEDS="0 1")
-    assert r.returncode == 0, r.stderr
-    assert calls.read_text().splitlines() == [
-        "--memoryless-only slowerhider_gru_seed0 %s" % (tmp_path / "sweep" / "runs" / "slowerhider_gru_seed0" / "policy.pt")]
-    assert "slowerhider_gru_seed0: memoryless into" in r.stdout + r.stderr
-    # The feed-forward queue never asks a run for a memoryless ablation.
-    calls.unlink()
-    r = sweep(tmp_path, rec, "analyze", SWEEP_SEEDS="0 1")
-    assert r.returncode == 0, r.stderr
-    assert not calls.exists()
-
-
 def test_a_claim_decided_on_two_runs_of_a_variant_is_marked_provisional():
     import claims
     two = {"result": "contradicted", "runs": "fasterhider 2, visibilityreward_faster 3, basic 3", "note": ""}
@@ -659,28 +489,3 @@ def test_a_retrain_never_enters_table2_or_a_claim(tmp_path):
     r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "sweep_table2.py"), "--root", str(rec), "--out",
                         str(tmp_path / "t3"), "--extra", "basic_seed0_retrain"], capture_output=True, text=True)
     assert r.returncode != 0 and "a retrain never enters Table 2 or a claim" in r.stderr
-
-
-def test_hold_runs_a_command_with_the_sweep_paused_and_resumes_it(tmp_path):
-    rec = make_records(tmp_path, {})
-    state = tmp_path / "sweep" / "state"
-    state.mkdir(parents=True)
-    queue = fake_queue(state)  # hold acts only where a queue runs
-    job = subprocess.Popen(["sleep", "300"])
-    try:
-        (state / "job.basic_seed0").write_text("%d\n" % job.pid)
-        probe = "import sys; s = open('/proc/%d/stat').read().rsplit(')', 1)[1].split()[0]; sys.exit(0 if s == 'T' else 3)"
-        r = sweep(tmp_path, rec, "hold", sys.executable, "-c", probe % job.pid)
-        assert r.returncode == 0, r.stdout + r.stderr  # the job was stopped while the command ran
-        assert proc_state(job.pid, "SR") in ("S", "R")
-        assert not (state / "paused").exists()
-        # the command's failure is passed on, and the sweep is resumed all the same
-        r = sweep(tmp_path, rec, "hold", "false")
-        assert r.returncode == 1 and proc_state(job.pid, "SR") in ("S", "R")
-    finally:
-        for p in (queue, job):
-            p.kill()
-            p.wait()
-    # without a queue, hold only runs the command, and creates no sweep folder
-    r = sweep(tmp_path, rec, "hold", "true", SWEEP_DIR=str(tmp_path / "none"))
-    assert r.returncode == 0 and not (tmp_path / "none").exists()

@@ -1,0 +1,65 @@
+"""The run registry (policies/policies.yaml) and run folders (docs/runs/<run>/) of the checkout that
+receives the sweep's records. The registry's reader and writer are hideseek_analysis's
+hideseek_registry module, found in that checkout."""
+import importlib.util
+import os
+
+SWEEP_NOTE = "sweep run (config/sweep.yaml)"
+
+
+def load_registry_module(root):
+    path = os.path.join(root, "src", "hideseek_analysis", "scripts", "hideseek_registry.py")
+    spec = importlib.util.spec_from_file_location("hideseek_registry", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+class Records:
+    def __init__(self, root, code_root):
+        """`root`: the checkout that receives the records (its registry says which runs are done);
+        `code_root`: the checkout whose registry module and variants are read."""
+        self.root = root
+        self.registry_path = os.path.join(root, "policies", "policies.yaml")
+        if not os.path.isfile(self.registry_path):
+            raise FileNotFoundError("SWEEP_RECORD_ROOT: no policies/policies.yaml in %s" % root)
+        self.registry = load_registry_module(code_root)
+
+    def entry(self, name):
+        return self.registry.runs(self.registry_path).get(name)
+
+    def docs(self, name, *parts):
+        return os.path.join(self.root, "docs", "runs", name, *parts)
+
+    def recorded_steps(self, name):
+        """The steps the registry records for a sweep run (its note, which the queue writes last);
+        0 for a run of that name that another command trained: the queue trains it again."""
+        e = self.entry(name)
+        if not e or not str(e.get("note", "")).startswith(SWEEP_NOTE):
+            return 0
+        return int(e.get("steps", 0))
+
+    def is_done(self, run):
+        """Recorded as a sweep run with all its steps, both evaluations and its trajectories."""
+        return (self.recorded_steps(run.name) >= run.phase.steps and _nonempty(self.docs(run.name, "evaluation.csv"))
+                and _nonempty(self.docs(run.name, "sampled", "evaluation.csv"))
+                and _nonempty(self.docs(run.name, "trajectories.png")))
+
+    def analysed(self, name):
+        return _nonempty(self.docs(name, "analysis", "behaviour.csv"))
+
+    def has_tsne(self, name):
+        return _nonempty(self.docs(name, "analysis", "tsne_neighbours.csv"))
+
+    def has_memoryless(self, name):
+        return _nonempty(self.docs(name, "analysis", "memoryless", "behaviour.csv"))
+
+    def evaluation(self, name, sub=""):
+        """'living/success' of the evaluation's last row."""
+        with open(self.docs(name, sub, "evaluation.csv")) as f:
+            last = f.read().strip().splitlines()[-1].split(",")
+        return "%s/%s" % (last[3], last[4])
+
+
+def _nonempty(path):
+    return os.path.isfile(path) and os.path.getsize(path) > 0

@@ -1,0 +1,196 @@
+"""config/sweep.yaml: the sweep's settings and its phases.
+
+A phase is one block of runs: its game, variants, training seeds, network and steps, and the commit
+its runs train at. The queue trains the phases in their order, and within a phase seed-major (seed 0
+of every variant, then seed 1, ...), so that it can be cut off anywhere. A key at the top level is
+every phase's default; a phase may set any of them. Environment variables SWEEP_<KEY>
+(SWEEP_SEEDS="0 1 2", SWEEP_VARIANTS="basic slowerhider", SWEEP_JOBS=2, ...) override a key in every
+phase; SWEEP_PHASES="a b" keeps only the phases named.
+"""
+import os
+from dataclasses import dataclass, field
+from typing import List
+
+import yaml
+
+TWO_MILLION = 2_000_000
+PHASE_KEYS = ("commit", "game", "variants", "seeds", "network", "steps", "precision", "jobs", "hider_threads", "ship")
+TOP_KEYS = PHASE_KEYS + ("port", "phases")
+NETWORKS = ("ff", "gru")
+
+
+class ConfigError(Exception):
+    """A bad config/sweep.yaml or SWEEP_<KEY>, named in the message."""
+
+
+@dataclass
+class Phase:
+    name: str
+    commit: str
+    game: str
+    variants: List[str]
+    seeds: List[int]
+    network: str
+    steps: int
+    precision: str
+    jobs: int
+    hider_threads: int
+    ship: bool = True  # ship each variant's median run of this phase as the variant's policy
+
+
+@dataclass
+class Run:
+    """One run of the queue: its name (what tells it apart from every other run), variant, seed and
+    phase; `retrain` for a retrain of a done run whose weights are lost."""
+    name: str
+    variant: str
+    seed: int
+    phase: Phase
+    retrain: bool = False
+
+
+@dataclass
+class SweepConfig:
+    port: int
+    path: str = ""
+    phases: List[Phase] = field(default_factory=list)
+
+    def runs(self):
+        """Every run of every phase, in the queue's order."""
+        return [run for phase in self.phases for run in phase_runs(phase)]
+
+
+def budget_label(steps):
+    """'' for the 2M steps of every run so far, else the budget: 8000000 -> '8m', 500000 -> '500k'."""
+    if steps == TWO_MILLION:
+        return ""
+    if steps % 1_000_000 == 0:
+        return "%dm" % (steps // 1_000_000)
+    if steps % 1000 == 0:
+        return "%dk" % (steps // 1000)
+    return str(steps)
+
+
+def run_name(variant, seed, game, network, steps):
+    """The run's name: what tells it apart. v2's feed-forward 2M runs keep their names
+    (basic_seed0, basic_gru_seed1); another game, network or budget adds itself:
+    basic_v3_seed0, basic_v3_gru_seed0, basic_v3_8m_seed0."""
+    parts = [variant]
+    if game != "v2":
+        parts.append(game)
+    if network != "ff":
+        parts.append(network)
+    if budget_label(steps):
+        parts.append(budget_label(steps))
+    return "_".join(parts) + "_seed%d" % seed
+
+
+def phase_runs(phase):
+    return [Run(run_name(v, s, phase.game, phase.network, phase.steps), v, s, phase)
+            for s in phase.seeds for v in phase.variants]
+
+
+def _whole(value, key, where, minimum=0):
+    text = str(value).strip()
+    if not text.lstrip("-").isdigit() or int(text) < minimum:
+        raise ConfigError("%s: %s: '%s' is not a whole number%s" % (
+            where, key, value, "" if minimum == 0 else " >= %d" % minimum))
+    return int(text)
+
+
+def _words(value):
+    if isinstance(value, list):
+        return [str(x) for x in value]
+    return str(value).split()
+
+
+def _env_overrides(environ):
+    out = {}
+    for key in PHASE_KEYS + ("port",):
+        text = environ.get("SWEEP_" + key.upper())
+        if text:
+            out[key] = text
+    return out
+
+
+def load(path, known_variants, paper_order, default_game, environ=None):
+    """Reads the sweep's config; `known_variants` are config/variants' names, `paper_order` what
+    `variants: all` means, `default_game` the game a phase without one plays."""
+    environ = os.environ if environ is None else environ
+    try:
+        with open(path) as f:
+            raw = yaml.safe_load(f) or {}
+    except (OSError, yaml.YAMLError) as e:
+        raise ConfigError("cannot read %s: %s" % (path, e))
+    if not isinstance(raw, dict):
+        raise ConfigError("%s: not a mapping of keys" % path)
+    unknown = sorted(set(raw) - set(TOP_KEYS))
+    if unknown:
+        raise ConfigError("%s: unknown key %s (keys: %s)" % (path, unknown[0], ", ".join(TOP_KEYS)))
+    where = os.path.basename(path)
+    overrides = _env_overrides(environ)
+    top = {k: v for k, v in raw.items() if k != "phases"}
+    raw_phases = raw.get("phases") or [{"name": "sweep"}]
+    if not isinstance(raw_phases, list):
+        raise ConfigError("%s: phases: a list of phases" % where)
+    phases, names = [], set()
+    wanted = environ.get("SWEEP_PHASES", "").split()
+    for i, rp in enumerate(raw_phases):
+        if not isinstance(rp, dict) or not rp.get("name"):
+            raise ConfigError("%s: phases[%d]: a mapping with a name" % (where, i))
+        bad = sorted(set(rp) - set(PHASE_KEYS) - {"name"})
+        if bad:
+            raise ConfigError("%s: phase %s: unknown key %s" % (where, rp["name"], bad[0]))
+        merged = dict(top, **rp)
+        merged.update(overrides)
+        phases.append(_phase(merged, "%s: phase %s" % (where, rp["name"]), known_variants, paper_order,
+                             default_game))
+        if phases[-1].name in names:
+            raise ConfigError("%s: two phases are named %s" % (where, phases[-1].name))
+        names.add(phases[-1].name)
+    missing = [w for w in wanted if w not in names]
+    if missing:
+        raise ConfigError("SWEEP_PHASES: no phase %s in %s" % (missing[0], where))
+    if wanted:
+        phases = [p for p in phases if p.name in wanted]
+    port = _whole(overrides.get("port", raw.get("port", 12100)), "port", where, 1)
+    config = SweepConfig(port=port, path=os.path.abspath(path), phases=phases)
+    seen = {}
+    for run in config.runs():
+        if run.name in seen:
+            raise ConfigError("%s: phases %s and %s both hold the run %s" % (
+                where, seen[run.name], run.phase.name, run.name))
+        seen[run.name] = run.phase.name
+    return config
+
+
+def _phase(m, where, known_variants, paper_order, default_game):
+    for key in ("commit", "steps", "seeds", "network", "precision", "jobs", "hider_threads", "variants"):
+        if key not in m:
+            raise ConfigError("%s: no %s (set it in the phase or at the top)" % (where, key))
+    variants = _words(m["variants"])
+    if variants == ["all"]:
+        variants = list(paper_order)
+    for v in variants:
+        if v not in known_variants:
+            raise ConfigError("%s: variants: no variant '%s' in config/variants" % (where, v))
+    network = str(m["network"])
+    if network not in NETWORKS:
+        raise ConfigError("%s: network: '%s' is not one of %s" % (where, network, ", ".join(NETWORKS)))
+    commit = str(m["commit"])
+    if not commit or commit == "PIN":
+        raise ConfigError("%s: commit is not set (pin a commit of main)" % where)
+    return Phase(name=str(m["name"]), commit=commit, game=str(m.get("game") or default_game), variants=variants,
+                 seeds=[_whole(s, "seeds", where) for s in _words(m["seeds"])], network=network,
+                 steps=_whole(m["steps"], "steps", where, 1), precision=str(m["precision"]),
+                 jobs=_whole(m["jobs"], "jobs", where, 1),
+                 hider_threads=_whole(m["hider_threads"], "hider_threads", where, 1), ship=_flag(m.get("ship", True),
+                                                                                                "ship", where))
+
+
+def _flag(value, key, where):
+    if isinstance(value, bool):
+        return value
+    if str(value).lower() in ("true", "false"):
+        return str(value).lower() == "true"
+    raise ConfigError("%s: %s: '%s' is not true or false" % (where, key, value))

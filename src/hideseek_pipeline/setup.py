@@ -1,0 +1,5 @@
+# The hideseek_pipeline Python package (python/hideseek_pipeline); catkin_python_setup() installs it.
+from catkin_pkg.python_setup import generate_distutils_setup
+from setuptools import setup
+
+setup(**generate_distutils_setup(packages=["hideseek_pipeline"], package_dir={"": "python"}))

@@ -1,0 +1,391 @@
+"""hideseek_pipeline sweep: the queue's phases and order, what counts as done, retrain, pause and
+resume with the paused time kept apart, hold and analyze, on small made-up registries and configs:
+no training, no ROS master."""
+import os
+import re
+import subprocess
+import sys
+import time
+
+import numpy as np
+import yaml
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+PACKAGE = os.path.join(ROOT, "src", "hideseek_pipeline", "python")
+sys.path.insert(0, PACKAGE)
+from hideseek_pipeline import sweep_config  # noqa: E402
+
+TWO_PHASES = """
+precision: bf16
+jobs: 2
+hider_threads: 1
+steps: 2000000
+network: ff
+port: 12100
+phases:
+  - {name: first, commit: "0123456789ab", game: v2, variants: [basic, slowerhider], seeds: [0, 1]}
+  - {name: later, commit: "0123456789ab", game: v3, network: gru, variants: [basic], seeds: [0], steps: 8000000,
+     jobs: 1, hider_threads: 2, ship: false}
+"""
+
+
+def make_records(tmp_path, runs):
+    """A checkout-like folder: a registry with `runs` (name -> variant, seed, steps, greedy and
+    sampled living steps) and, for each, its evaluations and trajectories."""
+    rec = tmp_path / "records"
+    (rec / "policies").mkdir(parents=True)
+    entries = {}
+    for name, (variant, seed, steps, greedy, sampled) in runs.items():
+        entries[name] = {"variant": variant, "network": "gru" if "_gru" in name else "ff", "game": "v2",
+                         "training_seed": seed, "steps": steps,
+                         "note": "sweep run (config/sweep.yaml), pinned at 0123456789ab"}
+        for sub, living in (("", greedy), ("sampled", sampled)):
+            d = rec / "docs" / "runs" / name / sub
+            d.mkdir(parents=True, exist_ok=True)
+            if not sub:
+                (d / "trajectories.png").write_bytes(b"png")
+            with open(d / "evaluation.csv", "w") as f:
+                f.write("variant,policy,episodes,avg_living_steps,success_rate\n%s,%s,%d,%.2f,%.4f\n" % (
+                    variant, name, len(living), np.mean(living), np.mean(np.array(living) >= 1000)))
+    with open(rec / "policies" / "policies.yaml", "w") as f:
+        yaml.safe_dump(entries, f, sort_keys=False)
+    return rec
+
+
+def drop_note(rec, name):
+    path = rec / "policies" / "policies.yaml"
+    entries = yaml.safe_load(path.read_text())
+    del entries[name]["note"]
+    path.write_text(yaml.safe_dump(entries, sort_keys=False))
+
+
+def config_file(tmp_path, text=None, variants="basic slowerhider", seeds="0 1", network="ff"):
+    path = tmp_path / "sweep.yaml"
+    path.write_text(text or "precision: bf16\njobs: 2\nhider_threads: 1\nsteps: 2000000\nport: 12100\nphases:\n"
+                    "  - {name: only, commit: '0123456789ab', game: v2, network: %s, variants: [%s], seeds: [%s]}\n"
+                    % (network, ", ".join(variants.split()), ", ".join(seeds.split())))
+    return path
+
+
+def sweep(tmp_path, rec, *args, config=None, **env):
+    e = dict(os.environ, SWEEP_DIR=str(tmp_path / "sweep"), SWEEP_RECORD_ROOT=str(rec), PYTHONPATH=PACKAGE,
+             PATH="/usr/bin:" + os.environ["PATH"])
+    e.update(env)
+    config = config or config_file(tmp_path)
+    return subprocess.run([sys.executable, "-m", "hideseek_pipeline", "sweep", "--config", str(config)] + list(args),
+                          env=e, capture_output=True, text=True, timeout=120)
+
+
+def rows(stdout):
+    return [line.split()[:2] for line in stdout.splitlines() if not line.startswith("sweep:")]
+
+
+def test_status_lists_runs_seed_major_with_their_state(tmp_path):
+    rec = make_records(tmp_path, {
+        "basic_seed0": ("basic", 0, 2000000, [30, 1000], [20, 40]),
+        # recorded but short of the steps: not done
+        "slowerhider_seed0": ("slowerhider", 0, 1000000, [30], [30]),
+        # all steps and both evaluations, but trained by another command (no sweep note): not done
+        "basic_seed1": ("basic", 1, 2000000, [30], [30]),
+    })
+    drop_note(rec, "basic_seed1")
+    ck = tmp_path / "sweep" / "runs" / "slowerhider_seed1"
+    ck.mkdir(parents=True)
+    (ck / "checkpoint.pt").write_bytes(b"x")
+    r = sweep(tmp_path, rec, "status")
+    assert r.returncode == 0, r.stderr
+    assert rows(r.stdout) == [["basic_seed0", "done"], ["slowerhider_seed0", "missing"], ["basic_seed1", "missing"],
+                              ["slowerhider_seed1", "partial"]]
+    assert "greedy 515.00/0.5000" in r.stdout
+
+
+def test_phases_run_in_order_each_seed_major_and_names_tell_the_runs_apart(tmp_path):
+    rec = make_records(tmp_path, {})
+    r = sweep(tmp_path, rec, "status", config=config_file(tmp_path, TWO_PHASES))
+    assert r.returncode == 0, r.stderr
+    assert [row[0] for row in rows(r.stdout)] == [
+        "basic_seed0", "slowerhider_seed0", "basic_seed1", "slowerhider_seed1", "basic_v3_gru_8m_seed0"]
+    assert "2 phases (first at 0123456789ab, later at 0123456789ab)" in r.stdout
+    # SWEEP_PHASES keeps the phases named; SWEEP_<KEY> overrides a key in every phase
+    r = sweep(tmp_path, rec, "status", config=config_file(tmp_path, TWO_PHASES), SWEEP_PHASES="later",
+              SWEEP_SEEDS="3 4")
+    assert [row[0] for row in rows(r.stdout)] == ["basic_v3_gru_8m_seed3", "basic_v3_gru_8m_seed4"]
+
+
+def test_a_phase_keeps_its_own_budget_and_runs_at_once():
+    config = sweep_config.load(_write(TWO_PHASES), ["basic", "slowerhider"], ["basic", "slowerhider"], "v2", {})
+    first, later = config.phases
+    assert (first.steps, first.jobs, first.hider_threads, first.game) == (2000000, 2, 1, "v2")
+    assert (later.steps, later.jobs, later.hider_threads, later.network, later.ship) == (8000000, 1, 2, "gru", False)
+    assert sweep_config.run_name("basic", 0, "v2", "ff", 2_000_000) == "basic_seed0"
+    assert sweep_config.run_name("basic", 1, "v3", "ff", 500_000) == "basic_v3_500k_seed1"
+
+
+def _write(text):
+    import tempfile
+    f = tempfile.NamedTemporaryFile("w", suffix=".yaml", delete=False)
+    f.write(text)
+    f.close()
+    return f.name
+
+
+def test_two_phases_holding_one_run_and_bad_keys_are_refused_by_name(tmp_path):
+    rec = make_records(tmp_path, {})
+    twice = TWO_PHASES.replace("game: v3, network: gru, variants: [basic], seeds: [0], steps: 8000000",
+                               "game: v2, variants: [basic], seeds: [0], steps: 2000000")
+    r = sweep(tmp_path, rec, "status", config=config_file(tmp_path, twice))
+    assert r.returncode == 2 and "phases first and later both hold the run basic_seed0" in r.stderr
+    r = sweep(tmp_path, rec, "status", config=config_file(tmp_path, TWO_PHASES + "colour: blue\n"))
+    assert r.returncode == 2 and "unknown key colour" in r.stderr
+    r = sweep(tmp_path, rec, "status", config=config_file(tmp_path, TWO_PHASES), SWEEP_PHASES="nosuchphase")
+    assert r.returncode == 2 and "no phase nosuchphase" in r.stderr
+
+
+def test_more_seeds_only_lengthen_the_queue(tmp_path):
+    rec = make_records(tmp_path, {})
+    r = sweep(tmp_path, rec, "status", config=config_file(tmp_path, variants="basic", seeds="0 1 2 3 4"))
+    assert [row[0] for row in rows(r.stdout)] == ["basic_seed%d" % s for s in range(5)]
+
+
+def test_an_unknown_variant_or_bad_number_is_refused_by_name(tmp_path):
+    rec = make_records(tmp_path, {})
+    r = sweep(tmp_path, rec, "status", config=config_file(tmp_path, variants="basic nosuchvariant"))
+    assert r.returncode == 2 and "no variant 'nosuchvariant'" in r.stderr
+    r = sweep(tmp_path, rec, "status", SWEEP_STEPS="2M")
+    assert r.returncode == 2 and "'2M' is not a whole number" in r.stderr
+    r = sweep(tmp_path, rec, "frobnicate")
+    assert r.returncode == 2 and "invalid choice: 'frobnicate'" in r.stderr
+
+
+def test_retrain_queues_a_done_run_without_weights_after_every_other_run(tmp_path):
+    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000000, [30, 1000], [20, 40])})
+    r = sweep(tmp_path, rec, "retrain", "basic_seed9")
+    assert r.returncode == 2 and "'basic_seed9' is not a run of the queue" in r.stderr
+    r = sweep(tmp_path, rec, "retrain", "slowerhider_seed0")
+    assert r.returncode == 2 and "is not done" in r.stderr
+    r = sweep(tmp_path, rec, "retrain", "basic_seed0")
+    assert r.returncode == 0 and "basic_seed0 queued for retraining" in r.stdout, r.stderr
+    assert "as basic_seed0_retrain beside its first draw" in r.stdout
+    status = sweep(tmp_path, rec, "status").stdout
+    assert "queued for retraining (weights lost; after every other run): basic_seed0" in status
+    # the missing runs first, seed-major, then the retraining, a run of its own beside the first draw
+    assert "left to train, in order: slowerhider_seed0 basic_seed1 slowerhider_seed1 basic_seed0_retrain" in status
+    assert re.search(r"^basic_seed0_retrain +missing", status, re.M), status
+    # once its weights are here (the retrained run, or the old ones found), it is not trained again
+    w = tmp_path / "sweep" / "runs" / "basic_seed0"
+    w.mkdir(parents=True)
+    (w / "policy.pt").write_bytes(b"weights")
+    status = sweep(tmp_path, rec, "status").stdout
+    assert "queued for retraining" not in status
+    assert "left to train, in order: slowerhider_seed0 basic_seed1 slowerhider_seed1\n" in status
+    r = sweep(tmp_path, rec, "retrain", "basic_seed0")
+    assert r.returncode == 0 and "nothing to retrain" in r.stdout
+
+
+def proc_state(pid, want=None, wait=10.0):
+    """A process's state letter; with `want`, waits (a signal lands asynchronously) until it is one of them."""
+    end = time.time() + wait
+    while True:
+        with open("/proc/%d/stat" % pid) as f:
+            state = f.read().rsplit(")", 1)[1].split()[0]
+        if want is None or state in want or time.time() > end:
+            return state
+        time.sleep(0.05)
+
+
+def fake_queue(state):
+    """A process that holds the queue's lock, as a running queue does."""
+    q = subprocess.Popen(["flock", str(state / "queue.lock"), "sleep", "300"])
+    (state / "queue.pid").write_text("%d\n" % q.pid)
+    end = time.time() + 10
+    while subprocess.run(["flock", "-n", str(state / "queue.lock"), "true"]).returncode == 0:
+        assert time.time() < end, "the fake queue did not take its lock"
+        time.sleep(0.05)
+    return q
+
+
+def test_pause_stops_the_runs_processes_and_resume_books_the_paused_time(tmp_path):
+    rec = make_records(tmp_path, {})
+    state = tmp_path / "sweep" / "state"
+    state.mkdir(parents=True)
+    # A queue holds its lock; a running run as the queue leaves it: state/job.<run> holds the PID
+    # of its process tree.
+    queue = fake_queue(state)
+    job = subprocess.Popen(["bash", "-c", "sleep 300 & wait"])
+    try:
+        time.sleep(0.3)
+        child = int(subprocess.check_output(["ps", "-o", "pid=", "--ppid", str(job.pid)]).split()[0])
+        (state / "job.basic_seed1").write_text("%d\n" % job.pid)
+        t0 = time.time()
+        r = sweep(tmp_path, rec, "pause")
+        assert r.returncode == 0 and "1 runs held" in r.stdout, r.stdout + r.stderr
+        assert proc_state(job.pid, "T") == "T" and proc_state(child, "T") == "T"
+        assert "PAUSED" in sweep(tmp_path, rec, "status").stdout
+        time.sleep(2.2)
+        r = sweep(tmp_path, rec, "resume")
+        held = time.time() - t0
+        assert r.returncode == 0, r.stderr
+        assert proc_state(child, "SR") in ("S", "R")
+        paused = int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text())
+        assert 2 <= paused <= held + 1
+        # A second pause adds to the first.
+        sweep(tmp_path, rec, "pause")
+        time.sleep(1.1)
+        sweep(tmp_path, rec, "resume")
+        assert int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text()) >= paused + 1
+        # a stop while paused does not book the held time: the run restarts from a checkpoint
+        # older than the pause
+        booked = int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text())
+        sweep(tmp_path, rec, "pause")
+        time.sleep(1.1)
+        sweep(tmp_path, rec, "stop")
+        assert int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text()) == booked
+    finally:
+        subprocess.run(["pkill", "-KILL", "-P", str(job.pid)])
+        for p in (job, queue):
+            p.kill()
+            p.wait()
+
+
+def test_hold_runs_a_command_with_the_sweep_paused_and_resumes_it(tmp_path):
+    rec = make_records(tmp_path, {})
+    state = tmp_path / "sweep" / "state"
+    state.mkdir(parents=True)
+    queue = fake_queue(state)  # hold acts only where a queue runs
+    job = subprocess.Popen(["sleep", "300"])
+    try:
+        (state / "job.basic_seed0").write_text("%d\n" % job.pid)
+        probe = "import sys; s = open('/proc/%d/stat').read().rsplit(')', 1)[1].split()[0]; sys.exit(0 if s == 'T' else 3)"
+        r = sweep(tmp_path, rec, "hold", sys.executable, "-c", probe % job.pid)
+        assert r.returncode == 0, r.stdout + r.stderr  # the job was stopped while the command ran
+        assert proc_state(job.pid, "SR") in ("S", "R")
+        assert not (state / "paused").exists()
+        # the command's failure is passed on, and the sweep is resumed all the same
+        r = sweep(tmp_path, rec, "hold", "false")
+        assert r.returncode == 1 and proc_state(job.pid, "SR") in ("S", "R")
+    finally:
+        for p in (queue, job):
+            p.kill()
+            p.wait()
+    # without a queue, hold only runs the command, and creates no sweep folder
+    r = sweep(tmp_path, rec, "hold", "true", SWEEP_DIR=str(tmp_path / "none"))
+    assert r.returncode == 0 and not (tmp_path / "none").exists()
+
+
+def test_analyze_redoes_only_the_missing_memoryless_ablation_of_a_gru_run(tmp_path):
+    """`sweep analyze` on a GRU phase: a done GRU run analysed without its memoryless ablation
+    (analysed before it existed, or the part failed) gets that part alone while its weights are
+    here; a run that has it, or whose weights are gone, is left as it is."""
+    names = ("basic_gru_seed0", "slowerhider_gru_seed0", "basic_gru_seed1")
+    rec = make_records(tmp_path, {n: (n.split("_gru")[0], int(n[-1]), 2000000, [30], [30]) for n in names})
+    calls = tmp_path / "calls.txt"
+    (rec / "scripts").mkdir()
+    fake = rec / "scripts" / "analyze_run.sh"
+    fake.write_text("#!/bin/bash\necho \"$*\" >> %s\n" % calls)
+    fake.chmod(0o755)
+    for n in names:
+        d = rec / "docs" / "runs" / n / "analysis"
+        (d / "memoryless").mkdir(parents=True)
+        for f in ("behaviour.csv", "tsne_neighbours.csv"):
+            (d / f).write_text("x\n")
+        w = tmp_path / "sweep" / "runs" / n
+        w.mkdir(parents=True)
+        if n != "basic_gru_seed1":  # its weights are gone: nothing can be redone
+            (w / "policy.pt").write_bytes(b"w")
+    (rec / "docs" / "runs" / "basic_gru_seed0" / "analysis" / "memoryless" / "behaviour.csv").write_text("x\n")
+    gru = config_file(tmp_path, network="gru")
+    r = sweep(tmp_path, rec, "analyze", config=gru)
+    assert r.returncode == 0, r.stderr
+    assert calls.read_text().splitlines() == [
+        "--memoryless-only slowerhider_gru_seed0 %s" % (tmp_path / "sweep" / "runs" / "slowerhider_gru_seed0" / "policy.pt")]
+    assert "slowerhider_gru_seed0: memoryless into" in r.stdout + r.stderr
+    # A feed-forward phase never asks a run for a memoryless ablation.
+    calls.unlink()
+    r = sweep(tmp_path, rec, "analyze")
+    assert r.returncode == 0, r.stderr
+    assert not calls.exists()
+
+
+def test_the_checkout_s_config_is_valid_and_no_v3_run_collides_with_a_v2_run():
+    sys.path.insert(0, os.path.join(ROOT, "src", "hideseek_analysis", "scripts"))
+    import hideseek_registry as reg
+    config = sweep_config.load(os.path.join(ROOT, "config", "sweep.yaml"), reg.variants(), reg.paper_order(),
+                               reg.default_game(), {})
+    names = [r.name for r in config.runs()]
+    assert len(names) == len(set(names))
+    v2 = {n for n, e in reg.runs().items() if e["game"] == "v2"}
+    assert not [r.name for r in config.runs() if r.phase.game != "v2" and r.name in v2]
+
+
+FAKE_TRAIN = r"""#!/bin/bash
+# A stand-in for the pinned tree's train_variant.sh: records the run as the real one does, in a second.
+variant=$1 seed=$2 steps=$3 runs=$4 network=$5 name=$6
+echo "start $name $(date +%s.%N) threads=$HIDER_THREADS game=$GAME" >> "$CALLS"
+mkdir -p "$runs/$name" "$RECORD_ROOT/docs/runs/$name/sampled"
+echo weights > "$runs/$name/policy.pt"
+sleep 1
+for d in "" sampled; do
+  printf 'variant,policy,episodes,avg_living_steps,success_rate\n%s,%s,100,%d.00,0.1000\n' "$variant" "$name" \
+    $((100 + seed)) > "$RECORD_ROOT/docs/runs/$name/$d/evaluation.csv"
+done
+echo png > "$RECORD_ROOT/docs/runs/$name/trajectories.png"
+/usr/bin/python3 "$REGISTRY_SCRIPT" --registry "$RECORD_ROOT/policies/policies.yaml" record "$name" variant=$variant \
+  network=$network game=$GAME training_seed=$seed steps=$steps
+echo "end $name $(date +%s.%N)" >> "$CALLS"
+"""
+
+
+def test_the_queue_trains_phase_by_phase_records_ships_and_keeps_each_phase_s_runs_at_once(tmp_path):
+    """The queue itself, with a stand-in trainer in a worktree of a small repository: every run
+    trained once, in order; two at once in the first phase, the later phase's run alone with its
+    own threads; each recorded as a sweep run of its phase, analysed, and the median shipped."""
+    repo = tmp_path / "repo"
+    (repo / "scripts").mkdir(parents=True)
+    (repo / "scripts" / "train_variant.sh").write_text(FAKE_TRAIN)
+    (repo / "scripts" / "train_variant.sh").chmod(0o755)
+    git = ["git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t"]
+    subprocess.run(["git", "init", "-q", str(repo)], check=True)
+    subprocess.run(git + ["add", "-A"], check=True)
+    subprocess.run(git + ["commit", "-qm", "trainer"], check=True)
+    commit = subprocess.check_output(git + ["rev-parse", "HEAD"], text=True).strip()
+    rec = make_records(tmp_path, {})
+    (rec / "scripts").mkdir()
+    (rec / "scripts" / "analyze_run.sh").write_text("#!/bin/bash\nmkdir -p $RECORD_ROOT/docs/runs/$1/analysis\n"
+                                                    "echo x > $RECORD_ROOT/docs/runs/$1/analysis/behaviour.csv\n")
+    (rec / "scripts" / "analyze_run.sh").chmod(0o755)
+    text = TWO_PHASES.replace("0123456789ab", commit).replace("bf16", "fp32").replace("12100", "12900")
+    sweep_dir = tmp_path / "sweep"
+    (sweep_dir / "state").mkdir(parents=True)
+    (sweep_dir / "state" / ("built." + commit[:12])).write_text(commit)  # the stand-in needs no build
+    calls = tmp_path / "calls.txt"
+    env = dict(os.environ, SWEEP_DIR=str(sweep_dir), SWEEP_RECORD_ROOT=str(rec), PYTHONPATH=PACKAGE, CALLS=str(calls),
+               REGISTRY_SCRIPT=os.path.join(ROOT, "src", "hideseek_analysis", "scripts", "hideseek_registry.py"),
+               PATH="/usr/bin:" + os.environ["PATH"])
+    code = ("import sys; from hideseek_pipeline import cli, queue\n"
+            "sweep = cli.make_sweep(%r, %r); sweep.checkout = %r\nsys.exit(sweep.run() or 0)"
+            % (ROOT, str(config_file(tmp_path, text)), str(repo)))
+    r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "every run of the queue is done" in r.stdout
+    events = [line.split() for line in calls.read_text().splitlines()]
+    starts = [e[1] for e in events if e[0] == "start"]
+    # two at once: the queue starts them in order, and either may write its first line first
+    assert [set(starts[:2]), set(starts[2:4]), starts[4:]] == [
+        {"basic_seed0", "slowerhider_seed0"}, {"basic_seed1", "slowerhider_seed1"}, ["basic_v3_gru_8m_seed0"]]
+    at = {(e[0], e[1]): float(e[2]) for e in events}
+    # the first phase ran two at once; the later phase's run started once every other had ended
+    assert at[("start", "slowerhider_seed0")] < at[("end", "basic_seed0")]
+    assert at[("start", "basic_seed1")] > min(at[("end", "basic_seed0")], at[("end", "slowerhider_seed0")])
+    assert at[("start", "basic_v3_gru_8m_seed0")] > max(t for (k, n), t in at.items() if k == "end" and "v3" not in n)
+    assert "threads=2 game=v3" in calls.read_text().splitlines()[-2]
+    entries = yaml.safe_load((rec / "policies" / "policies.yaml").read_text())
+    assert entries["basic_v3_gru_8m_seed0"]["note"].startswith("sweep run (config/sweep.yaml), phase later, pinned at ")
+    assert entries["basic_v3_gru_8m_seed0"]["game"] == "v3"
+    assert (rec / "docs" / "runs" / "slowerhider_seed1" / "analysis" / "behaviour.csv").exists()
+    # the median of basic's two v2 runs (100 and 101 living steps: the lower) ships as basic.pt
+    assert entries["basic_seed0"].get("weights") == "basic.pt" and "weights" not in entries["basic_seed1"]
+    # the later phase, a budget check, ships nothing
+    assert "weights" not in entries["basic_v3_gru_8m_seed0"] and not (rec / "policies" / "basic_gru_v3.pt").exists()
+    # done means done: a second start trains nothing
+    r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0 and len(calls.read_text().splitlines()) == len(events)
