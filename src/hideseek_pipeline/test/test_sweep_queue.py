@@ -29,26 +29,28 @@ phases:
 """
 
 
+def evaluation(variant, name, living):
+    """An evaluation.csv's text: its one row, for the episodes' living steps."""
+    living = np.array(living)
+    return "variant,policy,episodes,avg_living_steps,success_rate\n%s,%s,%d,%.2f,%.4f\n" % (
+        variant, name, len(living), living.mean(), (living >= 1000).mean())
+
+
 def make_records(tmp_path, runs):
-    """A checkout-like folder: a registry with `runs` (name -> variant, seed, steps, greedy and
-    sampled living steps) and, for each, its evaluations and trajectories."""
+    """A checkout-like folder: a registry of sweep runs `runs` (name -> variant, seed, steps, greedy
+    and sampled living steps) and, for each, both evaluations and its trajectories."""
     rec = tmp_path / "records"
     (rec / "policies").mkdir(parents=True)
-    entries = {}
-    for name, (variant, seed, steps, greedy, sampled) in runs.items():
-        entries[name] = {"variant": variant, "network": "gru" if "_gru" in name else "ff", "game": "v2",
-                         "training_seed": seed, "steps": steps,
-                         "note": "sweep run (config/sweep.yaml), pinned at 0123456789ab"}
-        for sub, living in (("", greedy), ("sampled", sampled)):
-            d = rec / "docs" / "runs" / name / sub
-            d.mkdir(parents=True, exist_ok=True)
-            if not sub:
-                (d / "trajectories.png").write_bytes(b"png")
-            with open(d / "evaluation.csv", "w") as f:
-                f.write("variant,policy,episodes,avg_living_steps,success_rate\n%s,%s,%d,%.2f,%.4f\n" % (
-                    variant, name, len(living), np.mean(living), np.mean(np.array(living) >= 1000)))
-    with open(rec / "policies" / "policies.yaml", "w") as f:
-        yaml.safe_dump(entries, f, sort_keys=False)
+    note = "sweep run (config/sweep.yaml), pinned at 0123456789ab"
+    entries = {name: {"variant": v, "network": "gru" if "_gru" in name else "ff", "game": "v2", "training_seed": seed,
+                      "steps": steps, "note": note} for name, (v, seed, steps, _, _) in runs.items()}
+    for name, (variant, _, _, greedy, sampled) in runs.items():
+        run = rec / "docs" / "runs" / name
+        (run / "sampled").mkdir(parents=True)
+        (run / "trajectories.png").write_bytes(b"png")
+        (run / "evaluation.csv").write_text(evaluation(variant, name, greedy))
+        (run / "sampled" / "evaluation.csv").write_text(evaluation(variant, name, sampled))
+    (rec / "policies" / "policies.yaml").write_text(yaml.safe_dump(entries, sort_keys=False))
     return rec
 
 
