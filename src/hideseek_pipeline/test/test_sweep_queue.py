@@ -36,14 +36,17 @@ def evaluation(variant, name, living):
         variant, name, len(living), living.mean(), (living >= 1000).mean())
 
 
-def make_records(tmp_path, runs):
+def make_records(tmp_path, runs, foreign=()):
     """A checkout-like folder: a registry of sweep runs `runs` (name -> variant, seed, steps, greedy
-    and sampled living steps) and, for each, both evaluations and its trajectories."""
+    and sampled living steps; those named in `foreign` without the sweep's note, as another command
+    records them) and, for each, both evaluations and its trajectories."""
     rec = tmp_path / "records"
     (rec / "policies").mkdir(parents=True)
     note = "sweep run (config/sweep.yaml), pinned at 0123456789ab"
     entries = {name: {"variant": v, "network": "gru" if "_gru" in name else "ff", "game": "v2", "training_seed": seed,
                       "steps": steps, "note": note} for name, (v, seed, steps, _, _) in runs.items()}
+    for name in foreign:
+        del entries[name]["note"]
     for name, (variant, _, _, greedy, sampled) in runs.items():
         run = rec / "docs" / "runs" / name
         (run / "sampled").mkdir(parents=True)
@@ -52,13 +55,6 @@ def make_records(tmp_path, runs):
         (run / "sampled" / "evaluation.csv").write_text(evaluation(variant, name, sampled))
     (rec / "policies" / "policies.yaml").write_text(yaml.safe_dump(entries, sort_keys=False))
     return rec
-
-
-def drop_note(rec, name):
-    path = rec / "policies" / "policies.yaml"
-    entries = yaml.safe_load(path.read_text())
-    del entries[name]["note"]
-    path.write_text(yaml.safe_dump(entries, sort_keys=False))
 
 
 def config_file(tmp_path, text=None, variants="basic slowerhider", seeds="0 1", network="ff"):
@@ -89,8 +85,7 @@ def test_status_lists_runs_seed_major_with_their_state(tmp_path):
         "slowerhider_seed0": ("slowerhider", 0, 1000000, [30], [30]),
         # all steps and both evaluations, but trained by another command (no sweep note): not done
         "basic_seed1": ("basic", 1, 2000000, [30], [30]),
-    })
-    drop_note(rec, "basic_seed1")
+    }, foreign=["basic_seed1"])
     ck = tmp_path / "sweep" / "runs" / "slowerhider_seed1"
     ck.mkdir(parents=True)
     (ck / "checkpoint.pt").write_bytes(b"x")
