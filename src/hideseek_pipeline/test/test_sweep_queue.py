@@ -9,6 +9,7 @@ import time
 
 import numpy as np
 import yaml
+from stand_ins import stand_in_workspace
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 PACKAGE = os.path.join(ROOT, "src", "hideseek_pipeline", "python")
@@ -332,6 +333,40 @@ echo "end $name $(date +%s.%N)" >> "$CALLS"
 """
 
 
+def pinned_repo(repo):
+    """Commits the folder `repo` as a small git repository and returns the commit."""
+    git = ["git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t"]
+    subprocess.run(["git", "init", "-q", str(repo)], check=True)
+    subprocess.run(git + ["add", "-A"], check=True)
+    subprocess.run(git + ["commit", "-qm", "trainer"], check=True)
+    return subprocess.check_output(git + ["rev-parse", "HEAD"], text=True).strip()
+
+
+def queue_in(tmp_path, repo, rec, text, calls):
+    """Runs the queue of config `text` (its commit: `repo`'s) in the foreground, the worktree marked
+    built; returns the command that runs it, its environment and its result."""
+    commit = pinned_repo(repo)
+    text = text.replace("0123456789ab", commit).replace("bf16", "fp32").replace("12100", "12900")
+    sweep_dir = tmp_path / "sweep"
+    (sweep_dir / "state").mkdir(parents=True)
+    (sweep_dir / "state" / ("built." + commit[:12])).write_text(commit)  # the stand-ins need no build
+    env = dict(os.environ, SWEEP_DIR=str(sweep_dir), SWEEP_RECORD_ROOT=str(rec), PYTHONPATH=PACKAGE, CALLS=str(calls),
+               REGISTRY_SCRIPT=os.path.join(ROOT, "src", "hideseek_analysis", "scripts", "hideseek_registry.py"),
+               PATH="/usr/bin:" + os.environ["PATH"])
+    code = ("import sys; from hideseek_pipeline import cli, queue\n"
+            "sweep = cli.make_sweep(%r, %r); sweep.checkout = %r\nsys.exit(sweep.run() or 0)"
+            % (ROOT, str(config_file(tmp_path, text)), str(repo)))
+    return code, env, subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                                     timeout=120)
+
+
+def fake_analysis(rec):
+    (rec / "scripts").mkdir()
+    (rec / "scripts" / "analyze_run.sh").write_text("#!/bin/bash\nmkdir -p $RECORD_ROOT/docs/runs/$1/analysis\n"
+                                                    "echo x > $RECORD_ROOT/docs/runs/$1/analysis/behaviour.csv\n")
+    (rec / "scripts" / "analyze_run.sh").chmod(0o755)
+
+
 def test_the_queue_trains_phase_by_phase_records_ships_and_keeps_each_phase_s_runs_at_once(tmp_path):
     """The queue itself, with a stand-in trainer in a worktree of a small repository: every run
     trained once, in order; two at once in the first phase, the later phase's run alone with its
@@ -340,28 +375,10 @@ def test_the_queue_trains_phase_by_phase_records_ships_and_keeps_each_phase_s_ru
     (repo / "scripts").mkdir(parents=True)
     (repo / "scripts" / "train_variant.sh").write_text(FAKE_TRAIN)
     (repo / "scripts" / "train_variant.sh").chmod(0o755)
-    git = ["git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t"]
-    subprocess.run(["git", "init", "-q", str(repo)], check=True)
-    subprocess.run(git + ["add", "-A"], check=True)
-    subprocess.run(git + ["commit", "-qm", "trainer"], check=True)
-    commit = subprocess.check_output(git + ["rev-parse", "HEAD"], text=True).strip()
     rec = make_records(tmp_path, {})
-    (rec / "scripts").mkdir()
-    (rec / "scripts" / "analyze_run.sh").write_text("#!/bin/bash\nmkdir -p $RECORD_ROOT/docs/runs/$1/analysis\n"
-                                                    "echo x > $RECORD_ROOT/docs/runs/$1/analysis/behaviour.csv\n")
-    (rec / "scripts" / "analyze_run.sh").chmod(0o755)
-    text = TWO_PHASES.replace("0123456789ab", commit).replace("bf16", "fp32").replace("12100", "12900")
-    sweep_dir = tmp_path / "sweep"
-    (sweep_dir / "state").mkdir(parents=True)
-    (sweep_dir / "state" / ("built." + commit[:12])).write_text(commit)  # the stand-in needs no build
+    fake_analysis(rec)
     calls = tmp_path / "calls.txt"
-    env = dict(os.environ, SWEEP_DIR=str(sweep_dir), SWEEP_RECORD_ROOT=str(rec), PYTHONPATH=PACKAGE, CALLS=str(calls),
-               REGISTRY_SCRIPT=os.path.join(ROOT, "src", "hideseek_analysis", "scripts", "hideseek_registry.py"),
-               PATH="/usr/bin:" + os.environ["PATH"])
-    code = ("import sys; from hideseek_pipeline import cli, queue\n"
-            "sweep = cli.make_sweep(%r, %r); sweep.checkout = %r\nsys.exit(sweep.run() or 0)"
-            % (ROOT, str(config_file(tmp_path, text)), str(repo)))
-    r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+    code, env, r = queue_in(tmp_path, repo, rec, TWO_PHASES, calls)
     assert r.returncode == 0, r.stdout + r.stderr
     assert "every run of the queue is done" in r.stdout
     events = [line.split() for line in calls.read_text().splitlines()]
@@ -386,3 +403,25 @@ def test_the_queue_trains_phase_by_phase_records_ships_and_keeps_each_phase_s_ru
     # done means done: a second start trains nothing
     r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
     assert r.returncode == 0 and len(calls.read_text().splitlines()) == len(events)
+
+
+def test_a_pin_without_the_shell_trainer_trains_through_hideseek_pipeline_train_in_its_worktree(tmp_path):
+    """A phase pinned after the shell trainer went: the queue runs `hideseek_pipeline train` with
+    the pinned worktree as its workspace (its launch files and tools), its ports and precision."""
+    repo = stand_in_workspace(tmp_path / "repo")
+    rec = make_records(tmp_path, {})
+    fake_analysis(rec)
+    calls = tmp_path / "calls.txt"
+    one = TWO_PHASES.split("  - {name: later")[0].replace("seeds: [0, 1]", "seeds: [0]").replace(
+        "variants: [basic, slowerhider]", "variants: [basic]")
+    _, _, r = queue_in(tmp_path, repo, rec, one, calls)
+    assert r.returncode == 0, r.stdout + r.stderr
+    launched = [line for line in calls.read_text().splitlines() if line.startswith("roslaunch")]
+    assert launched[0].startswith("roslaunch -p 12900 hideseek_world train.launch variant:=basic game:=v2 seed:=0 "
+                                  "steps:=2000000 network:=ff precision:=fp32")
+    assert "hider_threads:=1" in launched[0]
+    assert "-p 12901 hideseek_world evaluate.launch" in launched[1] and "-p 12902" in launched[2]
+    e = yaml.safe_load((rec / "policies" / "policies.yaml").read_text())["basic_seed0"]
+    assert e["command"].startswith("hideseek_pipeline train basic --seed 0 --steps 2000000")
+    assert e["note"].startswith("sweep run (config/sweep.yaml), phase first, pinned at ")
+    assert e["weights"] == "basic.pt" and (rec / "docs" / "runs" / "basic_seed0" / "analysis" / "behaviour.csv").exists()

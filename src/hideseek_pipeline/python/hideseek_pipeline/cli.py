@@ -1,5 +1,8 @@
 """hideseek_pipeline: the project's pipeline, one command with subcommands.
 
+  hideseek_pipeline train basic --seed 1   one run: trained, exported, recorded, evaluated
+  hideseek_pipeline evaluate RUN WEIGHTS   a recorded run's evaluation (seeds 0-99) and trajectories
+  hideseek_pipeline analyze RUN WEIGHTS    a recorded run's probes, t-SNE and behaviour
   hideseek_pipeline sweep status        the sweep's phases and every run's state
   hideseek_pipeline sweep start         the queue in the background (make sweep)
   hideseek_pipeline sweep hold CMD ...  CMD with the queue paused (make test, make bench)
@@ -10,9 +13,10 @@ import argparse
 import os
 import sys
 
-from hideseek_pipeline import sweep_config
+from hideseek_pipeline import analyze, evaluate, sweep_config, train
 from hideseek_pipeline.queue import Sweep, SweepError
 from hideseek_pipeline.records import Records
+from hideseek_pipeline.workspace import ToolError, Workspace
 
 SWEEP_COMMANDS = {
     "start": "start the queue in the background (it builds each phase's worktree first) and return; a queue "
@@ -48,6 +52,46 @@ def parser():
     p = argparse.ArgumentParser(prog="hideseek_pipeline", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="command", required=True)
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("--record-root", help="the checkout whose registry names the run and whose docs/runs/ "
+                        "receives its files (default: this checkout)")
+    common.add_argument("--workspace", help="the catkin workspace whose launch files and tools run (default: this "
+                        "checkout; the sweep passes a phase's pinned worktree)")
+    t = sub.add_parser("train", parents=[common], help="train, export, record and evaluate one run",
+                       description=train.__doc__)
+    t.add_argument("variant")
+    t.add_argument("--seed", type=int, default=0, help="the training seed (default 0)")
+    t.add_argument("--steps", type=int, default=2_000_000, help="environment steps (default 2000000)")
+    t.add_argument("--runs-dir", default="~/hideseek_runs", help="where <run>/ holds weights and checkpoints")
+    t.add_argument("--network", choices=["ff", "gru"], default="ff")
+    t.add_argument("--name", help="the run's name (default <variant>[_gru]_seed<S>)")
+    t.add_argument("--game", help="default: config/games.yaml's")
+    t.add_argument("--precision", choices=["auto", "fp32", "bf16"], default="auto")
+    t.add_argument("--num-arenas", type=int, help="default: train.launch's")
+    t.add_argument("--hider-threads", type=int, help="the learner's intra-op threads (default: train.launch's)")
+    t.add_argument("--ppo-config", help="default: config/ppo.yaml")
+    t.add_argument("--port", type=int, help="ROS master port (default 11700 + seed, + 50 for the GRU)")
+    t.add_argument("--eval-port", type=int, help="the evaluation's master port (default: the run's + 1000)")
+    t.add_argument("--eval-modes", nargs="+", choices=list(evaluate.MODES), default=["greedy"])
+    t.add_argument("--paused-file", help="a file holding the seconds the run was held paused (the sweep's)")
+    t.add_argument("--ship", action="store_true", help="ship the run as its variant's policy")
+    e = sub.add_parser("evaluate", parents=[common], help="a recorded run's evaluation and trajectories",
+                       description=evaluate.__doc__)
+    e.add_argument("run")
+    e.add_argument("weights")
+    e.add_argument("--modes", nargs="+", choices=list(evaluate.MODES), default=["greedy"])
+    e.add_argument("--port", type=int, default=11479, help="ROS master port; sampled uses the next (default 11479)")
+    a = sub.add_parser("analyze", parents=[common], help="a recorded run's (or a baseline's) per-run analysis",
+                       description=analyze.__doc__)
+    a.add_argument("run", nargs="?", help="a run of the registry (with WEIGHTS)")
+    a.add_argument("weights", nargs="?")
+    a.add_argument("--part", choices=list(analyze.PARTS), default="all",
+                   help="one part alone: tsne, memoryless (a GRU's) or behaviour (default: all)")
+    a.add_argument("--baseline", nargs=2, metavar=("VARIANT", "POLICY"),
+                   help="random or scripted/EVADER on VARIANT: behaviour only")
+    a.add_argument("--game", help="--baseline's game (default: config/games.yaml's)")
+    a.add_argument("--episodes", type=int, default=100, help="rollouts (default 100)")
+    a.add_argument("--first-seed", type=int, default=10000, help="the rollouts' first seed (default 10000)")
     s = sub.add_parser("sweep", help="the sweep's queue of training runs (config/sweep.yaml's phases)",
                        description=sweep_config.__doc__ + "\nSWEEP_DIR (default ~/hideseek_sweep) is the sweep's "
                        "folder; SWEEP_RECORD_ROOT (default the checkout) receives the records.",
@@ -99,12 +143,41 @@ def sweep_command(args):
             "resume": sweep.resume, "stop": sweep.stop}[c]()
 
 
+def run_command(args):
+    root = repository_root()
+    ws = Workspace(args.workspace or root)
+    records = Records(os.path.realpath(args.record_root or root), root)
+    if args.command == "train":
+        o = train.TrainOptions(
+            variant=args.variant, seed=args.seed, steps=args.steps, runs_dir=args.runs_dir, network=args.network,
+            name=args.name, game=args.game, precision=args.precision, num_arenas=args.num_arenas,
+            ppo_config=args.ppo_config and os.path.realpath(args.ppo_config), hider_threads=args.hider_threads,
+            port=args.port, eval_port=args.eval_port, eval_modes=tuple(args.eval_modes),
+            paused_file=args.paused_file, ship=args.ship)
+        train.train(ws, records, o)
+    elif args.command == "evaluate":
+        evaluate.evaluate(ws, records, args.run, args.weights, tuple(args.modes), args.port)
+    elif args.baseline:
+        if args.run or args.part != "all":
+            raise ToolError("analyze: --baseline takes no RUN, WEIGHTS or --part")
+        analyze.analyze_baseline(ws, records.root, args.baseline[0], args.baseline[1], args.game, args.episodes,
+                                 args.first_seed)
+    else:
+        if not (args.run and args.weights):
+            raise ToolError("analyze: name a RUN and its WEIGHTS, or --baseline VARIANT POLICY")
+        analyze.analyze_run(ws, records, args.run, args.weights, args.part, args.episodes, args.first_seed)
+    return 0
+
+
 def main(argv=None):
     args = parser().parse_args(argv)
     # Python must not leave __pycache__ in a pinned worktree (it would look modified).
     sys.dont_write_bytecode = True
     try:
-        return sweep_command(args)
+        return sweep_command(args) if args.command == "sweep" else run_command(args)
     except (SweepError, sweep_config.ConfigError, FileNotFoundError) as e:
         print("sweep: %s" % e, file=sys.stderr)
         return 2
+    except ToolError as e:
+        print("hideseek_pipeline: %s" % e, file=sys.stderr)
+        return 1

@@ -162,11 +162,23 @@ class Sweep:
         log = os.path.join(self.logs, run.name + ".log")
         say("%s: training (phase %s, slot %d, port %d, %d learner threads; log %s)" % (
             run.name, phase.name, slot, port, phase.hider_threads, log))
-        env = dict(os.environ, RECORD_ROOT=self.records.root, PRECISION=phase.precision, GAME=phase.game,
-                   HIDER_THREADS=str(phase.hider_threads), ROS_PORT=str(port), HIDESEEK_PORT=str(port + 1),
-                   EVAL_MODES="greedy sampled", PAUSED_FILE=os.path.join(self.runs_dir, run.name, "paused_s"))
-        cmd = [os.path.join(tree, "scripts", "train_variant.sh"), run.variant, str(run.seed), str(phase.steps),
-               self.runs_dir, phase.network, run.name]
+        paused = os.path.join(self.runs_dir, run.name, "paused_s")
+        script = os.path.join(tree, "scripts", "train_variant.sh")
+        if os.path.isfile(script):
+            # A pin from before this command: its own shell trainer.
+            env = dict(os.environ, RECORD_ROOT=self.records.root, PRECISION=phase.precision, GAME=phase.game,
+                       HIDER_THREADS=str(phase.hider_threads), ROS_PORT=str(port), HIDESEEK_PORT=str(port + 1),
+                       EVAL_MODES="greedy sampled", PAUSED_FILE=paused)
+            cmd = [script, run.variant, str(run.seed), str(phase.steps), self.runs_dir, phase.network, run.name]
+        else:
+            # hideseek_pipeline train with the pinned tree as its workspace (its launch files and tools).
+            env = dict(os.environ, PYTHONPATH=_package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
+            cmd = [sys.executable, "-m", "hideseek_pipeline", "train", run.variant, "--seed", str(run.seed),
+                   "--steps", str(phase.steps), "--runs-dir", self.runs_dir, "--network", phase.network,
+                   "--name", run.name, "--game", phase.game, "--precision", phase.precision, "--hider-threads",
+                   str(phase.hider_threads), "--port", str(port), "--eval-port", str(port + 1), "--eval-modes",
+                   "greedy", "sampled", "--paused-file", paused, "--workspace", tree, "--record-root",
+                   self.records.root]
         with open(log, "w") as f:
             rc = subprocess.run(cmd, env=env, stdout=f, stderr=subprocess.STDOUT).returncode
         if rc != 0:

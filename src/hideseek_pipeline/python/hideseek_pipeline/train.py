@@ -1,0 +1,139 @@
+"""One run: trained through train.launch (resuming when <runs>/<run> holds a checkpoint), its
+weights exported to <runs>/<run>/policy.pt (outside the repository), its training log and learning
+curve copied to docs/runs/<run>/, an entry in the run registry (variant, network, game, training
+seed, steps, wall time, precision and the commit it trained with), then its evaluation."""
+import os
+import re
+import shutil
+import subprocess
+from dataclasses import dataclass
+from typing import Optional
+
+from hideseek_pipeline.evaluate import evaluate
+from hideseek_pipeline.workspace import ToolError
+
+
+@dataclass
+class TrainOptions:
+    variant: str
+    seed: int = 0
+    steps: int = 2_000_000
+    runs_dir: str = "~/hideseek_runs"
+    network: str = "ff"
+    name: Optional[str] = None
+    game: Optional[str] = None        # None: the default game (config/games.yaml)
+    precision: str = "auto"
+    num_arenas: Optional[int] = None  # None: train.launch's
+    ppo_config: Optional[str] = None
+    hider_threads: Optional[int] = None
+    port: Optional[int] = None        # None: 11700 + seed (+ 50 for the GRU); the evaluation uses port + 1000
+    eval_port: Optional[int] = None
+    eval_modes: tuple = ("greedy",)
+    paused_file: Optional[str] = None  # the seconds the sweep held the run paused, left out of wall_s
+    ship: bool = False
+
+    def run_name(self):
+        if self.name:
+            return self.name
+        return self.variant + ("" if self.network == "ff" else "_" + self.network) + "_seed%d" % self.seed
+
+
+def _commit(ws):
+    r = subprocess.run(["git", "describe", "--always", "--dirty", "--abbrev=12"], cwd=ws.root, capture_output=True,
+                       text=True)
+    return r.stdout.strip() if r.returncode == 0 else "unknown"
+
+
+def _last_row(path):
+    with open(path) as f:
+        return f.read().strip().splitlines()[-1].split(",")
+
+
+def command_line(o, name):
+    """What reproduces the run: the options that are not the defaults."""
+    parts = ["hideseek_pipeline", "train", o.variant, "--seed", str(o.seed), "--steps", str(o.steps),
+             "--network", o.network, "--name", name]
+    for flag, value in (("--game", o.game), ("--precision", None if o.precision == "auto" else o.precision),
+                        ("--num-arenas", o.num_arenas), ("--hider-threads", o.hider_threads),
+                        ("--ppo-config", o.ppo_config and os.path.relpath(o.ppo_config))):
+        if value is not None:
+            parts += [flag, str(value)]
+    return " ".join(parts)
+
+
+def train(ws, records, o, say=print):
+    """`ws`: the Workspace that trains (its launch files, binaries and commit); `records`: the
+    Records of the checkout that receives the run's files and registry entry."""
+    name = o.run_name()
+    if not name or "/" in name or name.startswith("."):
+        raise ToolError("train: the run's name '%s' must be a plain file name (no '/', not starting with '.')" % name)
+    if o.variant not in records.registry.variants():
+        raise ToolError("train: no variant '%s' in config/variants" % o.variant)
+    if o.ppo_config and not os.path.isfile(o.ppo_config):
+        raise ToolError("train: --ppo-config: no file %s" % o.ppo_config)
+    game = o.game or ws.resolve(o.variant, "game")
+    # A run keeps its game: a name recorded under another game is not trained (or resumed) under this one.
+    recorded = (records.entry(name) or {}).get("game")
+    if recorded and recorded != game:
+        raise ToolError("train: %s is recorded as a run of game %s (policies/policies.yaml); this is game %s: "
+                        "name the run otherwise" % (name, recorded, game))
+    run = os.path.join(os.path.realpath(os.path.expanduser(o.runs_dir)), name)
+    os.makedirs(run, exist_ok=True)
+    port = o.port or 11700 + o.seed + (50 if o.network == "gru" else 0)
+    commit, commit_file = _commit(ws), os.path.join(run, "commit")
+    lines = open(commit_file).read().splitlines() if os.path.isfile(commit_file) else []
+    if not lines:
+        open(commit_file, "w").write(commit + "\n")
+    elif lines[0] != commit and "resumed at " + commit not in lines:
+        open(commit_file, "a").write("resumed at %s\n" % commit)
+        say("train: %s started at commit %s, resumes at %s" % (name, lines[0], commit))
+    args = ["roslaunch", "-p", port, "hideseek_world", "train.launch", "variant:=" + o.variant, "game:=" + game,
+            "seed:=%d" % o.seed, "steps:=%d" % o.steps, "network:=" + o.network, "precision:=" + o.precision,
+            "output_dir:=" + run]
+    for key, value in (("num_arenas", o.num_arenas), ("hider_threads", o.hider_threads),
+                       ("ppo_config", o.ppo_config and os.path.realpath(o.ppo_config))):
+        if value is not None:
+            args.append("%s:=%s" % (key, value))
+    say("train: %s (variant %s, network %s, game %s, training seed %d), %d steps, into %s (log: %s/launch.log)"
+        % (name, o.variant, o.network, game, o.seed, o.steps, run, run))
+    launch_log = os.path.join(run, "launch.log")
+    ws.command(args, env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=launch_log, check=False)
+    # roslaunch exits 0 even when the hider dies: record only a run that trained all its steps.
+    log_csv = os.path.join(run, "training_log.csv")
+    row = _last_row(log_csv) if os.path.isfile(log_csv) else []
+    trained = int(row[1]) if len(row) > 2 and row[1].isdigit() else 0
+    if trained < o.steps:
+        raise ToolError("train: %s stopped at %d of %d steps (see %s); nothing recorded" % (name, trained, o.steps,
+                                                                                          launch_log))
+    ws.command([ws.tool("hideseek_hider", "export_policy"), os.path.join(run, "checkpoint.pt"),
+                os.path.join(run, "policy.pt")])
+    docs = records.docs(name)
+    os.makedirs(docs, exist_ok=True)
+    shutil.copyfile(log_csv, os.path.join(docs, "training_log.csv"))
+    ws.python("plot_learning_curve.py", os.path.join(docs, "training_log.csv"), os.path.join(docs, "learning_curve.png"),
+              "%s, network %s, game %s, training seed %d, %d steps" % (o.variant, o.network, game, o.seed, trained))
+    record(records, name, o, game, trained, row, run, launch_log)
+    say("train: %s recorded in %s; weights in %s" % (name, records.registry_path, os.path.join(run, "policy.pt")))
+    evaluate(ws, records, name, os.path.join(run, "policy.pt"), o.eval_modes, o.eval_port or port + 1000, say)
+    if o.ship:
+        records.registry.ship(name, os.path.join(run, "policy.pt"), records.registry_path)
+        say("train: %s shipped as the %s policy" % (name, o.variant))
+    return name
+
+
+def record(records, name, o, game, trained, row, run, launch_log):
+    # The precision the hider chose, from its last start-up line ("... on cpu in auto: bf16, ...").
+    chosen = re.findall(r"PPO, network [a-z]+, on \S+ in [^,]*", open(launch_log).read())
+    precision = (re.findall(r"bf16|fp32", chosen[-1]) or ["unknown"])[0] if chosen else "unknown"
+    paused = 0
+    if o.paused_file and os.path.isfile(o.paused_file) and os.path.getsize(o.paused_file):
+        text = open(o.paused_file).read().split()[0].split(".")[0]
+        if not text.isdigit():
+            raise ToolError("train: %s must hold a number of seconds >= 0, holds '%s'" % (o.paused_file, text))
+        paused = int(text)
+    commits = "; ".join(line for line in open(os.path.join(run, "commit")).read().splitlines() if line)
+    records.registry.record(name, {
+        "variant": o.variant, "network": o.network, "game": game, "training_seed": o.seed, "steps": trained,
+        "wall_s": int(float(row[2])) - paused, "paused_s": paused or None, "precision": precision, "commit": commits,
+        "log": "docs/runs/%s/training_log.csv" % name, "curve": "docs/runs/%s/learning_curve.png" % name,
+        "command": command_line(o, name)}, records.registry_path)

@@ -1,0 +1,49 @@
+"""A catkin workspace the pipeline runs ROS tools from: the checkout's own, or a sweep phase's
+worktree at its pinned commit. Every command runs with the workspace's environment
+(scripts/env.sh: Debian's python3 first, the devel space sourced), from its root."""
+import os
+import subprocess
+
+ANALYSIS_SCRIPTS = os.path.join("src", "hideseek_analysis", "scripts")
+
+
+class ToolError(Exception):
+    """A step of the pipeline failed; the message names it and where its log is."""
+
+
+class Workspace:
+    def __init__(self, root):
+        self.root = os.path.realpath(root)
+        if not os.path.isfile(os.path.join(self.root, "scripts", "env.sh")):
+            raise ToolError("%s is not a hideseek checkout (no scripts/env.sh)" % self.root)
+
+    def command(self, args, env=None, log=None, check=True):
+        """Runs `args` in the workspace's environment; stdout to `log` (a path) when given, else
+        captured and returned. Raises ToolError naming the command when `check` and it fails."""
+        wrapped = ["bash", "-c", 'source scripts/env.sh && exec "$@"', "hideseek"] + [str(a) for a in args]
+        full_env = dict(os.environ, **(env or {}))
+        if log:
+            with open(log, "w") as f:
+                r = subprocess.run(wrapped, cwd=self.root, env=full_env, stdout=f, stderr=subprocess.STDOUT)
+            out = ""
+        else:
+            r = subprocess.run(wrapped, cwd=self.root, env=full_env, capture_output=True, text=True)
+            out = r.stdout
+        if check and r.returncode != 0:
+            where = ("see %s" % log) if log else (r.stderr.strip().splitlines() or ["no message"])[-1]
+            raise ToolError("%s exited %d (%s)" % (os.path.basename(str(args[0])), r.returncode, where))
+        return out
+
+    def tool(self, package, name):
+        return os.path.join(self.root, "devel", "lib", package, name)
+
+    def resolve(self, variant, key, game=None):
+        """The resolver's answer for a variant (hideseek_game's resolve: game, map_file, ...)."""
+        args = [self.tool("hideseek_game", "resolve")] + (["--game", game] if game else []) + [variant, key]
+        return self.command(args).strip()
+
+    def analysis_script(self, name):
+        return os.path.join(self.root, ANALYSIS_SCRIPTS, name)
+
+    def python(self, script, *args, log=None):
+        return self.command(["/usr/bin/python3", self.analysis_script(script)] + list(args), log=log)

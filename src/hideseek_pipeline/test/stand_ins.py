@@ -1,0 +1,55 @@
+"""A catkin workspace of stand-ins for the pipeline's tests: roslaunch, the resolver, the policy
+exporter, the episode player and the analysis scripts, each appending its command line to $CALLS
+and writing what the pipeline reads back. No ROS, no training."""
+
+FAKE_ROSLAUNCH = r"""#!/bin/bash
+# train.launch: a training log of STEPS steps (or STOP_AT) and a checkpoint; evaluate.launch: an evaluation.
+echo "roslaunch $*" >> "$CALLS"
+for a in "$@"; do case $a in *:=*) declare "${a%%:=*}=${a#*:=}";; esac; done
+case " $* " in
+  *" train.launch "*)
+    echo "[ INFO] PPO, network $network, on cpu in auto: bf16, because" > /dev/null
+    echo "hider: PPO, network $network, on cpu in auto: fp32, this CPU has neither"
+    printf 'update,steps,wall_s,x\n1,%s,123.7,0\n' "${STOP_AT:-$steps}" > "$output_dir/training_log.csv"
+    echo ckpt > "$output_dir/checkpoint.pt" ;;
+  *" evaluate.launch "*)
+    printf 'variant,policy,episodes,avg_living_steps,success_rate\n%s,%s,100,321.00,0.2500\n' "$variant" "$policy" \
+      > "$output_dir/evaluation.csv"
+    echo "| $policy |" > "$output_dir/evaluation.md" ;;
+esac
+"""
+FAKE_TOOL = r"""#!/bin/bash
+echo "$(basename "$0") $*" >> "$CALLS"
+case $(basename "$0") in
+  resolve) [ "${@: -1}" = game ] && echo v2 || echo /maps/x.yaml ;;
+  export_policy) cp "$1" "$2" ;;
+  play_episodes) [ "$1" = --game ] && shift 2; printf 'seed,step\n%s,1\n' "$3" > "$5" ;;
+esac
+"""
+FAKE_SCRIPT = r"""import os, sys
+open(os.environ["CALLS"], "a").write(os.path.basename(sys.argv[0]) + " " + " ".join(sys.argv[1:]) + "\n")
+for a in sys.argv[1:]:
+    if a.endswith(".png"):
+        open(a, "w").write("png")
+"""
+
+
+
+
+def stand_in_workspace(w):
+    """Writes the stand-ins under the folder `w` (created) and returns it."""
+    (w / "scripts").mkdir(parents=True)
+    (w / "bin").mkdir()
+    (w / "scripts" / "env.sh").write_text('export PATH="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/bin:$PATH"\n')
+    for path, text in ((w / "bin" / "roslaunch", FAKE_ROSLAUNCH),
+                       (w / "devel" / "lib" / "hideseek_game" / "resolve", FAKE_TOOL),
+                       (w / "devel" / "lib" / "hideseek_hider" / "export_policy", FAKE_TOOL),
+                       (w / "devel" / "lib" / "hideseek_play" / "play_episodes", FAKE_TOOL)):
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text)
+        path.chmod(0o755)
+    scripts = w / "src" / "hideseek_analysis" / "scripts"
+    scripts.mkdir(parents=True)
+    for name in ("plot_learning_curve.py", "plot_trajectories.py", "behaviour.py", "probes.py"):
+        (scripts / name).write_text(FAKE_SCRIPT)
+    return w

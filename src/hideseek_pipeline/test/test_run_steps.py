@@ -1,0 +1,101 @@
+"""hideseek_pipeline train / evaluate / analyze against a stand-in workspace (fake roslaunch, resolver,
+exporter, player and plotting scripts): what each step runs, what it records and what it refuses.
+The real tools' outputs are checked against the shell scripts these steps replaced in
+docs/architecture.md's record; here, no ROS master and no training."""
+import os
+import subprocess
+import sys
+
+import pytest
+import yaml
+from stand_ins import stand_in_workspace
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+PACKAGE = os.path.join(ROOT, "src", "hideseek_pipeline", "python")
+
+@pytest.fixture
+def ws(tmp_path):
+    """A workspace of stand-ins, and a records checkout with an empty registry."""
+    w = stand_in_workspace(tmp_path / "ws")
+    rec = tmp_path / "records"
+    (rec / "policies").mkdir(parents=True)
+    (rec / "policies" / "policies.yaml").write_text("# runs\n")
+    return w, rec, tmp_path / "calls.txt"
+
+
+def pipeline(w, rec, calls, *args, **env):
+    e = dict(os.environ, PYTHONPATH=PACKAGE, CALLS=str(calls), PATH="/usr/bin:" + os.environ["PATH"])
+    e.update(env)
+    return subprocess.run([sys.executable, "-m", "hideseek_pipeline"] + list(args) +
+                          ["--workspace", str(w), "--record-root", str(rec)], env=e, capture_output=True, text=True,
+                          timeout=120)
+
+
+def entries(rec):
+    return yaml.safe_load((rec / "policies" / "policies.yaml").read_text())
+
+
+def test_train_records_the_run_evaluates_it_and_keeps_the_paused_time_apart(ws, tmp_path):
+    w, rec, calls = ws
+    paused = tmp_path / "paused_s"
+    paused.write_text("20\n")
+    r = pipeline(w, rec, calls, "train", "basic", "--seed", "3", "--steps", "4096", "--runs-dir",
+                 str(tmp_path / "runs"), "--hider-threads", "1", "--eval-modes", "greedy", "sampled",
+                 "--paused-file", str(paused), "--port", "12345")
+    assert r.returncode == 0, r.stdout + r.stderr
+    e = entries(rec)["basic_seed3"]
+    assert (e["variant"], e["network"], e["game"], e["training_seed"], e["steps"]) == ("basic", "ff", "v2", 3, 4096)
+    assert e["wall_s"] == 103 and e["paused_s"] == 20 and e["precision"] == "fp32"
+    assert e["command"] == ("hideseek_pipeline train basic --seed 3 --steps 4096 --network ff --name basic_seed3 "
+                            "--hider-threads 1")
+    launched = [line for line in calls.read_text().splitlines() if line.startswith("roslaunch")]
+    assert launched[0].startswith("roslaunch -p 12345 hideseek_world train.launch variant:=basic game:=v2 seed:=3")
+    assert "hider_threads:=1" in launched[0]
+    # greedy and sampled evaluations on the run's port + 1000 and the next, naming the run, not its weights
+    assert "-p 13345 hideseek_world evaluate.launch" in launched[1] and "greedy:=true" in launched[1]
+    assert "-p 13346 hideseek_world evaluate.launch" in launched[2] and "greedy:=false" in launched[2]
+    docs = rec / "docs" / "runs" / "basic_seed3"
+    assert "basic_seed3" in (docs / "evaluation.csv").read_text() and "policy.pt" not in (docs / "evaluation.md").read_text()
+    for f in ("training_log.csv", "learning_curve.png", "trajectories.png", "sampled/evaluation.csv"):
+        assert (docs / f).is_file(), f
+    assert (tmp_path / "runs" / "basic_seed3" / "policy.pt").read_text() == "ckpt\n"
+
+
+def test_a_run_that_stops_short_records_nothing(ws, tmp_path):
+    w, rec, calls = ws
+    r = pipeline(w, rec, calls, "train", "basic", "--steps", "4096", "--runs-dir", str(tmp_path / "runs"),
+                 STOP_AT="2048")
+    assert r.returncode == 1 and "stopped at 2048 of 4096 steps" in r.stderr and "nothing recorded" in r.stderr
+    assert not entries(rec)
+
+
+def test_train_refuses_a_bad_name_an_unknown_variant_and_another_game_s_run(ws, tmp_path):
+    w, rec, calls = ws
+    runs = str(tmp_path / "runs")
+    r = pipeline(w, rec, calls, "train", "basic", "--name", "../x", "--runs-dir", runs)
+    assert r.returncode == 1 and "must be a plain file name" in r.stderr
+    r = pipeline(w, rec, calls, "train", "nosuchvariant", "--runs-dir", runs)
+    assert r.returncode == 1 and "no variant 'nosuchvariant'" in r.stderr
+    (rec / "policies" / "policies.yaml").write_text(
+        "basic_seed0: {variant: basic, network: ff, game: v3, training_seed: 0, steps: 2048}\n")
+    r = pipeline(w, rec, calls, "train", "basic", "--runs-dir", runs, "--game", "v2")
+    assert r.returncode == 1 and "recorded as a run of game v3" in r.stderr and "this is game v2" in r.stderr
+    assert not calls.exists() or "train.launch" not in calls.read_text()
+
+
+def test_analyze_plays_the_run_s_game_in_chunks_and_refuses_a_memoryless_feed_forward_run(ws, tmp_path):
+    w, rec, calls = ws
+    (rec / "policies" / "policies.yaml").write_text(
+        "basic_v3_seed0: {variant: basic, network: ff, game: v3, training_seed: 0, steps: 2048}\n")
+    weights = tmp_path / "policy.pt"
+    weights.write_text("w")
+    r = pipeline(w, rec, calls, "analyze", "basic_v3_seed0", str(weights), "--part", "behaviour", "--episodes", "120")
+    assert r.returncode == 0, r.stderr
+    plays = [line.split() for line in calls.read_text().splitlines() if line.startswith("play_episodes")]
+    # 120 episodes in chunks of 50 from seed 10000, on game v3, greedy with memory
+    assert [(p[2], p[5], p[6]) for p in plays] == [("v3", "10000", "50"), ("v3", "10050", "50"), ("v3", "10100", "20")]
+    assert all(p[-2:] == ["greedy", "memory"] for p in plays)
+    steps = [line for line in calls.read_text().splitlines() if line.startswith("behaviour.py")]
+    assert steps and steps[0].split()[2] == str(rec / "docs" / "runs" / "basic_v3_seed0" / "analysis")
+    r = pipeline(w, rec, calls, "analyze", "basic_v3_seed0", str(weights), "--part", "memoryless")
+    assert r.returncode == 1 and "the memoryless ablation is a GRU's" in r.stderr
