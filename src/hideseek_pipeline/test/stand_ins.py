@@ -31,25 +31,31 @@ open(os.environ["CALLS"], "a").write(os.path.basename(sys.argv[0]) + " " + " ".j
 for a in sys.argv[1:]:
     if a.endswith(".png"):
         open(a, "w").write("png")
+if os.path.basename(sys.argv[0]) == "behaviour.py":
+    os.makedirs(sys.argv[2], exist_ok=True)
+    open(os.path.join(sys.argv[2], "behaviour.csv"), "w").write("x\n")
 """
+FAKE_PROBE_SET = "#!/bin/bash\necho \"probe_set.sh $*\" >> \"$CALLS\"\necho /tmp/probe_set\n"
 
 
 
 
 def stand_in_workspace(w):
     """Writes the stand-ins under the folder `w` (created) and returns it."""
-    (w / "scripts").mkdir(parents=True)
+    (w / "scripts").mkdir(parents=True, exist_ok=True)
     (w / "bin").mkdir()
     (w / "scripts" / "env.sh").write_text('export PATH="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/bin:$PATH"\n')
     for path, text in ((w / "bin" / "roslaunch", FAKE_ROSLAUNCH),
                        (w / "devel" / "lib" / "hideseek_game" / "resolve", FAKE_TOOL),
                        (w / "devel" / "lib" / "hideseek_hider" / "export_policy", FAKE_TOOL),
-                       (w / "devel" / "lib" / "hideseek_play" / "play_episodes", FAKE_TOOL)):
+                       (w / "devel" / "lib" / "hideseek_play" / "play_episodes", FAKE_TOOL),
+                       (w / "devel" / "lib" / "hideseek_analysis" / "probe_set", FAKE_TOOL),
+                       (w / "scripts" / "probe_set.sh", FAKE_PROBE_SET)):
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)
         path.chmod(0o755)
     scripts = w / "src" / "hideseek_analysis" / "scripts"
-    scripts.mkdir(parents=True)
+    scripts.mkdir(parents=True, exist_ok=True)
     for name in ("plot_learning_curve.py", "plot_trajectories.py", "behaviour.py", "probes.py"):
         (scripts / name).write_text(FAKE_SCRIPT)
     return w

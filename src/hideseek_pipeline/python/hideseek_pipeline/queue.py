@@ -195,19 +195,18 @@ class Sweep:
         return 0
 
     def analyze(self, name, part=None):
-        """The per-run analysis (the records' scripts/analyze_run.sh), or one `part` of it (tsne or
+        """The per-run analysis (hideseek_pipeline analyze, with the records' checkout as its
+        workspace: the analysis is not pinned, since it trains nothing), or one `part` of it (tsne or
         memoryless). Its failure does not undo the run: `sweep analyze` retries."""
         if not self.has_weights(name):
             say("%s: no weights in %s: not analysed" % (name, os.path.dirname(self.weights(name))))
             return False
-        cmd = [os.path.join(self.records.root, "scripts", "analyze_run.sh")]
-        if part:
-            cmd.append("--%s-only" % part)
-        cmd += [name, self.weights(name)]
+        cmd = [sys.executable, "-m", "hideseek_pipeline", "analyze", name, self.weights(name), "--part", part or "all",
+               "--record-root", self.records.root, "--workspace", self.records.root]
         log = os.path.join(self.logs, name + ".analysis.log")
+        env = dict(os.environ, PYTHONPATH=_package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
         with open(log, "a") as f:
-            ok = subprocess.run(cmd, env=dict(os.environ, RECORD_ROOT=self.records.root), stdout=f,
-                                stderr=subprocess.STDOUT).returncode == 0
+            ok = subprocess.run(cmd, env=env, stdout=f, stderr=subprocess.STDOUT).returncode == 0
         what = part or "analysed"
         if ok:
             say("%s: %s into %s" % (name, what if part else "analysed", self.records.docs(name, "analysis")))
