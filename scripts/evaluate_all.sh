@@ -6,7 +6,7 @@
 # and, per evaluation, OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv.
 # A shipped GRU hider (policies/<variant>_gru.pt) is evaluated too, as <variant>_gru_trained, and once more
 # with its state zeroed at every step (memoryless:=true, what its memory does) as <variant>_gru_memoryless.
-# A run that is not shipped is evaluated into its own folder by scripts/evaluate_run.sh.
+# A run that is not shipped is evaluated into its own folder by hideseek_pipeline evaluate.
 # HIDESEEK_VARIANTS="v1 v2" evaluates those variants only and keeps the other evaluations already in
 # OUTPUT_DIR/evaluations (made by the same code: use it after training a policy, not after changing the game).
 set -euo pipefail

@@ -7,7 +7,7 @@ usage: claims.py [--root DIR] [--out DIR] [--steps N] [--extra RUN ...] [--reps 
 Reads the sweep's runs (as sweep_table2.py selects them: registry entries <variant>_seed<S>, plus
 --extra), each run's evaluation (docs/runs/<run>/episodes.csv) and per-run analysis
 (docs/runs/<run>/analysis/: probes.csv, states.csv, transitions.csv, behaviour.csv, written by
-scripts/analyze_run.sh), the random hider's behaviour per variant
+hideseek_pipeline analyze), the random hider's behaviour per variant
 (docs/analysis/baselines/<variant>/random/) and its living steps (docs/calibration_table.csv), and
 for the memory claim the sweep's GRU runs (<variant>_gru_seed<S>, network gru) with their
 memoryless ablations (docs/runs/<run>/analysis/memoryless/behaviour.csv).

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The paper's Figures 4-7 across training seeds, from the committed per-run analysis outputs
-(docs/runs/<run>/analysis/, scripts/analyze_run.sh) and the random hider's
+(docs/runs/<run>/analysis/, hideseek_pipeline analyze) and the random hider's
 (docs/analysis/baselines/<variant>/random/).
 
 usage: seed_figures.py [--root DIR] [--out DIR] [--steps N] [--extra RUN ...] [--reps N]
@@ -191,7 +191,7 @@ def behaviour_table(out, R, variants, seed, reps):
         md.append("| %s | %d | %s |" % (v, len(analysed), " | ".join(cells)))
         md.append("| %s, random hider | | %s |" % (v, " | ".join(random_cells)))
     write_table(out, "behaviour_seeds", rows, "Behaviour across training seeds",
-                ("Each run's 100 greedy rollouts on seeds 10000-10099 (`scripts/analyze_run.sh`); per variant the mean over "
+                ("Each run's 100 greedy rollouts on seeds 10000-10099 (`hideseek_pipeline analyze`); per variant the mean over "
                  "its runs with a 95 % bootstrap interval over runs (none with one run; with two runs the bootstrap returns "
                  "their range, and the table says so), and below it the random "
                  "hider of the same variant (1000 episodes). Walking backward: the hider's action moves it backward; "

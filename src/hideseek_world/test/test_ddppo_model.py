@@ -1,11 +1,11 @@
-"""Tests of scripts/ddppo_model.py, the speed-up model of training across machines
+"""Tests of experiments/ddppo/ddppo_model.py, the speed-up model of training across machines
 (docs/distributed.md): run with python3 -m pytest."""
 import os
 import subprocess
 import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
+sys.path.insert(0, os.path.join(ROOT, "experiments", "ddppo"))
 import ddppo_model as m  # noqa: E402
 
 GB = 1e9 / 8
@@ -28,7 +28,7 @@ def test_free_communication_gives_linear_speed_up_and_slow_links_give_less():
 
 
 def test_the_command_prints_a_row_per_machine_count_from_the_ppo_file():
-    out = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "ddppo_model.py"), "900", "8841880",
+    out = subprocess.run([sys.executable, os.path.join(ROOT, "experiments", "ddppo", "ddppo_model.py"), "900", "8841880",
                           "--machines", "1", "2", "16"], capture_output=True, text=True, check=True).stdout
     assert "16 all-reduces of 8.84 MB per update" in out  # 4 epochs x 4 minibatches (config/ppo.yaml)
     rows = [line for line in out.splitlines() if line.startswith("| ") and line[2].isdigit()]

@@ -117,7 +117,7 @@ def test_problems_name_what_disagrees(tree):
 
 def test_recording_a_run_again_replaces_its_training_and_an_empty_value_removes_a_field(tree):
     """A retrained run is recorded over its first training: the new wall time replaces the old, and
-    paused_s= (what train_variant.sh and the sweep pass when the new training was never paused)
+    paused_s= (what hideseek_pipeline train and the sweep pass when the new training was never paused)
     removes the old training's paused time rather than leaving it beside the new wall time."""
     registry, variants = tree
     first = ["variant=basic", "network=ff", "game=v2", "training_seed=0", "wall_s=4394", "paused_s=1030"]

@@ -191,7 +191,7 @@ def test_the_two_readings_of_the_stochastic_seeker_are_compared_beside_the_table
 
 
 def add_analysis(rec, name, gain_s, gain_h, s0h0o1=0.1):
-    """A run's per-run analysis outputs as analyze_run.sh writes them (the parts the claims read)."""
+    """A run's per-run analysis outputs as hideseek_pipeline analyze writes them (the parts the claims read)."""
     d = rec / "docs" / "runs" / name / "analysis"
     d.mkdir(parents=True, exist_ok=True)
     with open(d / "probes.csv", "w") as f:

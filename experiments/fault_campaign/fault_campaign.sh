@@ -2,9 +2,9 @@
 # Faults and malformed input thrown at the real nodes, one case per line of a Markdown table:
 # what was done, what a user should see, what happened. Not a test (it takes a few minutes and
 # prints a report); the behaviours it checks are also held by the tests.
-# usage: scripts/fault_campaign.sh [REPORT.md]
+# usage: experiments/fault_campaign/fault_campaign.sh [REPORT.md]
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 source scripts/env.sh
 report=${1:-/dev/stdout}
 dir=$(mktemp -d /tmp/hideseek_faults.XXXXXX)
@@ -29,7 +29,7 @@ fatal_case() {  # name, expected text, launch file and arguments...
   timeout 240 roslaunch -p "$port" hideseek_world "$@" > "$dir/$name.log" 2>&1
   local line
   line=$(grep -F "[FATAL]" "$dir/$name.log" | head -n 1 | sed 's/\x1b\[[0-9;]*m//g; s/|/\\|/g' | cut -c1-160)
-  grep -F "[FATAL]" "$dir/$name.log" | grep -F -- "$expected" > /dev/null  # no -q: see train_variant.sh
+  grep -F "[FATAL]" "$dir/$name.log" | grep -F -- "$expected" > /dev/null  # no -q: a grep that stops at the first match breaks its writer's pipe
   row "$name" "\`$*\`" "FATAL naming it" "$(pass $? "$line")"
 }
 fatal_case missing_checkpoint "cannot be read" basic.launch policy:=/nonexistent/policy.pt

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Watches a running game for a soak (scripts/soak.sh): every node's resident memory over time, the
+"""Watches a running game for a soak (experiments/soak/soak.sh): every node's resident memory over time, the
 world's input counters (missed decisions, rejected action messages) from /diagnostics and, with
 --rviz, everything rviz subscribes to, so that the graph serves a viewer all along.
 

@@ -13,14 +13,14 @@
 # leans high: where the world's and the seeker's threads slow the learner's update in the graph,
 # that loss counts as the floor's. Run it with nothing else on the machine, and compare only
 # figures taken alternating: this kind of virtual machine drifts by 10 to 40 % over minutes.
-# usage: scripts/measure_loop.sh [ARENAS=16] [PPO_CONFIG=config/ppo.yaml] [UPDATES=20] [LABEL] [roslaunch args ...]
-#   e.g. scripts/measure_loop.sh 32 /tmp/ppo_rollout32.yaml 20 32x32
-#        scripts/measure_loop.sh 16 config/ppo.yaml 20 rt0 render_threads:=0
+# usage: experiments/throughput/measure_loop.sh [ARENAS=16] [PPO_CONFIG=config/ppo.yaml] [UPDATES=20] [LABEL] [roslaunch args ...]
+#   e.g. experiments/throughput/measure_loop.sh 32 /tmp/ppo_rollout32.yaml 20 32x32
+#        experiments/throughput/measure_loop.sh 16 config/ppo.yaml 20 rt0 render_threads:=0
 #   NETWORK (ff), PRECISION (auto) and ROS_PORT (11533) come from the environment.
 set -euo pipefail
-config=$(realpath -m "${2:-$(dirname "$0")/../config/ppo.yaml}")
+config=$(realpath -m "${2:-$(dirname "$0")/../../config/ppo.yaml}")
 [ -f "$config" ] || { echo "measure_loop: PPO_CONFIG: no file ${2:-config/ppo.yaml}" >&2; exit 2; }
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 arenas=${1:-16}
 updates=${3:-20}
 [ "$updates" -ge 1 ] 2> /dev/null || { echo "measure_loop: UPDATES must be a whole number >= 1, got '$updates'" >&2; exit 2; }

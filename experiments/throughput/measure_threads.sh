@@ -2,9 +2,9 @@
 # Measures training throughput for each choice of thread counts, on this machine: the learner's
 # intra-op threads (hider_threads), OpenBLAS's threads and the world's render threads, through
 # the ROS graph (16 arenas, 84x84), and the in-process floor for the learner's choices.
-# Usage: scripts/measure_threads.sh [PRECISION]   (default fp32). Prints a Markdown table.
+# Usage: experiments/throughput/measure_threads.sh [PRECISION]   (default fp32). Prints a Markdown table.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 source scripts/env.sh
 source scripts/measure.sh
 precision=${1:-fp32}

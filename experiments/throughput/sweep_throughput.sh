@@ -5,14 +5,14 @@
 # x 64 steps), updates 3 to 22 of each run's log (the first two warm up). Alternates A B B A so that
 # the host's drift falls on both. Prints a Markdown table and the arrangement that trains more
 # samples per hour. Take it with the sweep paused (hideseek_pipeline sweep pause).
-# usage: scripts/sweep_throughput.sh [ROUNDS=2]
+# usage: experiments/throughput/sweep_throughput.sh [ROUNDS=2]
 #   WORKSPACE (default this checkout): the built workspace to train with (the sweep's worktree:
 #   WORKSPACE=~/hideseek_sweep/tree). PORT (default 11900): masters on PORT and PORT + 1.
 set -euo pipefail
 rounds=${1:-2}
-ws=$(realpath "${WORKSPACE:-$(dirname "$0")/..}")
+ws=$(realpath "${WORKSPACE:-$(dirname "$0")/../..}")
 port=${PORT:-11900}
-here=$(dirname "$(realpath "$0")")
+here=$(dirname "$(realpath "$0")")/../../scripts
 source "$here/env.sh"
 source "$here/measure.sh"
 set +u

@@ -6,9 +6,9 @@
 # (SIGKILL): rank 0 must stop, naming rank 1; the same two commands then resume both ranks from
 # rank 0's last checkpoint. Writes OUT (default docs/runs/ddppo_basic_seed0): both training logs,
 # the ranks' console lines, and curves.png with both learning curves.
-#   scripts/ddppo_demo.sh [OUT]      (STEPS=200000 KILL_AFTER_S=150 by default)
+#   experiments/ddppo/ddppo_demo.sh [OUT]      (STEPS=200000 KILL_AFTER_S=150 by default)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 source scripts/env.sh
 STEPS=${STEPS:-200000}
 KILL_AFTER_S=${KILL_AFTER_S:-150}
