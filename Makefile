@@ -24,11 +24,11 @@ test: build
 	$(PIPELINE) sweep hold scripts/run_tests.sh
 
 bench: build
-	$(PIPELINE) sweep hold scripts/bench.sh
+	$(PIPELINE) bench
 
 # Table 2, the analysis of every variant with a shipped policy, Table 3 and the figures, in docs/report.
 reproduce: build
-	scripts/reproduce.sh
+	$(PIPELINE) report
 
 # The sweep's queue (config/sweep.yaml's phases) in the background, each phase from its own worktree
 # at its pinned commit: $(PIPELINE) sweep status | pause | resume | stop | --help.

@@ -3,14 +3,17 @@
   hideseek_pipeline train basic --seed 1   one run: trained, exported, recorded, evaluated
   hideseek_pipeline evaluate RUN WEIGHTS   a recorded run's evaluation (seeds 0-99) and trajectories
   hideseek_pipeline analyze RUN WEIGHTS    a recorded run's probes, t-SNE and behaviour
-  hideseek_pipeline sweep status        the sweep's phases and every run's state
-  hideseek_pipeline sweep start         the queue in the background (make sweep)
-  hideseek_pipeline sweep hold CMD ...  CMD with the queue paused (make test, make bench)
+  hideseek_pipeline bench                  make bench: this machine's throughput, the sweep held meanwhile
+  hideseek_pipeline report                 make reproduce: Table 2, the claims and the figures in docs/report
+  hideseek_pipeline sweep status           the sweep's phases and every run's state
+  hideseek_pipeline sweep start            the queue in the background (make sweep)
+  hideseek_pipeline sweep hold CMD ...     CMD with the queue paused (make test)
 
 Each subcommand answers --help.
 """
 import argparse
 import os
+import subprocess
 import sys
 
 from hideseek_pipeline import analyze, evaluate, sweep_config, train
@@ -92,6 +95,14 @@ def parser():
     a.add_argument("--game", help="--baseline's game (default: config/games.yaml's)")
     a.add_argument("--episodes", type=int, default=100, help="rollouts (default 100)")
     a.add_argument("--first-seed", type=int, default=10000, help="the rollouts' first seed (default 10000)")
+    sub.add_parser("bench", help="this machine's throughput figures (scripts/bench.sh), with a running sweep held",
+                   description="One `name value` line per figure; timing goals live here, never in tests. A running "
+                   "sweep is paused meanwhile and resumed after.")
+    r = sub.add_parser("report", help="Table 2, the claims and the figures into docs/report (scripts/reproduce.sh)",
+                       description="From the committed evaluations and analyses (under a minute), or with "
+                       "--from-scratch from the weights: re-evaluates and re-analyses the shipped policies.")
+    r.add_argument("--from-scratch", action="store_true")
+    r.add_argument("report_dir", nargs="?", help="default docs/report")
     s = sub.add_parser("sweep", help="the sweep's queue of training runs (config/sweep.yaml's phases)",
                        description=sweep_config.__doc__ + "\nSWEEP_DIR (default ~/hideseek_sweep) is the sweep's "
                        "folder; SWEEP_RECORD_ROOT (default the checkout) receives the records.",
@@ -118,12 +129,10 @@ def make_sweep(root, config_path=None):
 
 def sweep_command(args):
     root = repository_root()
-    if args.sweep_command == "hold" and not os.path.isdir(os.path.expanduser(
-            os.environ.get("SWEEP_DIR", "~/hideseek_sweep"))):
-        import subprocess
+    if args.sweep_command == "hold":
         if not args.hold_command:
             raise SweepError("hold: name the command to run while the sweep is paused")
-        return subprocess.run(args.hold_command).returncode  # no sweep folder: no queue to pause
+        return held(root, args.hold_command, args.config)
     sweep = make_sweep(root, args.config)
     c = args.sweep_command
     if c == "start":
@@ -169,8 +178,22 @@ def run_command(args):
     return 0
 
 
+def held(root, command, config=None):
+    """`command`, with a running sweep paused meanwhile and resumed after, whatever its exit. With
+    no sweep folder there is no queue to pause: just the command (no folder is created)."""
+    if not os.path.isdir(os.path.expanduser(os.environ.get("SWEEP_DIR", "~/hideseek_sweep"))):
+        return subprocess.run(command).returncode
+    return make_sweep(root, config).hold(command)
+
+
 def main(argv=None):
     args = parser().parse_args(argv)
+    if args.command in ("bench", "report"):
+        root = repository_root()
+        if args.command == "bench":
+            return held(root, [os.path.join(root, "scripts", "bench.sh")])
+        extra = (["--from-scratch"] if args.from_scratch else []) + ([args.report_dir] if args.report_dir else [])
+        return subprocess.run([os.path.join(root, "scripts", "reproduce.sh")] + extra, cwd=root).returncode
     # Python must not leave __pycache__ in a pinned worktree (it would look modified).
     sys.dont_write_bytecode = True
     try:
