@@ -352,8 +352,8 @@ def queue_in(tmp_path, repo, rec, text, calls):
     env = dict(os.environ, SWEEP_DIR=str(sweep_dir), SWEEP_RECORD_ROOT=str(rec), PYTHONPATH=PACKAGE, CALLS=str(calls),
                REGISTRY_SCRIPT=os.path.join(ROOT, "src", "hideseek_analysis", "scripts", "hideseek_registry.py"),
                PATH="/usr/bin:" + os.environ["PATH"])
-    code = ("import sys; from hideseek_pipeline import cli, queue\n"
-            "sweep = cli.make_sweep(%r, %r); sweep.checkout = %r\nsys.exit(sweep.run() or 0)"
+    code = ("import sys; from hideseek_pipeline import cli, runner\n"
+            "sweep = cli.make_sweep(%r, %r); sweep.checkout = %r\nsys.exit(runner.run(sweep) or 0)"
             % (ROOT, str(config_file(tmp_path, text)), str(repo)))
     return code, env, subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
                                      timeout=120)

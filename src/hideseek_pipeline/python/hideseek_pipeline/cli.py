@@ -16,7 +16,7 @@ import os
 import subprocess
 import sys
 
-from hideseek_pipeline import analyze, evaluate, sweep_config, train
+from hideseek_pipeline import analyze, control, evaluate, runner, sweep_config, train
 from hideseek_pipeline.queue import Sweep, SweepError
 from hideseek_pipeline.records import Records
 from hideseek_pipeline.workspace import ToolError, Workspace
@@ -60,6 +60,21 @@ def parser():
                         "receives its files (default: this checkout)")
     common.add_argument("--workspace", help="the catkin workspace whose launch files and tools run (default: this "
                         "checkout; the sweep passes a phase's pinned worktree)")
+    _train_parser(sub, common)
+    _evaluate_and_analyze_parsers(sub, common)
+    sub.add_parser("bench", help="this machine's throughput figures (scripts/bench.sh), with a running sweep held",
+                   description="One `name value` line per figure; timing goals live here, never in tests. A running "
+                   "sweep is paused meanwhile and resumed after.")
+    r = sub.add_parser("report", help="Table 2, the claims and the figures into docs/report (scripts/reproduce.sh)",
+                       description="From the committed evaluations and analyses (under a minute), or with "
+                       "--from-scratch from the weights: re-evaluates and re-analyses the shipped policies.")
+    r.add_argument("--from-scratch", action="store_true")
+    r.add_argument("report_dir", nargs="?", help="default docs/report")
+    _sweep_parser(sub)
+    return p
+
+
+def _train_parser(sub, common):
     t = sub.add_parser("train", parents=[common], help="train, export, record and evaluate one run",
                        description=train.__doc__)
     t.add_argument("variant")
@@ -78,6 +93,9 @@ def parser():
     t.add_argument("--eval-modes", nargs="+", choices=list(evaluate.MODES), default=["greedy"])
     t.add_argument("--paused-file", help="a file holding the seconds the run was held paused (the sweep's)")
     t.add_argument("--ship", action="store_true", help="ship the run as its variant's policy")
+
+
+def _evaluate_and_analyze_parsers(sub, common):
     e = sub.add_parser("evaluate", parents=[common], help="a recorded run's evaluation and trajectories",
                        description=evaluate.__doc__)
     e.add_argument("run")
@@ -95,14 +113,9 @@ def parser():
     a.add_argument("--game", help="--baseline's game (default: config/games.yaml's)")
     a.add_argument("--episodes", type=int, default=100, help="rollouts (default 100)")
     a.add_argument("--first-seed", type=int, default=10000, help="the rollouts' first seed (default 10000)")
-    sub.add_parser("bench", help="this machine's throughput figures (scripts/bench.sh), with a running sweep held",
-                   description="One `name value` line per figure; timing goals live here, never in tests. A running "
-                   "sweep is paused meanwhile and resumed after.")
-    r = sub.add_parser("report", help="Table 2, the claims and the figures into docs/report (scripts/reproduce.sh)",
-                       description="From the committed evaluations and analyses (under a minute), or with "
-                       "--from-scratch from the weights: re-evaluates and re-analyses the shipped policies.")
-    r.add_argument("--from-scratch", action="store_true")
-    r.add_argument("report_dir", nargs="?", help="default docs/report")
+
+
+def _sweep_parser(sub):
     s = sub.add_parser("sweep", help="the sweep's queue of training runs (config/sweep.yaml's phases)",
                        description=sweep_config.__doc__ + "\nSWEEP_DIR (default ~/hideseek_sweep) is the sweep's "
                        "folder; SWEEP_RECORD_ROOT (default the checkout) receives the records.",
@@ -115,7 +128,6 @@ def parser():
             c.add_argument("runs", nargs="*", metavar="RUN")
         if name == "hold":
             c.add_argument("hold_command", nargs=argparse.REMAINDER, metavar="CMD")
-    return p
 
 
 def make_sweep(root, config_path=None):
@@ -135,21 +147,17 @@ def sweep_command(args):
         return held(root, args.hold_command, args.config)
     sweep = make_sweep(root, args.config)
     c = args.sweep_command
-    if c == "start":
-        return sweep.start()
     if c == "run":
-        return sweep.run() or 0
+        return runner.run(sweep) or 0
     if c == "build":
         sweep.make_dirs()
         for phase in sweep.config.phases:
-            sweep.prepare_tree(phase)
+            runner.prepare_tree(sweep, phase)
         return 0
     if c == "retrain":
-        return sweep.retrain(args.runs)
-    if c == "hold":
-        return sweep.hold(args.hold_command)
-    return {"status": sweep.status, "analyze": sweep.analyze_all, "ship": sweep.ship_all, "pause": sweep.pause,
-            "resume": sweep.resume, "stop": sweep.stop}[c]()
+        return control.retrain(sweep, args.runs)
+    return {"start": runner.start, "analyze": runner.analyze_all, "ship": runner.ship_all, "status": control.status,
+            "pause": control.pause, "resume": control.resume, "stop": control.stop}[c](sweep)
 
 
 def run_command(args):
@@ -183,7 +191,7 @@ def held(root, command, config=None):
     no sweep folder there is no queue to pause: just the command (no folder is created)."""
     if not os.path.isdir(os.path.expanduser(os.environ.get("SWEEP_DIR", "~/hideseek_sweep"))):
         return subprocess.run(command).returncode
-    return make_sweep(root, config).hold(command)
+    return control.hold(make_sweep(root, config), command)
 
 
 def main(argv=None):

@@ -1,0 +1,155 @@
+"""Reporting on and steering the sweep's queue: status, retrain, pause, resume, stop, hold."""
+import os
+import signal
+import subprocess
+import sys
+import time
+
+from hideseek_pipeline import processes as proc
+from hideseek_pipeline.queue import RETRAIN_SUFFIX, SweepError, last_line, read_lines, remove_file
+
+
+def status(sweep):
+    out = []
+    queue = ("running (pid %s)" % sweep.queue_pid()) if sweep.queue_pid() else "not running"
+    if os.path.exists(sweep.state_file("paused")):
+        since = float(open(sweep.state_file("paused")).read().split()[0])
+        queue += ", PAUSED since %s" % time.strftime("%H:%M:%S", time.localtime(since))
+    out.append("sweep: %d phases (%s), runs %s; queue %s" % (
+        len(sweep.config.phases), ", ".join("%s at %s" % (p.name, p.commit[:12]) for p in sweep.config.phases),
+        sweep.runs_dir, queue))
+    if not proc.native_bf16():
+        out.append("sweep: this CPU has no native bf16: the queue will not train bf16 phases here")
+    jobs = sweep.job_pids()
+    for run in sweep.all_runs():
+        out.append(_status_line(sweep, run, run.name in jobs))
+    queued = [r.name[:-len(RETRAIN_SUFFIX)] for r in sweep.retrain_runs() if sweep.wants_retrain(r)]
+    if queued:
+        out.append("sweep: queued for retraining (weights lost; after every other run): " + " ".join(queued))
+    out.append("sweep: left to train, in order: " + (" ".join(r.name for r in sweep.to_train()) or "nothing"))
+    print("\n".join(out))
+    return 0
+
+
+def _status_line(sweep, run, training):
+    name, rec = run.name, sweep.records
+    if training:
+        last = last_line(os.path.join(sweep.runs_dir, name, "training_log.csv")).split(",")
+        return "%-34s training  %s steps of %d, %s s%s" % (name, last[1] if len(last) > 2 else "?", run.phase.steps,
+                                                           last[2] if len(last) > 2 else "?",
+                                                           " (retraining)" if run.retrain else "")
+    if rec.is_done(run):
+        return "%-34s done      greedy %s, sampled %s (living steps, success); %s; %s" % (
+            name, rec.evaluation(name), rec.evaluation(name, "sampled"),
+            "analysed" if rec.analysed(name) else "NOT analysed",
+            "weights in %s" % os.path.dirname(sweep.weights(name)) if sweep.has_weights(name)
+            else "weights not on this machine")
+    if os.path.isfile(os.path.join(sweep.runs_dir, name, "checkpoint.pt")):
+        return "%-34s partial   checkpoint in %s (resumes at the next start)" % (
+            name, os.path.join(sweep.runs_dir, name))
+    return "%-34s missing" % name
+
+
+def retrain(sweep, names):
+    if not names:
+        raise SweepError("retrain: name the runs to train again (sweep ship names the ones a variant needs)")
+    by_name = {r.name: r for r in sweep.config.runs()}
+    sweep.make_dirs()
+    for name in names:
+        if name not in by_name:
+            raise SweepError("retrain: '%s' is not a run of the queue (sweep status lists them)" % name)
+        if not sweep.records.is_done(by_name[name]):
+            raise SweepError("retrain: '%s' is not done: the queue trains it anyway" % name)
+        if sweep.has_weights(name):
+            print("sweep: %s: its weights are here (%s); nothing to retrain" % (name, sweep.weights(name)))
+            continue
+        if name not in sweep.retrain_list():
+            with open(sweep.state_file("retrain"), "a") as f:
+                f.write(name + "\n")
+        print("sweep: %s queued for retraining, after every other run of the queue, as %s%s beside its "
+              "first draw" % (name, name, RETRAIN_SUFFIX))
+    if sweep.queue_pid():
+        print("sweep: the running queue takes it up when a slot frees")
+    return 0
+
+
+def pause(sweep):
+    """SIGSTOP every training run's process tree; the queue starts no new run until resume."""
+    if os.path.exists(sweep.state_file("paused")):
+        print("sweep: already paused")
+        return 0
+    sweep.make_dirs()
+    with proc.FileLock(sweep.state_file("launch.lock")):
+        open(sweep.state_file("paused"), "w").write("%d\n" % time.time())
+        held = sweep.job_pids()
+        for pid in held.values():
+            proc.stop_tree(pid)
+        with open(sweep.state_file("paused.runs"), "w") as f:
+            f.writelines("%s %d\n" % item for item in held.items())
+    print("sweep: paused (%d runs held; the queue starts no new run until 'hideseek_pipeline sweep resume')"
+          % len(held))
+    return 0
+
+
+def resume(sweep, book=True):
+    """SIGCONT the runs the pause held; with `book`, adds the held time to each one's paused_s
+    (not when they are being stopped: they restart from a checkpoint older than the pause)."""
+    if not os.path.exists(sweep.state_file("paused")):
+        print("sweep: not paused")
+        return 0
+    held = int(time.time() - float(open(sweep.state_file("paused")).read().split()[0]))
+    for line in read_lines(sweep.state_file("paused.runs")):
+        name, pid = line.split()
+        if not proc.alive(int(pid)):
+            continue
+        proc.continue_tree(int(pid))
+        if book:
+            path = os.path.join(sweep.runs_dir, name, "paused_s")
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            before = int(float(last_line(path) or 0))
+            open(path, "w").write("%d\n" % (before + held))
+    remove_file(sweep.state_file("paused"))
+    remove_file(sweep.state_file("paused.runs"))
+    print("sweep: resumed after %d s" % held)
+    return 0
+
+
+def stop(sweep):
+    queue = sweep.queue_pid()
+    sweep.make_dirs()
+    open(sweep.state_file("stop"), "w").close()
+    if os.path.exists(sweep.state_file("paused")):
+        with open(os.devnull, "w") as null:
+            stdout, sys.stdout = sys.stdout, null
+            try:
+                resume(sweep, book=False)
+            finally:
+                sys.stdout = stdout
+    for pid in sweep.job_pids().values():
+        proc.signal_tree(pid, signal.SIGINT)
+    if isinstance(queue, int):
+        proc.signal_tree(queue, signal.SIGTERM)
+    for _ in range(60):
+        if not sweep.queue_pid() and not sweep.job_pids():
+            break
+        time.sleep(1)
+    for pid in sweep.job_pids().values():
+        proc.signal_tree(pid, signal.SIGKILL)
+    print("sweep: stopped; 'hideseek_pipeline sweep start' resumes each run from its last checkpoint")
+    return 0
+
+
+def hold(sweep, command):
+    """Pauses a running queue, runs `command`, resumes the queue whatever its exit; with no queue
+    running, just the command. make bench and make test run under it."""
+    if not command:
+        raise SweepError("hold: name the command to run while the sweep is paused")
+    if not sweep.queue_pid() or os.path.exists(sweep.state_file("paused")):
+        return subprocess.run(command).returncode
+    pause(sweep)
+    try:
+        return subprocess.run(command).returncode
+    except KeyboardInterrupt:
+        return 130
+    finally:
+        resume(sweep)

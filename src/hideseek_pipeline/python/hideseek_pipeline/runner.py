@@ -1,0 +1,270 @@
+"""The sweep's runner: trains every missing run of config/sweep.yaml's phases from a git worktree
+built at the phase's commit, evaluates each run the moment it finishes (seeds 0-99, greedy and
+sampled), records it into the checkout (docs/runs/<run>/ and policies/policies.yaml), analyses it
+and ships each variant's median run. Runs resume from their checkpoints.
+"""
+import multiprocessing
+import os
+import signal
+import subprocess
+import sys
+import time
+
+from hideseek_pipeline import processes as proc
+from hideseek_pipeline.queue import NO_BF16, RETRAIN_SUFFIX, SweepError, package_path, remove_file, say
+from hideseek_pipeline.records import SWEEP_NOTE
+
+
+def prepare_tree(sweep, phase):
+    """The worktree at the phase's commit, built (catkin_make, Release, no tests) once."""
+    if sweep.git("rev-parse", "--verify", "-q", phase.commit + "^{commit}").returncode != 0:
+        raise SweepError("phase %s: commit %s is not in this repository (fetch it first)" % (phase.name, phase.commit))
+    full = sweep.git("rev-parse", phase.commit).stdout.strip()
+    tree = sweep.tree(phase)
+    sweep.git("worktree", "prune")
+    if not os.path.exists(os.path.join(tree, ".git")):
+        say("creating the worktree %s at %s" % (tree, full))
+        os.makedirs(os.path.dirname(tree), exist_ok=True)
+        r = sweep.git("worktree", "add", "--detach", tree, full)
+        if r.returncode != 0:
+            raise SweepError("git worktree add %s failed: %s" % (tree, r.stderr.strip()))
+    elif sweep.git("rev-parse", "HEAD", cwd=tree).stdout.strip() != full:
+        raise SweepError("the worktree %s is not at %s" % (tree, full))
+    if sweep.git("status", "--porcelain", cwd=tree).stdout.strip():
+        raise SweepError("the worktree %s has uncommitted changes; a sweep run trains from a clean tree "
+                         "(git -C %s status)" % (tree, tree))
+    built = sweep.state_file("built." + full[:12])
+    if not os.path.exists(built):
+        log = os.path.join(sweep.logs, "build.%s.log" % full[:12])
+        say("building the worktree at %s (log: %s)" % (full[:12], log))
+        cmd = ("source scripts/env.sh && catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 "
+               "-DPython3_EXECUTABLE=/usr/bin/python3 -DCATKIN_ENABLE_TESTING=OFF -j%d" % os.cpu_count())
+        with open(log, "w") as f:
+            if subprocess.run(["bash", "-c", cmd], cwd=tree, stdout=f, stderr=subprocess.STDOUT).returncode:
+                raise SweepError("the worktree's build failed: %s" % log)
+        open(built, "w").write(full + "\n")
+    return tree
+
+# ---- one run --------------------------------------------------------------------------------
+
+
+def job(sweep, run, slot):
+    """Trains (or resumes) one run, exports, records and evaluates it into the records' checkout,
+    then analyses it and ships its variant's median run. Returns the exit status."""
+    phase = run.phase
+    port = sweep.config.port + 10 * slot
+    for p in (port, port + 1, port + 2):
+        if not proc.port_free(p):
+            say("%s: port %d is in use; not started" % (run.name, p))
+            return 3
+    tree = sweep.tree(phase)
+    if sweep.git("status", "--porcelain", cwd=tree).stdout.strip():
+        say("%s: the worktree is not clean; not started" % run.name)
+        return 3
+    log = os.path.join(sweep.logs, run.name + ".log")
+    say("%s: training (phase %s, slot %d, port %d, %d learner threads; log %s)" % (
+        run.name, phase.name, slot, port, phase.hider_threads, log))
+    paused = os.path.join(sweep.runs_dir, run.name, "paused_s")
+    script = os.path.join(tree, "scripts", "train_variant.sh")
+    if os.path.isfile(script):
+        # A pin from before this command: its own shell trainer.
+        env = dict(os.environ, RECORD_ROOT=sweep.records.root, PRECISION=phase.precision, GAME=phase.game,
+                   HIDER_THREADS=str(phase.hider_threads), ROS_PORT=str(port), HIDESEEK_PORT=str(port + 1),
+                   EVAL_MODES="greedy sampled", PAUSED_FILE=paused)
+        cmd = [script, run.variant, str(run.seed), str(phase.steps), sweep.runs_dir, phase.network, run.name]
+    else:
+        # hideseek_pipeline train with the pinned tree as its workspace (its launch files and tools).
+        env = dict(os.environ, PYTHONPATH=package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
+        cmd = [sys.executable, "-m", "hideseek_pipeline", "train", run.variant, "--seed", str(run.seed),
+               "--steps", str(phase.steps), "--runs-dir", sweep.runs_dir, "--network", phase.network,
+               "--name", run.name, "--game", phase.game, "--precision", phase.precision, "--hider-threads",
+               str(phase.hider_threads), "--port", str(port), "--eval-port", str(port + 1), "--eval-modes",
+               "greedy", "sampled", "--paused-file", paused, "--workspace", tree, "--record-root",
+               sweep.records.root]
+    with open(log, "w") as f:
+        rc = subprocess.run(cmd, env=env, stdout=f, stderr=subprocess.STDOUT).returncode
+    if rc != 0:
+        say("%s: failed (exit %d); see %s" % (run.name, rc, log))
+        return rc
+    fields = {"note": "%s, phase %s, pinned at %s" % (SWEEP_NOTE, phase.name, phase.commit[:12])}
+    if run.retrain:
+        fields.update(draw="retrain", retrain_of=run.name[:-len(RETRAIN_SUFFIX)])
+    sweep.records.registry.record(run.name, fields, sweep.records.registry_path)
+    analyze(sweep, run.name)
+    ship(sweep, run.variant, phase)
+    say("%s: done: greedy %s, sampled %s (living steps/success)" % (
+        run.name, sweep.records.evaluation(run.name), sweep.records.evaluation(run.name, "sampled")))
+    return 0
+
+
+def analyze(sweep, name, part=None):
+    """The per-run analysis (hideseek_pipeline analyze, with the records' checkout as its
+    workspace: the analysis is not pinned, since it trains nothing), or one `part` of it (tsne or
+    memoryless). Its failure does not undo the run: `sweep analyze` retries."""
+    if not sweep.has_weights(name):
+        say("%s: no weights in %s: not analysed" % (name, os.path.dirname(sweep.weights(name))))
+        return False
+    cmd = [sys.executable, "-m", "hideseek_pipeline", "analyze", name, sweep.weights(name), "--part", part or "all",
+           "--record-root", sweep.records.root, "--workspace", sweep.records.root]
+    log = os.path.join(sweep.logs, name + ".analysis.log")
+    env = dict(os.environ, PYTHONPATH=package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    with open(log, "a") as f:
+        ok = subprocess.run(cmd, env=env, stdout=f, stderr=subprocess.STDOUT).returncode == 0
+    what = part or "analysed"
+    if ok:
+        say("%s: %s into %s" % (name, what if part else "analysed", sweep.records.docs(name, "analysis")))
+    else:
+        say("%s: the %s failed; see %s" % (name, "%s part" % part if part else "analysis", log))
+    return ok
+
+
+def ship(sweep, variant, phase):
+    """Ships the variant's median sweep run of the phase's game, network and budget, from its
+    weights here; where they are not, the shipped run stays and the message names the run to
+    retrain. A phase with `ship: false` (a longer budget's check) ships nothing."""
+    if not phase.ship:
+        return
+    reg = sweep.records.registry
+    try:
+        say(reg.ship_median(variant, sweep.runs_dir, phase.network, phase.game, sweep.records.registry_path,
+                            sweep.records.root, SWEEP_NOTE, phase.steps))
+    except (reg.WeightsMissing, reg.RegistryError) as e:
+        say(str(e))
+
+# ---- commands -------------------------------------------------------------------------------
+
+
+def run(sweep):
+    """The queue in the foreground: starts runs in order while slots are free, each in a process
+    of its own (forked: a running queue keeps the code it started with)."""
+    sweep.make_dirs()
+    lock = proc.FileLock(sweep.state_file("queue.lock"), wait=False)
+    try:
+        lock.__enter__()
+    except BlockingIOError:
+        raise SweepError("a queue is already running (pid %s)" % proc.read_pid(sweep.state_file("queue.pid")))
+    try:
+        _run_locked(sweep)
+    finally:
+        remove_file(sweep.state_file("queue.pid"))
+        lock.__exit__(None, None, None)
+
+
+def _run_locked(sweep):
+    open(sweep.state_file("queue.pid"), "w").write("%d\n" % os.getpid())
+    for f in os.listdir(sweep.state):
+        if f.startswith("job.") or f == "stop":
+            remove_file(sweep.state_file(f))
+    if os.path.exists(sweep.state_file("paused")):
+        say("a pause from an earlier queue is cleared (its runs were stopped)")
+        remove_file(sweep.state_file("paused"))
+    if not proc.native_bf16() and any(p.precision == "bf16" for p in sweep.config.phases):
+        raise SweepError(NO_BF16)
+    for phase in sweep.config.phases:
+        prepare_tree(sweep, phase)
+    say("queue: %d runs in %d phases (%s) from %s" % (
+        len(sweep.config.runs()), len(sweep.config.phases), ", ".join(p.name for p in sweep.config.phases), sweep.dir))
+    running, failed = {}, set()  # name -> (process, slot, phase jobs)
+    ctx = multiprocessing.get_context("fork")
+
+    def stop_runs(*_):
+        say("stopping")
+        for process, _, _ in running.values():
+            proc.signal_tree(process.pid, signal.SIGINT)
+        for process, _, _ in running.values():
+            process.join()
+        sys.exit(143)
+
+    signal.signal(signal.SIGINT, stop_runs)
+    signal.signal(signal.SIGTERM, stop_runs)
+    while not os.path.exists(sweep.state_file("stop")):
+        started = False
+        if not os.path.exists(sweep.state_file("paused")):
+            with proc.FileLock(sweep.state_file("launch.lock")):
+                started = not os.path.exists(sweep.state_file("paused")) and _start_next(sweep, running, failed, ctx)
+        if started:
+            continue
+        if not running and not os.path.exists(sweep.state_file("paused")):
+            left = [r.name for r in sweep.to_train()]
+            say("every run of the queue is done" if not left else
+                "nothing left to start: %d runs failed (see the logs); start again to retry them" % len(left))
+            return
+        time.sleep(5)
+        for name, (process, _, _) in list(running.items()):
+            if not process.is_alive():
+                process.join()
+                if process.exitcode != 0:
+                    failed.add(name)
+                remove_file(sweep.state_file("job." + name))
+                del running[name]
+
+
+def _start_next(sweep, running, failed, ctx):
+    """Starts the first run left in order, if its phase's number of runs at once allows it."""
+    for run in sweep.to_train():
+        if run.name in running or run.name in failed:
+            continue
+        if len(running) >= run.phase.jobs or any(jobs < len(running) + 1 for _, _, jobs in running.values()):
+            return False
+        used = {slot for _, slot, _ in running.values()}
+        slot = min(s for s in range(len(running) + 1) if s not in used)
+        process = ctx.Process(target=_job_process, args=(sweep, run, slot), name=run.name)
+        process.start()
+        open(sweep.state_file("job." + run.name), "w").write("%d\n" % process.pid)
+        running[run.name] = (process, slot, run.phase.jobs)
+        return True
+    return False
+
+
+def _job_process(sweep, run, slot):
+    # A handler, not SIG_IGN (which the training would inherit): the stop's SIGINT reaches the
+    # whole tree, and this process waits for the training to end rather than leave it.
+    signal.signal(signal.SIGINT, lambda *_: None)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    sys.exit(job(sweep, run, slot))
+
+
+def start(sweep):
+    if sweep.queue_pid():
+        print("sweep: the queue is already running (pid %s); hideseek_pipeline sweep status" % sweep.queue_pid())
+        return 0
+    if not proc.native_bf16() and any(p.precision == "bf16" for p in sweep.config.phases):
+        raise SweepError(NO_BF16)
+    sweep.make_dirs()
+    log = os.path.join(sweep.logs, "queue.log")
+    with open(log, "a") as f:
+        subprocess.Popen([sys.executable, "-m", "hideseek_pipeline", "sweep", "--config", sweep.config.path, "run"],
+                         stdout=f,
+                         stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, start_new_session=True,
+                         env=dict(os.environ, PYTHONPATH=package_path() + os.pathsep +
+                                  os.environ.get("PYTHONPATH", "")))
+    print("sweep: queue started (log: %s; hideseek_pipeline sweep status)" % log)
+    return 0
+
+
+def analyze_all(sweep):
+    """The per-run analysis of every done run that lacks it and whose weights are here (the
+    t-SNE, or a GRU's memoryless ablation, alone where only that is missing)."""
+    sweep.make_dirs()
+    n = 0
+    for run in sweep.all_runs():
+        if not sweep.records.is_done(run):
+            continue
+        if not sweep.records.analysed(run.name):
+            n += analyze(sweep, run.name)
+            continue
+        if not sweep.has_weights(run.name):
+            continue
+        if not sweep.records.has_tsne(run.name):
+            n += analyze(sweep, run.name, "tsne")
+        if run.phase.network == "gru" and not sweep.records.has_memoryless(run.name):
+            n += analyze(sweep, run.name, "memoryless")
+    say("%d runs or parts of runs analysed" % n)
+    return 0
+
+
+def ship_all(sweep):
+    for phase in sweep.config.phases:
+        for variant in phase.variants:
+            ship(sweep, variant, phase)
+    return 0
