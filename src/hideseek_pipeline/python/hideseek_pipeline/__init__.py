@@ -1,6 +1,5 @@
-"""The project's pipeline as one command (hideseek_pipeline): the sweep's queue of training runs.
-
-Modules: `sweep_config` reads config/sweep.yaml's phases, `queue` orders and runs them,
-`processes` holds the process-tree, lock and port helpers, `records` reads and writes the run
-registry of the checkout that receives the records.
+"""The project's pipeline as one command (hideseek_pipeline, `cli`): one run's steps (`train`,
+`evaluate`, `analyze`, through a `workspace`) and the sweep's queue (`sweep_config` reads its
+phases, `queue` holds its state and order, `runner` trains it, `control` reports on and steers it),
+recording into the run registry of a checkout (`records`).
 """
