@@ -1,7 +1,7 @@
 """hideseek_pipeline train / evaluate / analyze against a stand-in workspace (fake roslaunch, resolver,
-exporter, player and plotting scripts): what each step runs, what it records and what it refuses.
-The real tools' outputs are checked against the shell scripts these steps replaced in
-docs/architecture.md's record; here, no ROS master and no training."""
+exporter, player and plotting scripts): what each step runs, what it records and what it refuses;
+no ROS master and no training. The real tools' outputs were checked against the shell scripts these
+steps replaced (docs/architecture.md, "The scripts' move")."""
 import os
 import subprocess
 import sys
