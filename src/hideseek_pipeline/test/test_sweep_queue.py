@@ -192,8 +192,10 @@ def proc_state(pid, want=None, wait=10.0):
 
 
 def fake_queue(state):
-    """A process that holds the queue's lock, as a running queue does."""
-    q = subprocess.Popen(["flock", str(state / "queue.lock"), "sleep", "300"])
+    """A process that holds the queue's lock, as a running queue does (one process: a TERM ends it
+    and frees the lock)."""
+    q = subprocess.Popen([sys.executable, "-c", "import fcntl, sys, time; f = open(sys.argv[1], 'a'); "
+                          "fcntl.flock(f, fcntl.LOCK_EX); time.sleep(300)", str(state / "queue.lock")])
     (state / "queue.pid").write_text("%d\n" % q.pid)
     end = time.time() + 10
     while subprocess.run(["flock", "-n", str(state / "queue.lock"), "true"]).returncode == 0:
@@ -265,6 +267,22 @@ def test_hold_runs_a_command_with_the_sweep_paused_and_resumes_it(tmp_path):
         for p in (queue, job):
             p.kill()
             p.wait()
+    # a TERM to hold reaches the command, is waited out, and the queue is resumed all the same
+    queue, job = fake_queue(state), subprocess.Popen(["sleep", "300"])
+    try:
+        (state / "job.basic_seed0").write_text("%d\n" % job.pid)
+        e = dict(os.environ, SWEEP_DIR=str(tmp_path / "sweep"), SWEEP_RECORD_ROOT=str(rec), PYTHONPATH=PACKAGE,
+                 PATH="/usr/bin:" + os.environ["PATH"])
+        held = subprocess.Popen([sys.executable, "-m", "hideseek_pipeline", "sweep", "--config",
+                                 str(config_file(tmp_path)), "hold", "sleep", "60"], env=e)
+        assert proc_state(job.pid, "T") == "T"
+        held.terminate()
+        assert held.wait(timeout=30) == 143
+        assert proc_state(job.pid, "SR") in ("S", "R") and not (state / "paused").exists()
+    finally:
+        for p in (queue, job):
+            p.kill()
+            p.wait()
     # without a queue, hold only runs the command, and creates no sweep folder
     r = sweep(tmp_path, rec, "hold", "true", SWEEP_DIR=str(tmp_path / "none"))
     assert r.returncode == 0 and not (tmp_path / "none").exists()
@@ -317,7 +335,9 @@ def test_the_checkout_s_config_is_valid_and_no_v3_run_collides_with_a_v2_run():
 FAKE_TRAIN = r"""#!/bin/bash
 # A stand-in for the pinned tree's train_variant.sh: records the run as the real one does, in a second.
 variant=$1 seed=$2 steps=$3 runs=$4 network=$5 name=$6
-echo "start $name $(date +%s.%N) threads=$HIDER_THREADS game=$GAME" >> "$CALLS"
+echo "start $name $(date +%s.%N) threads=$HIDER_THREADS game=${GAME:-v2}" >> "$CALLS"
+# as the real trainers do, a Python module imported from the tree: no __pycache__ may stay there
+/usr/bin/python3 -c "import sys; sys.path.insert(0, '$(dirname "$0")'); import helper"
 mkdir -p "$runs/$name" "$RECORD_ROOT/docs/runs/$name/sampled"
 echo weights > "$runs/$name/policy.pt"
 sleep 1
@@ -327,7 +347,7 @@ for d in "" sampled; do
 done
 echo png > "$RECORD_ROOT/docs/runs/$name/trajectories.png"
 /usr/bin/python3 "$REGISTRY_SCRIPT" --registry "$RECORD_ROOT/policies/policies.yaml" record "$name" variant=$variant \
-  network=$network game=$GAME training_seed=$seed steps=$steps
+  network=$network game=${GAME:-v2} training_seed=$seed steps=$steps
 echo "end $name $(date +%s.%N)" >> "$CALLS"
 """
 
@@ -372,6 +392,7 @@ def test_the_queue_trains_phase_by_phase_records_ships_and_keeps_each_phase_s_ru
     (repo / "scripts").mkdir(parents=True)
     (repo / "scripts" / "train_variant.sh").write_text(FAKE_TRAIN)
     (repo / "scripts" / "train_variant.sh").chmod(0o755)
+    (repo / "scripts" / "helper.py").write_text("VALUE = 1\n")
     rec = make_records(tmp_path, {})
     fake_analysis(rec)
     calls = tmp_path / "calls.txt"

@@ -196,13 +196,15 @@ def held(root, command, config=None):
 
 def main(argv=None):
     args = parser().parse_args(argv)
+    # No process the pipeline starts may leave __pycache__ in a pinned worktree (the trainers there
+    # import the registry module): the tree would look modified and no further run would start.
+    os.environ["PYTHONDONTWRITEBYTECODE"] = "1"
     if args.command in ("bench", "report"):
         root = repository_root()
         if args.command == "bench":
             return held(root, [os.path.join(root, "scripts", "bench.sh")])
         extra = (["--from-scratch"] if args.from_scratch else []) + ([args.report_dir] if args.report_dir else [])
         return subprocess.run([os.path.join(root, "scripts", "reproduce.sh")] + extra, cwd=root).returncode
-    # Python must not leave __pycache__ in a pinned worktree (it would look modified).
     sys.dont_write_bytecode = True
     try:
         return sweep_command(args) if args.command == "sweep" else run_command(args)

@@ -13,10 +13,9 @@ def status(sweep):
     out = []
     queue = ("running (pid %s)" % sweep.queue_pid()) if sweep.queue_pid() else "not running"
     if os.path.exists(sweep.state_file("paused")):
-        since = float(open(sweep.state_file("paused")).read().split()[0])
-        queue += ", PAUSED since %s" % time.strftime("%H:%M:%S", time.localtime(since))
+        queue += ", PAUSED since %s" % time.strftime("%H:%M:%S", time.localtime(paused_since(sweep)))
     out.append("sweep: %d phases (%s), runs %s; queue %s" % (
-        len(sweep.config.phases), ", ".join("%s at %s" % (p.name, p.commit[:12]) for p in sweep.config.phases),
+        len(sweep.config.phases), ", ".join("%s at %s" % (p.name, sweep.commit(p)[:12]) for p in sweep.config.phases),
         sweep.runs_dir, queue))
     if not proc.native_bf16():
         out.append("sweep: this CPU has no native bf16: the queue will not train bf16 phases here")
@@ -91,16 +90,25 @@ def pause(sweep):
     return 0
 
 
+def paused_since(sweep):
+    """When the pause began; now where its file is empty or unreadable (a pause cut short as it was
+    written): nothing is booked for it, and the runs are resumed all the same."""
+    try:
+        return float(last_line(sweep.state_file("paused")))
+    except ValueError:
+        return time.time()
+
+
 def resume(sweep, book=True):
     """SIGCONT the runs the pause held; with `book`, adds the held time to each one's paused_s
     (not when they are being stopped: they restart from a checkpoint older than the pause)."""
     if not os.path.exists(sweep.state_file("paused")):
         print("sweep: not paused")
         return 0
-    held = int(time.time() - float(open(sweep.state_file("paused")).read().split()[0]))
+    held = int(time.time() - paused_since(sweep))
     for line in read_lines(sweep.state_file("paused.runs")):
-        name, pid = line.split()
-        if not proc.alive(int(pid)):
+        name, pid = (line.split() + ["", ""])[:2]
+        if not pid.isdigit() or not proc.alive(int(pid)):
             continue
         proc.continue_tree(int(pid))
         if book:
@@ -128,7 +136,7 @@ def stop(sweep):
     for pid in sweep.job_pids().values():
         proc.signal_tree(pid, signal.SIGINT)
     if isinstance(queue, int):
-        proc.signal_tree(queue, signal.SIGTERM)
+        os.kill(queue, signal.SIGTERM)  # the queue stops its runs itself, gracefully
     for _ in range(60):
         if not sweep.queue_pid() and not sweep.job_pids():
             break
@@ -147,9 +155,19 @@ def hold(sweep, command):
     if not sweep.queue_pid() or os.path.exists(sweep.state_file("paused")):
         return subprocess.run(command).returncode
     pause(sweep)
+    child = subprocess.Popen(command)
+
+    # As a shell would: a Ctrl-C reaches the command through the terminal, a TERM is passed on to
+    # it, and either way the command is waited out, then the queue resumed.
+    def pass_on(signum, _):
+        if signum == signal.SIGTERM:
+            child.send_signal(signum)
+
+    previous = {s: signal.signal(s, pass_on) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
-        return subprocess.run(command).returncode
-    except KeyboardInterrupt:
-        return 130
+        rc = child.wait()
+        return 128 - rc if rc < 0 else rc
     finally:
+        for s, handler in previous.items():
+            signal.signal(s, handler)
         resume(sweep)

@@ -106,8 +106,14 @@ class Sweep:
     def git(self, *args, cwd=None):
         return subprocess.run(["git"] + list(args), cwd=cwd or self.checkout, capture_output=True, text=True)
 
+    def commit(self, phase):
+        """The phase's commit resolved to its full hash (as written where it does not resolve)."""
+        r = self.git("rev-parse", "--verify", "-q", phase.commit + "^{commit}")
+        return r.stdout.strip() if r.returncode == 0 else phase.commit
+
     def tree(self, phase):
-        return os.path.join(self.dir, "trees", phase.commit[:12])
+        """The phase's worktree, named by its resolved commit: two spellings of one commit share it."""
+        return os.path.join(self.dir, "trees", self.commit(phase)[:12])
 
 
 

@@ -25,8 +25,17 @@ class Records:
             raise FileNotFoundError("SWEEP_RECORD_ROOT: no policies/policies.yaml in %s" % root)
         self.registry = load_registry_module(code_root)
 
+    def entries(self):
+        """The registry's runs, read again only when the file has changed (the queue asks for every
+        run's state every few seconds)."""
+        st = os.stat(self.registry_path)
+        key = (st.st_mtime_ns, st.st_size, st.st_ino)
+        if key != getattr(self, "_key", None):
+            self._entries, self._key = self.registry.runs(self.registry_path), key
+        return self._entries
+
     def entry(self, name):
-        return self.registry.runs(self.registry_path).get(name)
+        return self.entries().get(name)
 
     def docs(self, name, *parts):
         return os.path.join(self.root, "docs", "runs", name, *parts)

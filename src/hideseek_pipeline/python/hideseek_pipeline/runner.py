@@ -11,7 +11,7 @@ import sys
 import time
 
 from hideseek_pipeline import processes as proc
-from hideseek_pipeline.queue import NO_BF16, RETRAIN_SUFFIX, SweepError, package_path, remove_file, say
+from hideseek_pipeline.queue import NO_BF16, RETRAIN_SUFFIX, SweepError, last_line, package_path, remove_file, say
 from hideseek_pipeline.records import SWEEP_NOTE
 
 
@@ -19,7 +19,7 @@ def prepare_tree(sweep, phase):
     """The worktree at the phase's commit, built (catkin_make, Release, no tests) once."""
     if sweep.git("rev-parse", "--verify", "-q", phase.commit + "^{commit}").returncode != 0:
         raise SweepError("phase %s: commit %s is not in this repository (fetch it first)" % (phase.name, phase.commit))
-    full = sweep.git("rev-parse", phase.commit).stdout.strip()
+    full = sweep.commit(phase)
     tree = sweep.tree(phase)
     sweep.git("worktree", "prune")
     if not os.path.exists(os.path.join(tree, ".git")):
@@ -68,13 +68,22 @@ def job(sweep, run, slot):
     script = os.path.join(tree, "scripts", "train_variant.sh")
     if os.path.isfile(script):
         # A pin from before this command: its own shell trainer.
-        env = dict(os.environ, RECORD_ROOT=sweep.records.root, PRECISION=phase.precision, GAME=phase.game,
+        env = dict(os.environ, RECORD_ROOT=sweep.records.root, PRECISION=phase.precision,
                    HIDER_THREADS=str(phase.hider_threads), ROS_PORT=str(port), HIDESEEK_PORT=str(port + 1),
                    EVAL_MODES="greedy sampled", PAUSED_FILE=paused)
+        if phase.game != "v2":  # v2 is those trainers' default: the recorded command stays as the sweep's was
+            env["GAME"] = phase.game
         cmd = [script, run.variant, str(run.seed), str(phase.steps), sweep.runs_dir, phase.network, run.name]
     else:
-        # hideseek_pipeline train with the pinned tree as its workspace (its launch files and tools).
-        env = dict(os.environ, PYTHONPATH=package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
+        # hideseek_pipeline train with the pinned tree as its workspace (its launch files and tools),
+        # and the tree's own copy of the command where it has one: edits to the checkout never
+        # change what trains and records.
+        pinned = os.path.join(tree, "src", "hideseek_pipeline", "python")
+        code = pinned if os.path.isdir(pinned) else package_path()
+        env = dict(os.environ, PYTHONPATH=code + os.pathsep + os.environ.get("PYTHONPATH", ""),
+                   HIDESEEK_ROOT=tree if os.path.isdir(pinned) else os.environ.get("HIDESEEK_ROOT", ""))
+        if not env["HIDESEEK_ROOT"]:
+            del env["HIDESEEK_ROOT"]
         cmd = [sys.executable, "-m", "hideseek_pipeline", "train", run.variant, "--seed", str(run.seed),
                "--steps", str(phase.steps), "--runs-dir", sweep.runs_dir, "--network", phase.network,
                "--name", run.name, "--game", phase.game, "--precision", phase.precision, "--hider-threads",
@@ -86,7 +95,11 @@ def job(sweep, run, slot):
     if rc != 0:
         say("%s: failed (exit %d); see %s" % (run.name, rc, log))
         return rc
-    fields = {"note": "%s, phase %s, pinned at %s" % (SWEEP_NOTE, phase.name, phase.commit[:12])}
+    # paused_s again, as the trainer records it (none when 0): a trainer of an older pin kept an
+    # earlier training's paused time in an entry of the same name.
+    held = last_line(paused).split(".")[0]
+    fields = {"note": "%s, phase %s, pinned at %s" % (SWEEP_NOTE, phase.name, sweep.commit(phase)[:12]),
+              "paused_s": int(held) if held.isdigit() and int(held) > 0 else None}
     if run.retrain:
         fields.update(draw="retrain", retrain_of=run.name[:-len(RETRAIN_SUFFIX)])
     sweep.records.registry.record(run.name, fields, sweep.records.registry_path)
@@ -137,6 +150,8 @@ def ship(sweep, variant, phase):
 def run(sweep):
     """The queue in the foreground: starts runs in order while slots are free, each in a process
     of its own (forked: a running queue keeps the code it started with)."""
+    # No trainer may leave __pycache__ in a pinned worktree (cli.main sets it too).
+    os.environ["PYTHONDONTWRITEBYTECODE"] = "1"
     sweep.make_dirs()
     lock = proc.FileLock(sweep.state_file("queue.lock"), wait=False)
     try:
@@ -160,8 +175,11 @@ def _run_locked(sweep):
         remove_file(sweep.state_file("paused"))
     if not proc.native_bf16() and any(p.precision == "bf16" for p in sweep.config.phases):
         raise SweepError(NO_BF16)
+    # Only the trees of phases with runs left: a finished phase's old tree never blocks the queue.
+    left = {r.phase.name for r in sweep.to_train()}
     for phase in sweep.config.phases:
-        prepare_tree(sweep, phase)
+        if phase.name in left:
+            prepare_tree(sweep, phase)
     say("queue: %d runs in %d phases (%s) from %s" % (
         len(sweep.config.runs()), len(sweep.config.phases), ", ".join(p.name for p in sweep.config.phases), sweep.dir))
     running, failed = {}, set()  # name -> (process, slot, phase jobs)
@@ -201,6 +219,9 @@ def _run_locked(sweep):
 
 def _start_next(sweep, running, failed, ctx):
     """Starts the first run left in order, if its phase's number of runs at once allows it."""
+    # No free slot for any run while a running run's phase allows no more: the list is not even read.
+    if running and len(running) >= min(jobs for _, _, jobs in running.values()):
+        return False
     for run in sweep.to_train():
         if run.name in running or run.name in failed:
             continue

@@ -49,13 +49,13 @@ def _last_row(path):
         return f.read().strip().splitlines()[-1].split(",")
 
 
-def command_line(o, name):
-    """What reproduces the run: the options that are not the defaults."""
+def command_line(o, name, root):
+    """What reproduces the run, from the checkout `root`: the options that are not the defaults."""
     parts = ["hideseek_pipeline", "train", o.variant, "--seed", str(o.seed), "--steps", str(o.steps),
              "--network", o.network, "--name", name]
     for flag, value in (("--game", o.game), ("--precision", None if o.precision == "auto" else o.precision),
                         ("--num-arenas", o.num_arenas), ("--hider-threads", o.hider_threads),
-                        ("--ppo-config", o.ppo_config and os.path.relpath(o.ppo_config))):
+                        ("--ppo-config", o.ppo_config and os.path.relpath(o.ppo_config, root))):
         if value is not None:
             parts += [flag, str(value)]
     return " ".join(parts)
@@ -100,7 +100,7 @@ def train(ws, records, o, say=print):
     ws.command(args, env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=launch_log, check=False)
     # roslaunch exits 0 even when the hider dies: record only a run that trained all its steps.
     log_csv = os.path.join(run, "training_log.csv")
-    row = _last_row(log_csv) if os.path.isfile(log_csv) else []
+    row = _last_row(log_csv) if os.path.isfile(log_csv) and os.path.getsize(log_csv) else []
     trained = int(row[1]) if len(row) > 2 and row[1].isdigit() else 0
     if trained < o.steps:
         raise ToolError("train: %s stopped at %d of %d steps (see %s); nothing recorded" % (name, trained, o.steps,
@@ -112,7 +112,7 @@ def train(ws, records, o, say=print):
     shutil.copyfile(log_csv, os.path.join(docs, "training_log.csv"))
     ws.python("plot_learning_curve.py", os.path.join(docs, "training_log.csv"), os.path.join(docs, "learning_curve.png"),
               "%s, network %s, game %s, training seed %d, %d steps" % (o.variant, o.network, game, o.seed, trained))
-    record(records, name, o, game, trained, row, run, launch_log)
+    record(records, name, o, game, trained, row, run, launch_log, ws.root)
     say("train: %s recorded in %s; weights in %s" % (name, records.registry_path, os.path.join(run, "policy.pt")))
     evaluate(ws, records, name, os.path.join(run, "policy.pt"), o.eval_modes, o.eval_port or port + 1000, say)
     if o.ship:
@@ -121,7 +121,7 @@ def train(ws, records, o, say=print):
     return name
 
 
-def record(records, name, o, game, trained, row, run, launch_log):
+def record(records, name, o, game, trained, row, run, launch_log, root):
     # The precision the hider chose, from its last start-up line ("... on cpu in auto: bf16, ...").
     chosen = re.findall(r"PPO, network [a-z]+, on \S+ in [^,]*", open(launch_log).read())
     precision = (re.findall(r"bf16|fp32", chosen[-1]) or ["unknown"])[0] if chosen else "unknown"
@@ -136,4 +136,4 @@ def record(records, name, o, game, trained, row, run, launch_log):
         "variant": o.variant, "network": o.network, "game": game, "training_seed": o.seed, "steps": trained,
         "wall_s": int(float(row[2])) - paused, "paused_s": paused or None, "precision": precision, "commit": commits,
         "log": "docs/runs/%s/training_log.csv" % name, "curve": "docs/runs/%s/learning_curve.png" % name,
-        "command": command_line(o, name)}, records.registry_path)
+        "command": command_line(o, name, root)}, records.registry_path)
