@@ -49,7 +49,7 @@ def evaluate(ws, records, name, weights, modes=("greedy",), port=11479, say=prin
         last = text.strip().splitlines()[-1].split(",")
         say("evaluate: %s (%s): %s %s (living steps, success; %d s)" % (name, mode, last[3], last[4],
                                                                          time.time() - start))
-    trajectories(ws, records, name, entry, weights)
+    trajectories(ws, records, name, entry, weights, say)
 
 
 def trajectories(ws, records, name, entry, weights, say=print):
