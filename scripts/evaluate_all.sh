@@ -2,10 +2,12 @@
 # The paper's Table 2 side by side with this project's: every shipped policy (policies/<variant>.pt,
 # greedy) and the uniformly random hider on every variant (config/variants), seeds 0..99 through the ROS graph
 # (evaluate.launch), beside the paper's figures (config/paper_reference.yaml).
-# Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/report, as make reproduce). Writes table2.md, table2.csv, gru_vs_ff.md, gru_vs_ff.csv
-# and, per evaluation, OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv.
+# Usage: scripts/evaluate_all.sh [OUTPUT_DIR]   (default docs/report, as make reproduce). Writes, per evaluation,
+# OUTPUT_DIR/evaluations/<variant>_<policy>/{evaluation,episodes}.csv, and Table 2 of them with 95 % intervals
+# over their episodes into OUTPUT_DIR/table2_shipped/ (table2.py --evaluations: the generator of Table 2 across seeds).
 # A shipped GRU hider (policies/<variant>_gru.pt) is evaluated too, as <variant>_gru_trained, and once more
-# with its state zeroed at every step (memoryless:=true, what its memory does) as <variant>_gru_memoryless.
+# with its state zeroed at every step (memoryless:=true, what its memory does) as <variant>_gru_memoryless;
+# the GRU hiders against their feed-forward twins across training seeds are the memory claim's (claims.py).
 # A run that is not shipped is evaluated into its own folder by hideseek_pipeline evaluate.
 # HIDESEEK_VARIANTS="v1 v2" evaluates those variants only and keeps the other evaluations already in
 # OUTPUT_DIR/evaluations (made by the same code: use it after training a policy, not after changing the game).
@@ -59,8 +61,5 @@ for v in "${variants[@]}"; do
     evaluate "$v" gru_memoryless "$gru" "$out/evaluations/${v}_gru_memoryless" memoryless:=true
   fi
 done
-/usr/bin/python3 src/hideseek_analysis/scripts/table2.py config/paper_reference.yaml "$out/evaluations" "$out/table2" policies
-cat "$out/table2.md"
-# The GRU hiders against their feed-forward twins, evaluation seed by evaluation seed.
-/usr/bin/python3 src/hideseek_analysis/scripts/gru_vs_ff.py "$out/evaluations" policies "$out/gru_vs_ff" > /dev/null
-echo "evaluate_all: the GRU hiders against their feed-forward twins: $out/gru_vs_ff.md"
+/usr/bin/python3 src/hideseek_analysis/scripts/table2.py --evaluations "$out/evaluations" --out "$out/table2_shipped"
+cat "$out/table2_shipped/table2.md"

@@ -5,7 +5,7 @@
 # and gathers it all into one report folder with Table 3, the figures across variants, the
 # survival-vs-representation plot and an index.md.
 # By default it works from the committed outputs alone, in under a minute: Table 2 across training
-# seeds (REPORT_DIR/table2_seeds/: sweep_table2.py), the claims table (claims.py) and Figures 4-7
+# seeds (REPORT_DIR/table2_seeds/: table2.py), the claims table (claims.py) and Figures 4-7
 # across seeds (seed_figures.py), from every sweep run's evaluation and per-run analysis. Given
 # the weights, --from-scratch first analyses again every sweep run whose weights are on this machine
 # and lacks its analysis (hideseek_pipeline sweep analyze), then re-evaluates and re-analyses the shipped
@@ -30,7 +30,7 @@ start=$(date +%s)
 mkdir -p "$report" "$work"
 across_seeds() {
   echo "reproduce: across training seeds, from the committed evaluations and analyses"
-  /usr/bin/python3 src/hideseek_analysis/scripts/sweep_table2.py --out "$report/table2_seeds"
+  /usr/bin/python3 src/hideseek_analysis/scripts/table2.py --out "$report/table2_seeds"
   /usr/bin/python3 src/hideseek_analysis/scripts/claims.py --out "$report"
   /usr/bin/python3 src/hideseek_analysis/scripts/seed_figures.py --out "$report"
 }

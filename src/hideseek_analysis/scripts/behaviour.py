@@ -26,8 +26,11 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hideseek_analysis import STATE_NAMES, state_frequencies, state_index, transitions  # noqa: E402
+# In a checkout the package lies beside this folder; in an install space it is on the Python path.
+PACKAGE = os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python")
+if os.path.isdir(PACKAGE):
+    sys.path.insert(0, PACKAGE)
+from hideseek_analysis.states import STATE_NAMES, state_frequencies, state_index, transitions  # noqa: E402
 
 BACKWARD = 2  # hideseek_game::Action::kBackward
 BIN = 10

@@ -58,7 +58,8 @@ def episode_table(episodes, title):
     return "\n".join(lines) + "\n"
 
 
-def main(rows_file, map_file, out, title):
+def read_episodes(rows_file, map_file):
+    """(seed -> its rows, the map's spec, seed -> its drawn layout where the map draws one per episode)."""
     episodes = defaultdict(list)
     with open(rows_file) as f:
         for r in csv.DictReader(f):
@@ -73,45 +74,57 @@ def main(rows_file, map_file, out, title):
     elif spec.get("type", "fixed") != "fixed":
         print("plot_trajectories: %s draws a new layout every episode and %s is missing: the obstacles drawn "
               "are the map's fixed ones only" % (map_file, layouts_file), file=sys.stderr)
+    return episodes, spec, layouts
+
+
+def draw_paths(ax, seed, rows, layout, first):
+    """The arena top-down: obstacles, walls, both agents' paths; returns the arena's half extent."""
+    half = float(layout.get("half_extent", 7.0))
+    for ob in layout.get("obstacles") or []:
+        ax.add_patch(Polygon(box_corners(ob["center"], ob["size"], float(ob.get("yaw", 0.0))), closed=True,
+                             facecolor=(0.80, 0.62, 0.30), edgecolor="none"))
+    ax.plot([-half, half, half, -half, -half], [-half, -half, half, half, -half], color="0.3", lw=2)
+    for who, color in (("hider", "tab:blue"), ("seeker", "tab:red")):
+        xs = [float(r[who + "_x"]) for r in rows]
+        ys = [float(r[who + "_y"]) for r in rows]
+        ax.plot(xs, ys, color=color, lw=1.0, label=who)
+        ax.plot(xs[0], ys[0], "o", color=color, ms=6)
+    outcome = rows[-1]["outcome"] or "running"
+    if outcome == "captured":
+        ax.plot(float(rows[-1]["hider_x"]), float(rows[-1]["hider_y"]), "kx", ms=9, mew=2)
+    ax.set_xlim(-half, half)
+    ax.set_ylim(-half, half)
+    ax.set_aspect("equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.set_title("seed %d: %s after %d steps" % (seed, outcome, len(rows)), fontsize=9)
+    if first:
+        ax.legend(loc="lower left", fontsize=7)
+    return half
+
+
+def draw_distance(ax, rows, half, first):
+    """The distance between the agents over the episode, shaded where the seeker sees the hider."""
+    steps = [int(r["step"]) for r in rows]
+    ax.plot(steps, [float(r["distance"]) for r in rows], color="k", lw=0.8)
+    seen = [r["H"] == "1" for r in rows]
+    ax.fill_between(steps, 0, 1, where=seen, color="tab:red", alpha=0.2, transform=ax.get_xaxis_transform(),
+                    label="seeker sees hider")
+    ax.set_xlabel("step")
+    ax.set_ylim(0, 2 * half * 1.05)
+    if first:
+        ax.set_ylabel("distance (m)")
+        ax.legend(loc="upper right", fontsize=7)
+
+
+def main(rows_file, map_file, out, title):
+    episodes, spec, layouts = read_episodes(rows_file, map_file)
     seeds = sorted(episodes)
     fig, axes = plt.subplots(2, len(seeds), figsize=(3.2 * len(seeds), 6.2), squeeze=False,
                              gridspec_kw={"height_ratios": [3, 1.4]})
     for col, seed in enumerate(seeds):
-        rows = episodes[seed]
-        ax = axes[0][col]
-        layout = layouts.get(seed, spec)
-        half = float(layout.get("half_extent", 7.0))
-        for ob in layout.get("obstacles") or []:
-            ax.add_patch(Polygon(box_corners(ob["center"], ob["size"], float(ob.get("yaw", 0.0))), closed=True,
-                                 facecolor=(0.80, 0.62, 0.30), edgecolor="none"))
-        ax.plot([-half, half, half, -half, -half], [-half, -half, half, half, -half], color="0.3", lw=2)
-        for who, color in (("hider", "tab:blue"), ("seeker", "tab:red")):
-            xs = [float(r[who + "_x"]) for r in rows]
-            ys = [float(r[who + "_y"]) for r in rows]
-            ax.plot(xs, ys, color=color, lw=1.0, label=who)
-            ax.plot(xs[0], ys[0], "o", color=color, ms=6)
-        outcome = rows[-1]["outcome"] or "running"
-        if outcome == "captured":
-            ax.plot(float(rows[-1]["hider_x"]), float(rows[-1]["hider_y"]), "kx", ms=9, mew=2)
-        ax.set_xlim(-half, half)
-        ax.set_ylim(-half, half)
-        ax.set_aspect("equal")
-        ax.set_xticks([])
-        ax.set_yticks([])
-        ax.set_title("seed %d: %s after %d steps" % (seed, outcome, len(rows)), fontsize=9)
-        if col == 0:
-            ax.legend(loc="lower left", fontsize=7)
-        ax = axes[1][col]
-        steps = [int(r["step"]) for r in rows]
-        ax.plot(steps, [float(r["distance"]) for r in rows], color="k", lw=0.8)
-        seen = [r["H"] == "1" for r in rows]
-        ax.fill_between(steps, 0, 1, where=seen, color="tab:red", alpha=0.2, transform=ax.get_xaxis_transform(),
-                        label="seeker sees hider")
-        ax.set_xlabel("step")
-        ax.set_ylim(0, 2 * half * 1.05)
-        if col == 0:
-            ax.set_ylabel("distance (m)")
-            ax.legend(loc="upper right", fontsize=7)
+        half = draw_paths(axes[0][col], seed, episodes[seed], layouts.get(seed, spec), col == 0)
+        draw_distance(axes[1][col], episodes[seed], half, col == 0)
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     fig.savefig(out, dpi=80)

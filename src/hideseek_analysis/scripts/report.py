@@ -32,9 +32,11 @@ from matplotlib.patches import Rectangle  # noqa: E402
 from matplotlib.transforms import Affine2D  # noqa: E402
 from sklearn.manifold import TSNE  # noqa: E402
 
-# catkin's devel space runs this file through a relay in devel/lib: find the module beside it.
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-import hideseek_analysis as ha  # noqa: E402
+# In a checkout the package lies beside this folder; in an install space it is on the Python path.
+PACKAGE = os.path.join(os.path.dirname(os.path.realpath(__file__)), "..", "python")
+if os.path.isdir(PACKAGE):
+    sys.path.insert(0, PACKAGE)
+from hideseek_analysis import states as ha  # noqa: E402
 
 
 def read_csv(path):

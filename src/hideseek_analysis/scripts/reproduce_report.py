@@ -3,7 +3,8 @@
 
 usage: reproduce_report.py REPORT_DIR --paper config/paper_reference.yaml
 
-REPORT_DIR holds table2.csv (scripts/evaluate_all.sh) and one folder per analysed policy
+REPORT_DIR holds table2_shipped/ (scripts/evaluate_all.sh: Table 2 of the shipped policies) and
+one folder per analysed policy
 (analyze.launch report_dir:=REPORT_DIR/<variant>, and REPORT_DIR/<variant>_gru for a GRU hider).
 Writes into REPORT_DIR:
   table3.csv/.md                    probe accuracy, trained / random-init network, beside the paper's;
@@ -223,9 +224,8 @@ def plot_survival(report, analysed, table2, probes, memory_probes):
     """Survival against representation: one point per variant with a policy and an analysis. GRU
     hiders are drawn apart and left out of the fit, which is over the paper's network; a GRU
     hider's point reads the probe of its GRU state, what its heads act on."""
-    points = [((memory_probes[v] or probes[v])["H", "trained"][1], float(table2[v]["living_trained"]), v,
-               (memory_probes[v] or probes[v])["H", "trained"][3])
-              for v in analysed if v in table2 and table2[v]["living_trained"] not in ("", None)]
+    points = [((memory_probes[v] or probes[v])["H", "trained"][1], table2[v], v,
+               (memory_probes[v] or probes[v])["H", "trained"][3]) for v in analysed if v in table2]
     fig, ax = plt.subplots(figsize=(6, 4.5))
     for x, y, v, spread in points:
         gru = v.endswith("_gru")
@@ -254,21 +254,17 @@ def plot_survival(report, analysed, table2, probes, memory_probes):
 
 def write_index(report, analysed, t3, probes, gains):
     """index.md: Table 2, the GRU comparison where there is one, Table 3, the figures, the folders."""
-    with open(os.path.join(report, "table2.md")) as f:
-        table2_md = f.read()
+    with open(os.path.join(report, "table2_shipped", "table2.md")) as f:
+        table2_md = f.read().split("\n", 1)[1]  # without its own title
+    # Its sections (the paper's orderings) two levels down, under the index's heading.
+    table2_md = "\n".join("##" + line if line.startswith("#") else line for line in table2_md.split("\n"))
     index = ["# Reproduction report", "",
              "Made by `make reproduce`: every shipped policy and the random hider evaluated on every variant, "
              "then every variant with a shipped policy analysed (`analyze.launch`).", "",
              "## Table 2: living steps and success", "", table2_md.strip(), "",
-             "CSV: [table2.csv](table2.csv); per evaluation: [evaluations/](evaluations/)", ""]
-    gru_vs_ff = os.path.join(report, "gru_vs_ff.md")
-    if os.path.exists(gru_vs_ff):  # scripts/evaluate_all.sh: the GRU hiders against their feed-forward twins
-        with open(gru_vs_ff) as f:
-            body = f.read().split("\n", 1)[1].strip()  # without its own title
-        # Its sections one level down, under the index's heading.
-        body = "\n".join("#" + line if line.startswith("#") else line for line in body.split("\n"))
-        index += ["## The GRU hider against its feed-forward twin", "", body, "",
-                  "CSV: [gru_vs_ff.csv](gru_vs_ff.csv)", ""]
+             "CSV: [table2_shipped/table2.csv](table2_shipped/table2.csv); the paper's orderings: "
+             "[table2_shipped/orderings.md](table2_shipped/orderings.md); per evaluation: [evaluations/](evaluations/)",
+             ""]
     index += ["## Table 3: linear probes of the 512 mid-level features", "",
               "Test accuracy in % on episodes held out from the probe's fit; the balanced accuracy (mean recall of "
               "both classes) is 50 % for any probe that ignores its input. Every probe is scored on several random "
@@ -300,7 +296,10 @@ def main():
     ref = paper["variants"]
     WEAKER[:] = paper["moderate_weaknesses"]
     STRONGER[:] = paper["advantages"]
-    table2 = {r["variant"]: r for r in rows(os.path.join(a.report, "table2.csv"))}
+    # Each shipped policy's greedy mean living steps, by its label (basic, basic_gru).
+    labels = {"greedy": "", "GRU, greedy": "_gru"}
+    table2 = {r["variant"] + labels[r["mode"]]: float(r["living_mean"])
+              for r in rows(os.path.join(a.report, "table2_shipped", "table2.csv")) if r["mode"] in labels}
     # The paper's Table 2 order; a variant the paper lacks has no reference numbers to print beside.
     analysed = [v for base in ref for v in (base, base + "_gru")
                 if os.path.isfile(os.path.join(a.report, v, "probes.csv"))]

@@ -322,8 +322,8 @@ def test_analyze_redoes_only_the_missing_memoryless_ablation_of_a_gru_run(tmp_pa
 
 
 def test_the_checkout_s_config_is_valid_and_no_v3_run_collides_with_a_v2_run():
-    sys.path.insert(0, os.path.join(ROOT, "src", "hideseek_analysis", "scripts"))
-    import hideseek_registry as reg
+    sys.path.insert(0, os.path.join(ROOT, "src", "hideseek_analysis", "python"))
+    from hideseek_analysis import registry as reg
     config = sweep_config.load(os.path.join(ROOT, "config", "sweep.yaml"), reg.variants(), reg.paper_order(),
                                reg.default_game(), {})
     names = [r.name for r in config.runs()]
@@ -370,7 +370,7 @@ def queue_in(tmp_path, repo, rec, text, calls):
     (sweep_dir / "state").mkdir(parents=True)
     (sweep_dir / "state" / ("built." + commit[:12])).write_text(commit)  # the stand-ins need no build
     env = dict(os.environ, SWEEP_DIR=str(sweep_dir), SWEEP_RECORD_ROOT=str(rec), PYTHONPATH=PACKAGE, CALLS=str(calls),
-               REGISTRY_SCRIPT=os.path.join(ROOT, "src", "hideseek_analysis", "scripts", "hideseek_registry.py"),
+               REGISTRY_SCRIPT=os.path.join(ROOT, "scripts", "hideseek_registry.py"),
                PATH="/usr/bin:" + os.environ["PATH"])
     code = ("import sys; from hideseek_pipeline import cli, runner\n"
             "sweep = cli.make_sweep(%r, %r); sweep.checkout = %r\nsys.exit(runner.run(sweep) or 0)"

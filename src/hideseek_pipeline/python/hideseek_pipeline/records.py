@@ -1,14 +1,15 @@
 """The run registry (policies/policies.yaml) and run folders (docs/runs/<run>/) of the checkout that
-receives the sweep's records. The registry's reader and writer are hideseek_analysis's
-hideseek_registry module, found in that checkout."""
+receives the sweep's records. The registry's reader and writer are hideseek_analysis's registry
+module, found in that checkout."""
 import importlib.util
 import os
 
-SWEEP_NOTE = "sweep run (config/sweep.yaml)"
 
 
 def load_registry_module(root):
-    path = os.path.join(root, "src", "hideseek_analysis", "scripts", "hideseek_registry.py")
+    """The registry module of the checkout at `root` (not the one on the Python path: the queue's
+    records follow the checkout that holds them)."""
+    path = os.path.join(root, "src", "hideseek_analysis", "python", "hideseek_analysis", "registry.py")
     spec = importlib.util.spec_from_file_location("hideseek_registry", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
@@ -24,6 +25,9 @@ class Records:
         if not os.path.isfile(self.registry_path):
             raise FileNotFoundError("SWEEP_RECORD_ROOT: no policies/policies.yaml in %s" % root)
         self.registry = load_registry_module(code_root)
+        # The note the queue records on each run it trained: the registry's, which Table 2, the
+        # claims and the median to ship look for, and where the run's phases are listed.
+        self.note = self.registry.SWEEP_NOTE + " (config/sweep.yaml)"
 
     def entries(self):
         """The registry's runs, read again only when the file has changed (the queue asks for every
@@ -44,7 +48,7 @@ class Records:
         """The steps the registry records for a sweep run (its note, which the queue writes last);
         0 for a run of that name that another command trained: the queue trains it again."""
         e = self.entry(name)
-        if not e or not str(e.get("note", "")).startswith(SWEEP_NOTE):
+        if not e or not str(e.get("note", "")).startswith(self.note):
             return 0
         return int(e.get("steps", 0))
 

@@ -12,7 +12,6 @@ import time
 
 from hideseek_pipeline import processes as proc
 from hideseek_pipeline.queue import NO_BF16, RETRAIN_SUFFIX, SweepError, last_line, package_path, remove_file, say
-from hideseek_pipeline.records import SWEEP_NOTE
 
 
 def prepare_tree(sweep, phase):
@@ -98,7 +97,7 @@ def job(sweep, run, slot):
     # paused_s again, as the trainer records it (none when 0): a trainer of an older pin kept an
     # earlier training's paused time in an entry of the same name.
     held = last_line(paused).split(".")[0]
-    fields = {"note": "%s, phase %s, pinned at %s" % (SWEEP_NOTE, phase.name, sweep.commit(phase)[:12]),
+    fields = {"note": "%s, phase %s, pinned at %s" % (sweep.records.note, phase.name, sweep.commit(phase)[:12]),
               "paused_s": int(held) if held.isdigit() and int(held) > 0 else None}
     if run.retrain:
         fields.update(draw="retrain", retrain_of=run.name[:-len(RETRAIN_SUFFIX)])
@@ -140,7 +139,7 @@ def ship(sweep, variant, phase):
     reg = sweep.records.registry
     try:
         say(reg.ship_median(variant, sweep.runs_dir, phase.network, phase.game, sweep.records.registry_path,
-                            sweep.records.root, SWEEP_NOTE, phase.steps))
+                            sweep.records.root, sweep.records.note, phase.steps))
     except (reg.WeightsMissing, reg.RegistryError) as e:
         say(str(e))
 

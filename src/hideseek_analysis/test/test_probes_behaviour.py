@@ -7,7 +7,8 @@ import sys
 import numpy as np
 import pytest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+SCRIPTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts")
+sys.path[:0] = [SCRIPTS, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python")]
 import behaviour  # noqa: E402
 import probes  # noqa: E402
 

@@ -1,6 +1,7 @@
-"""sweep_table2.py's statistics across training seeds (two-level bootstrap, probability of
-improvement, rank correlation) and the claims, on small made-up registries: no training, no ROS
-master. The sweep's queue has its own tests (hideseek_pipeline)."""
+"""The analysis across training seeds: the statistics (two-level bootstrap, probability of
+improvement, rank correlation), Table 2 (table2.py), the claims (claims.py) and the figures
+(seed_figures.py), on small made-up registries: no training, no ROS master. The sweep's queue has
+its own tests (hideseek_pipeline)."""
 import csv
 import os
 import shutil
@@ -13,8 +14,9 @@ import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 ANALYSIS = os.path.join(ROOT, "src", "hideseek_analysis", "scripts")
-sys.path.insert(0, ANALYSIS)
-import sweep_stats as st  # noqa: E402
+sys.path.insert(0, os.path.join(ROOT, "src", "hideseek_analysis", "python"))
+from hideseek_analysis import claims  # noqa: E402
+from hideseek_analysis import stats as st  # noqa: E402
 
 
 def make_records(tmp_path, runs):
@@ -100,7 +102,7 @@ def run_analysis(script, rec, out, *extra):
     return r
 
 
-def test_sweep_table2_reads_the_sweep_runs_and_writes_the_tables(tmp_path):
+def test_table2_reads_the_sweep_runs_and_writes_the_tables(tmp_path):
     rec = make_records(tmp_path, {
         "basic_seed0": ("basic", 0, 2048, [100] * 10 + [1000] * 10, [50] * 20),
         "basic_seed1": ("basic", 1, 2048, [200] * 20, [60] * 20),
@@ -114,7 +116,7 @@ def test_sweep_table2_reads_the_sweep_runs_and_writes_the_tables(tmp_path):
     drop_note(rec, "stochasticmaps_seed0")
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
     out = tmp_path / "t2"
-    run_analysis("sweep_table2.py", rec, out)
+    run_analysis("table2.py", rec, out)
     with open(out / "table2.csv") as f:
         rows = {(x["variant"], x["mode"]): x for x in csv.DictReader(f)}
     b = rows[("basic", "greedy")]
@@ -145,7 +147,7 @@ def test_a_run_added_to_one_variant_leaves_the_other_variants_intervals_as_they_
     for k, extra in enumerate(({}, {"basic_seed2": ("basic", 2, 2048, [300] * 20, [70] * 20)})):
         rec = make_records(tmp_path / str(k), dict(base, **extra))
         shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
-        run_analysis("sweep_table2.py", rec, tmp_path / str(k) / "t2")
+        run_analysis("table2.py", rec, tmp_path / str(k) / "t2")
         with open(tmp_path / str(k) / "t2" / "table2.csv") as f:
             rows.append({(x["variant"], x["mode"]): x for x in csv.DictReader(f)})
     assert rows[1][("basic", "greedy")]["runs"] == "3"
@@ -172,7 +174,7 @@ def test_the_two_readings_of_the_stochastic_seeker_are_compared_beside_the_table
         "stochasticseeker_explore_seed1": ("stochasticseeker_explore", 1, 2048, [280] * 20, [280] * 20)})
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
     out = tmp_path / "t2"
-    run_analysis("sweep_table2.py", rec, out)
+    run_analysis("table2.py", rec, out)
     with open(out / "readings.csv") as f:
         rows = {x["measure"]: x for x in csv.DictReader(f)}
     assert float(rows["living_mean"]["estimate"]) == pytest.approx(220.0)
@@ -185,7 +187,7 @@ def test_the_two_readings_of_the_stochastic_seeker_are_compared_beside_the_table
     # Only one reading trained so far: no comparison is made up.
     rec2 = make_records(tmp_path / "one", {"stochasticseeker_seed0": ("stochasticseeker", 0, 2048, [500] * 20, None)})
     shutil.copytree(os.path.join(ROOT, "config"), rec2 / "config")
-    run_analysis("sweep_table2.py", rec2, tmp_path / "one" / "t2")
+    run_analysis("table2.py", rec2, tmp_path / "one" / "t2")
     assert not (tmp_path / "one" / "t2" / "readings.csv").exists()
     assert "needs a run of each (stochasticseeker_explore has none)" in (tmp_path / "one" / "t2" / "readings.md").read_text()
 
@@ -416,7 +418,6 @@ def test_the_memory_claim_pairs_each_gru_run_with_its_feed_forward_twin(tmp_path
 
 
 def test_a_claim_decided_on_two_runs_of_a_variant_is_marked_provisional():
-    import claims
     two = {"result": "contradicted", "runs": "fasterhider 2, visibilityreward_faster 3, basic 3", "note": ""}
     three = {"result": "supported", "runs": "basic 3, slowerhider 4", "note": ""}
     undecided = {"result": "inconclusive", "runs": "basic 2", "note": "needs more"}
@@ -426,7 +427,6 @@ def test_a_claim_decided_on_two_runs_of_a_variant_is_marked_provisional():
 
 
 def test_an_effect_under_its_practical_size_is_negligible_not_support():
-    import claims
     size = claims.PRACTICAL["share"][0]
     assert claims.verdict((0.004, 0.011), 3, 1.0, 0.007, size) == "negligible"  # v2's 0.007 of the steps
     assert claims.verdict((0.03, 0.05), 3, 1.0, 0.04, size) == "supported"
@@ -482,10 +482,10 @@ def test_a_retrain_never_enters_table2_or_a_claim(tmp_path):
     entries["basic_seed0_retrain"].update(draw="retrain", retrain_of="basic_seed0")
     path.write_text(yaml.safe_dump(entries, sort_keys=False))
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
-    run_analysis("sweep_table2.py", rec, tmp_path / "t2")
+    run_analysis("table2.py", rec, tmp_path / "t2")
     rows = list(csv.DictReader(open(tmp_path / "t2" / "table2.csv")))
     basic = next(r for r in rows if r["variant"] == "basic" and r["mode"] == "greedy")
     assert basic["run_names"] == "basic_seed0 basic_seed1 basic_seed2"
-    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "sweep_table2.py"), "--root", str(rec), "--out",
+    r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "table2.py"), "--root", str(rec), "--out",
                         str(tmp_path / "t3"), "--extra", "basic_seed0_retrain"], capture_output=True, text=True)
     assert r.returncode != 0 and "a retrain never enters Table 2 or a claim" in r.stderr

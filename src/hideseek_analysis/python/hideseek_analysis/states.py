@@ -94,3 +94,32 @@ def transitions(states, episodes):
     with np.errstate(invalid="ignore", divide="ignore"):
         probabilities = np.where(totals > 0, counts / np.maximum(totals, 1), np.nan)
     return probabilities, counts
+
+
+# The same statistics read back from a run's analysis tables (states.csv, transitions.csv), as the
+# analysis across training seeds sees them.
+
+def state_freq(rows, predicate):
+    """The share of steps in the states of states.csv `rows` that match predicate(S, H, O)."""
+    return sum(float(r["frequency"]) for r in rows if predicate(int(r["S"]), int(r["H"]), int(r["O"])))
+
+
+def _sh(name):
+    parts = name.split()
+    return int(parts[0][1]), int(parts[1][1])
+
+
+def transition_rate(transitions_rows, states_rows, src, dst):
+    """Transitions from a state matching src to one matching dst per 100 of the run's steps (src,
+    dst: (S, H) pairs; O either): how often the hider does it, whatever else it does."""
+    steps = sum(int(r["steps"]) for r in states_rows)
+    n = sum(int(r["count"]) for r in transitions_rows if _sh(r["from"]) == src and _sh(r["to"]) == dst)
+    return 100.0 * n / steps if steps else np.nan
+
+
+def transition_prob(rows, src, dst):
+    """P(to a state matching dst | a change out of a state matching src), from transition counts
+    (src, dst: (S, H) pairs; O either)."""
+    out_of = sum(int(r["count"]) for r in rows if _sh(r["from"]) == src and _sh(r["to"]) != src)
+    into = sum(int(r["count"]) for r in rows if _sh(r["from"]) == src and _sh(r["to"]) == dst)
+    return into / out_of if out_of else np.nan

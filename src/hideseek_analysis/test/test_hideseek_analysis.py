@@ -1,8 +1,15 @@
 """Tests of the analysis statistics: run with python3 -m pytest."""
-import numpy as np
-import pytest
+import os
+import sys
 
-import hideseek_analysis as ha
+# The command lines under test, and the package they import.
+SCRIPTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts")
+sys.path[:0] = [SCRIPTS, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python")]
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+from hideseek_analysis import states as ha  # noqa: E402
 
 
 def synthetic(n_episodes=60, steps=50, dims=64, separable=True, seed=0):
@@ -131,13 +138,11 @@ def test_reproduce_report_pairs_the_splits_and_weighs_weaknesses_against_advanta
             cells[head.index("balanced_accuracy_std")] = "%r" % np.std(list(trained_h.values()))
         fixed.append(",".join(cells))
     probes_csv.write_text("\n".join([lines[0]] + fixed) + "\n")
-    (report / "table2.csv").write_text(
-        "variant,living_trained,living_random\nslowerhider,60,38\nfasterhider,500,38\n")
-    (report / "table2.md").write_text("| variant |\n| --- |\n")
-    (report / "gru_vs_ff.md").write_text("# The GRU hider against its feed-forward twin\n\n| v |\n| --- |\n"
-                                          "| basic_gru |\n\n**Goal: undecided**\n\n## What the memory does\n\n"
-                                          "| slowerhider |\n")
-    here = os.path.dirname(os.path.abspath(__file__))
+    (report / "table2_shipped").mkdir()
+    (report / "table2_shipped" / "table2.csv").write_text(
+        "variant,mode,living_mean\nslowerhider,greedy,60\nslowerhider,sampled,50\nfasterhider,greedy,500\n")
+    (report / "table2_shipped" / "table2.md").write_text("# Table 2: the shipped policies\n\n| variant |\n| --- |\n")
+    here = SCRIPTS
     paper = os.path.join(here, "..", "..", "hideseek_game", "config", "paper_reference.yaml")
     subprocess.run([sys.executable, os.path.join(here, "reproduce_report.py"), str(report), "--paper", paper],
                    check=True, cwd=here)
@@ -159,11 +164,9 @@ def test_reproduce_report_pairs_the_splits_and_weighs_weaknesses_against_advanta
     # What training added: the advantaged hider's trained H probe scores 99 % on every split.
     assert "On the gain the best weaker variant does not beat the advantaged one" in index
     assert (report / "survival_vs_representation.png").stat().st_size > 0
-    # evaluate_all.sh's GRU comparison is inline, under the report's own heading, without its title.
-    assert "## The GRU hider against its feed-forward twin\n\n| v |" in index and "| basic_gru |" in index
-    assert index.count("The GRU hider against its feed-forward twin") == 1
-    # Its own sections sit one level below that heading.
-    assert "\n### What the memory does\n" in index and "\n## What the memory does" not in index
+    # Table 2 of the shipped policies is inline, under the report's own heading, without its title.
+    assert "## Table 2: living steps and success\n\n| variant |" in index
+    assert "# Table 2: the shipped policies" not in index
 
 
 def test_report_probes_the_gru_state_of_a_recurrent_policy(tmp_path):
@@ -207,7 +210,7 @@ def run_report_on_synthetic_inputs(tmp_path, with_memory):
         memory[:, :8] += 3.0 * h[:, None]
         np.save(inp / "memory_trained.npy", memory)
         np.save(inp / "memory_random.npy", rng.normal(size=(len(episodes), 512)).astype(np.float32))
-    here = os.path.dirname(os.path.abspath(__file__))
+    here = SCRIPTS
     subprocess.run([sys.executable, os.path.join(here, "report.py"), str(inp), str(out), "--variant", "basic",
                     "--policy", "synthetic", "--steps", "0", "--tsne-samples", "200",
                     "--probe-splits", "3"], check=True, cwd=here)

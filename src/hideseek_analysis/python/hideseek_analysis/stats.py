@@ -9,8 +9,6 @@ each drawn run. The interval so covers both the spread between training seeds an
 between evaluation episodes; with three seeds it is wide, and it can only be as wide as three
 draws of the training seed allow (it does not cover seeds whose behaviour none of the three showed).
 """
-import csv
-import os
 import zlib
 
 import numpy as np
@@ -129,22 +127,24 @@ def rank_correlation(runs_by_variant, reference, rng, reps=BOOTSTRAP):
     return float(point), (interval(boot) if boot else (float("nan"), float("nan")))
 
 
-def add_selection_args(parser, here):
-    """The options every tool across training seeds takes: which checkout, where to write, which
-    runs (the sweep's, by their steps, plus --extra by name), and how many bootstrap resamples."""
-    parser.add_argument("--root", default=os.path.normpath(os.path.join(here, "..", "..", "..")),
-                        help="the checkout (registry, docs/runs, config)")
-    parser.add_argument("--out", help="output folder")
-    parser.add_argument("--steps", type=int, default=2000000, help="a sweep run's training steps (default 2000000)")
-    parser.add_argument("--extra", nargs="*", default=[], help="other runs to count, by registry name")
-    parser.add_argument("--reps", type=int, default=BOOTSTRAP, help="bootstrap resamples (default %d)" % BOOTSTRAP)
-    parser.add_argument("--seed", type=int, default=0, help="the bootstrap's random seed")
+def boot_runs(per_variant, stat, rng, reps=BOOTSTRAP):
+    """A statistic of per-variant lists of per-run values, with its bootstrap interval: each variant's
+    runs resampled on their own. per_variant: {variant: [value per run]}; stat: dict -> number. With
+    one run of a variant there is no interval over seeds: (point, (nan, nan))."""
+    point = stat({v: np.asarray(x, dtype=float) for v, x in per_variant.items()})
+    if min(len(x) for x in per_variant.values()) < 2:
+        return float(point), (np.nan, np.nan)
+    boot = []
+    for _ in range(reps):
+        sample = {v: np.asarray(x, dtype=float)[rng.integers(0, len(x), len(x))] for v, x in per_variant.items()}
+        boot.append(stat(sample))
+    return float(point), interval(boot)
 
 
-def write_rows(path, rows, fields=None):
-    """Rows (dicts) as a CSV file, with `fields` (default: the first row's keys) as its header."""
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=fields or list(rows[0]))
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: r.get(k, "") for k in (fields or list(rows[0]))})
+def mean_over_runs(values, rng, reps=BOOTSTRAP):
+    """The mean of per-run values and its bootstrap interval over runs ((nan, nan) with one run)."""
+    values = np.asarray(values, dtype=float)
+    if len(values) < 2:
+        return float(values.mean()), (np.nan, np.nan)
+    boot = [values[rng.integers(0, len(values), len(values))].mean() for _ in range(reps)]
+    return float(values.mean()), interval(boot)

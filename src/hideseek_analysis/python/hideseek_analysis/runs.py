@@ -1,0 +1,151 @@
+"""The runs the analysis across training seeds counts, and what each left in the checkout.
+
+A sweep run is a registry entry (policies/policies.yaml) named after its variant, game, network and
+training seed (<variant>[_<game> unless v2][_<network> unless ff]_seed<S>), of that variant, network
+and game, trained for at least the sweep's steps by the sweep's queue (its note says so), and the
+first draw of its seed: a retrain (<run>_retrain) never counts. Its records lie in
+docs/runs/<run>/: episodes.csv (greedy evaluation, seeds 0-99), sampled/episodes.csv, and analysis/
+(probes, states, transitions, behaviour, distance, t-SNE: hideseek_pipeline analyze).
+"""
+import argparse
+import csv
+import os
+import re
+import sys
+
+import numpy as np
+
+from . import registry
+from .stats import BOOTSTRAP
+
+NAME = re.compile(r"^(?P<variant>.+)_seed(?P<seed>\d+)$")
+
+
+def run_name(variant, seed, game="v2", network="ff"):
+    """A sweep run's name: basic_seed0, basic_v3_gru_seed1."""
+    return "%s%s%s_seed%d" % (variant, "" if game == "v2" else "_" + game, "" if network == "ff" else "_" + network,
+                              int(seed))
+
+
+def parse_selection(description, argv=None, more=None):
+    """The command line of a tool across training seeds: selection_arguments(), then more(parser)'s
+    own; --root made absolute."""
+    parser = argparse.ArgumentParser(description=description)
+    selection_arguments(parser)
+    if more:
+        more(parser)
+    args = parser.parse_args(argv)
+    args.root = os.path.abspath(args.root)
+    return args
+
+
+def selection_arguments(parser):
+    """The options every tool across training seeds takes: which checkout, where to write, which
+    runs (the sweep's, by game and steps, plus --extra by name), and how many bootstrap resamples."""
+    parser.add_argument("--root", default=registry.ROOT,
+                        help="the checkout (registry, docs/runs, config; default: the one holding this code)")
+    parser.add_argument("--out", help="output folder")
+    parser.add_argument("--game", default="v2", help="the game whose sweep runs count (default v2)")
+    parser.add_argument("--steps", type=int, default=2000000, help="a sweep run's training steps (default 2000000)")
+    parser.add_argument("--extra", nargs="*", default=[], help="other runs to count, by registry name")
+    parser.add_argument("--reps", type=int, default=BOOTSTRAP, help="bootstrap resamples (default %d)" % BOOTSTRAP)
+    parser.add_argument("--seed", type=int, default=0, help="the bootstrap's random seed")
+
+
+def read_csv(path):
+    """A CSV file's rows as dicts, or None where the file does not exist."""
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def load_episodes(path):
+    """(living steps, success) arrays of an evaluation's episodes.csv, one entry per episode."""
+    rows = read_csv(path)
+    if not rows:
+        raise ValueError("%s: no episodes" % path)
+    living = np.array([float(r["living_steps"]) for r in rows])
+    success = np.array([1.0 if r["outcome"] != "captured" else 0.0 for r in rows])
+    return living, success
+
+
+def evaluation_by_seed(path):
+    """{evaluation seed: living steps} of an evaluation's episodes.csv."""
+    return {int(r["seed"]): float(r["living_steps"]) for r in read_csv(path)}
+
+
+def calibration(root):
+    """variant -> the rows of docs/calibration_table.csv (the random hider and the scripted evaders)."""
+    found = {}
+    for r in read_csv(os.path.join(root, "docs", "calibration_table.csv")) or []:
+        found.setdefault(r["variant"], []).append(r)
+    return found
+
+
+def _is_sweep_run(name, e, steps, network, game):
+    m = NAME.match(name)
+    return bool(m and m.group("variant") == run_name(e["variant"], 0, game, network)[:-len("_seed0")]
+                and e.get("network") == network and str(e.get("game")) == game and int(e.get("steps", 0)) >= steps
+                and str(e.get("note", "")).startswith(registry.SWEEP_NOTE))
+
+
+def _check_extra(entries, extra, network, warn):
+    retrains = sorted(n for n in extra if n in entries and registry.draw(entries[n]) == "retrain")
+    if retrains:
+        raise SystemExit("hideseek_analysis: --extra %s: a retrain never enters Table 2 or a claim (its first draw, "
+                         "%s, does)" % (", ".join(retrains), ", ".join(entries[n]["retrain_of"] for n in retrains)))
+    missing = [n for n in extra if n not in entries]
+    if missing:
+        raise SystemExit("hideseek_analysis: --extra: no run %s in the registry" % ", ".join(missing))
+    other = sorted(n for n in extra if entries[n].get("network", "ff") != network)
+    if other and warn:
+        print("hideseek_analysis: --extra %s: not %s runs, left out here" % (", ".join(other), network),
+              file=sys.stderr)
+
+
+def sweep_runs(root, steps, extra, network="ff", warn=True, game="v2"):
+    """variant -> [(run, entry)], in training-seed order: the sweep's first draws of `network` on
+    `game` (see the module's docstring), plus the runs named in `extra` of that network (`warn`:
+    say on stderr which of `extra` are of another network and so left out)."""
+    entries = registry.runs(os.path.join(root, "policies", "policies.yaml"))
+    _check_extra(entries, extra, network, warn)
+    found = {}
+    for name, e in entries.items():
+        if registry.draw(e) != "first":
+            continue  # a retrain: shown beside its first draw in the run's records, never counted
+        if (name in extra and e.get("network", "ff") == network) or _is_sweep_run(name, e, steps, network, game):
+            found.setdefault(e["variant"], []).append((name, e))
+    for v in found:
+        found[v].sort(key=lambda ne: (int(ne[1].get("training_seed", 0)), ne[0]))
+    return found
+
+
+class Runs:
+    """The selected runs' evaluations and per-run analyses, read on demand from ROOT/docs."""
+
+    def __init__(self, root, found):
+        self.root = root
+        self.found = found
+
+    def names(self, variant):
+        return [n for n, _ in self.found.get(variant, [])]
+
+    def path(self, name, *parts):
+        return os.path.join(self.root, "docs", "runs", name, *parts)
+
+    def analysis(self, name, table):
+        return read_csv(self.path(name, "analysis", table + ".csv"))
+
+    def analysed(self, variant, table):
+        """[(run, its analysis table's rows)] of the variant's runs that have that table."""
+        return [(n, rows) for n in self.names(variant) for rows in [self.analysis(n, table)] if rows]
+
+    def episodes(self, variant):
+        """The greedy living steps of each of the variant's evaluated runs."""
+        return [load_episodes(self.path(n, "episodes.csv"))[0] for n in self.names(variant)
+                if os.path.exists(self.path(n, "episodes.csv"))]
+
+    def baseline(self, variant, table, policy="random"):
+        """A table of the random hider's analysis (docs/analysis/baselines/<variant>/<policy>/)."""
+        return read_csv(os.path.join(self.root, "docs", "analysis", "baselines", variant, policy, table + ".csv"))
