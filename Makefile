@@ -17,11 +17,11 @@ build: deps
 
 # The basic game: rviz when a display is available, otherwise headless with one line per episode.
 run: build
-	source scripts/env.sh && scripts/run_basic.sh
+	source scripts/env.sh && src/hideseek_world/scripts/run_basic.sh
 
 # Both pause a running sweep (hideseek_pipeline sweep) while they run, and resume it after.
 test: build
-	$(PIPELINE) sweep hold scripts/run_tests.sh
+	$(PIPELINE) test
 
 bench: build
 	$(PIPELINE) bench
@@ -40,11 +40,11 @@ sweep: deps
 # (docs/reliability.md). Neither is part of make test: CI's 90 minutes hold make test, not a second
 # build of every core under the sanitizers.
 test-sanitize: deps
-	scripts/test_sanitize.sh
+	test/sanitize/test_sanitize.sh
 
 fuzz: deps
-	scripts/test_sanitize.sh
-	scripts/fuzz.sh
+	test/sanitize/test_sanitize.sh
+	test/sanitize/fuzz.sh
 
 clean:
 	rm -rf build devel install build_sanitize devel_sanitize

@@ -19,6 +19,7 @@ PACKAGES=(
   libgtest-dev googletest
   xvfb xauth imagemagick xterm
   python3-matplotlib python3-sklearn python3-scipy python3-pytest python3-yaml
+  python3-tqdm  # the pipeline's progress bars (hideseek_pipeline report and bench)
   catkin-lint   # checks the packages' CMake and package.xml files (issue #34)
   strace        # the install-space test lists every file the installed graph opens
   clang-format  # the one C++ formatter (.clang-format), checked by make test

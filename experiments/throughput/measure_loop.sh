@@ -24,7 +24,7 @@ cd "$(dirname "$0")/../.."
 arenas=${1:-16}
 updates=${3:-20}
 [ "$updates" -ge 1 ] 2> /dev/null || { echo "measure_loop: UPDATES must be a whole number >= 1, got '$updates'" >&2; exit 2; }
-source scripts/measure.sh
+source experiments/throughput/measure.sh
 rollout=$(rollout_steps "$config")
 label=${4:-${arenas}x$rollout}
 shift $(($# < 4 ? $# : 4))

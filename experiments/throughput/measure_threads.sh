@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source scripts/env.sh
-source scripts/measure.sh
+source experiments/throughput/measure.sh
 precision=${1:-fp32}
 echo "| precision | hider_threads | OPENBLAS_NUM_THREADS | render_threads | train_ros_samples_per_s | train_floor_samples_per_s |"
 echo "| --- | --- | --- | --- | --- | --- |"

@@ -14,7 +14,7 @@ ws=$(realpath "${WORKSPACE:-$(dirname "$0")/../..}")
 port=${PORT:-11900}
 here=$(dirname "$(realpath "$0")")/../../scripts
 source "$here/env.sh"
-source "$here/measure.sh"
+source "$here/../experiments/throughput/measure.sh"
 set +u
 source "$ws/devel/setup.bash"
 set -u

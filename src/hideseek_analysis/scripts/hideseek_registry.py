@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The run registry and the variants (hideseek_analysis.registry): scripts/hideseek_registry.py --help."""
+"""The run registry and the variants (hideseek_analysis.registry): src/hideseek_analysis/scripts/hideseek_registry.py --help."""
 import os
 import sys
 

@@ -3,7 +3,7 @@
 
 usage: reproduce_report.py REPORT_DIR --paper config/paper_reference.yaml
 
-REPORT_DIR holds table2_shipped/ (scripts/evaluate_all.sh: Table 2 of the shipped policies) and
+REPORT_DIR holds table2_shipped/ (hideseek_pipeline report --from-scratch: Table 2 of the shipped policies) and
 one folder per analysed policy
 (analyze.launch report_dir:=REPORT_DIR/<variant>, and REPORT_DIR/<variant>_gru for a GRU hider).
 Writes into REPORT_DIR:

@@ -1,5 +1,5 @@
 """Tests of hideseek_analysis.registry, the one Python reader of the variants and the run registry,
-and of its command line scripts/hideseek_registry.py: run with python3 -m pytest."""
+and of its command line src/hideseek_analysis/scripts/hideseek_registry.py: run with python3 -m pytest."""
 import os
 import subprocess
 import sys
@@ -10,7 +10,7 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "..")
 sys.path.insert(0, os.path.join(ROOT, "src", "hideseek_analysis", "python"))
 from hideseek_analysis import registry as reg  # noqa: E402
 
-SCRIPT = os.path.join(ROOT, "scripts", "hideseek_registry.py")
+SCRIPT = os.path.join(ROOT, "src", "hideseek_analysis", "scripts", "hideseek_registry.py")
 
 
 def cli(*args):

@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
   std::printf("%s_%s_samples_per_s %.0f\n", network == hideseek_hider::NetworkKind::kGru ? "train_gru" : "train_floor",
               hideseek_hider::precisionName(choice.precision), samples_per_s);
   // The whole loop's seconds over the PPO update's: with the graph's own update time it estimates the
-  // floor at the graph's speed (make bench's train_efficiency_own_speed, scripts/measure_loop.sh).
+  // floor at the graph's speed (make bench's train_efficiency_own_speed, experiments/throughput/measure_loop.sh).
   std::printf("loop_over_update %.4f\n", seconds / std::max(update_s, 1e-9));
   std::printf("flops_per_sample %.4g\n", flops);
   std::printf("gflops %.1f\n", flops * samples_per_s / 1e9);

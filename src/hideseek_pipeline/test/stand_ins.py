@@ -13,9 +13,14 @@ case " $* " in
     printf 'update,steps,wall_s,x\n1,%s,123.7,0\n' "${STOP_AT:-$steps}" > "$output_dir/training_log.csv"
     echo ckpt > "$output_dir/checkpoint.pt" ;;
   *" evaluate.launch "*)
+    [ "$variant" = "${FAIL_VARIANT:-}" ] && exit 0  # a required node died: no evaluation, roslaunch exits 0
     printf 'variant,policy,episodes,avg_living_steps,success_rate\n%s,%s,100,321.00,0.2500\n' "$variant" "$policy" \
       > "$output_dir/evaluation.csv"
+    printf 'seed,living_steps,outcome\n0,321,captured\n' > "$output_dir/episodes.csv"
     echo "| $policy |" > "$output_dir/evaluation.md" ;;
+  *" analyze.launch "*)
+    mkdir -p "$report_dir" && echo png > "$report_dir/distance_time.png"
+    echo "analysis: $variant done" ;;
 esac
 """
 FAKE_TOOL = r"""#!/bin/bash
@@ -50,12 +55,13 @@ def stand_in_workspace(w):
                        (w / "devel" / "lib" / "hideseek_hider" / "export_policy", FAKE_TOOL),
                        (w / "devel" / "lib" / "hideseek_play" / "play_episodes", FAKE_TOOL),
                        (w / "devel" / "lib" / "hideseek_analysis" / "probe_set", FAKE_TOOL),
-                       (w / "scripts" / "probe_set.sh", FAKE_PROBE_SET)):
+                       (w / "src" / "hideseek_analysis" / "scripts" / "probe_set.sh", FAKE_PROBE_SET)):
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)
         path.chmod(0o755)
     scripts = w / "src" / "hideseek_analysis" / "scripts"
     scripts.mkdir(parents=True, exist_ok=True)
-    for name in ("plot_learning_curve.py", "plot_trajectories.py", "behaviour.py", "probes.py"):
+    for name in ("plot_learning_curve.py", "plot_trajectories.py", "behaviour.py", "probes.py", "table2.py",
+                 "claims.py", "seed_figures.py", "reproduce_report.py"):
         (scripts / name).write_text(FAKE_SCRIPT)
     return w

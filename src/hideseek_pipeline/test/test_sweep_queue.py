@@ -370,7 +370,7 @@ def queue_in(tmp_path, repo, rec, text, calls):
     (sweep_dir / "state").mkdir(parents=True)
     (sweep_dir / "state" / ("built." + commit[:12])).write_text(commit)  # the stand-ins need no build
     env = dict(os.environ, SWEEP_DIR=str(sweep_dir), SWEEP_RECORD_ROOT=str(rec), PYTHONPATH=PACKAGE, CALLS=str(calls),
-               REGISTRY_SCRIPT=os.path.join(ROOT, "scripts", "hideseek_registry.py"),
+               REGISTRY_SCRIPT=os.path.join(ROOT, "src", "hideseek_analysis", "scripts", "hideseek_registry.py"),
                PATH="/usr/bin:" + os.environ["PATH"])
     code = ("import sys; from hideseek_pipeline import cli, runner\n"
             "sweep = cli.make_sweep(%r, %r); sweep.checkout = %r\nsys.exit(runner.run(sweep) or 0)"

@@ -31,7 +31,7 @@ first_failed=${#failures[@]}
 failures=()
 if [ -s "$dir/work/rollout.bag" ]; then
   rosbag filter "$dir/work/rollout.bag" "$dir/gap.bag" "topic != '/world/steps' or m.decision != 100" > /dev/null 2>&1
-  "$(catkin_find hideseek_analysis analyze_bag --first-only)" basic "$(/usr/bin/python3 "$root/../../scripts/hideseek_registry.py" shipped basic)" "$dir/gap.bag" \
+  "$(catkin_find hideseek_analysis analyze_bag --first-only)" basic "$(/usr/bin/python3 "$root/../hideseek_analysis/scripts/hideseek_registry.py" shipped basic)" "$dir/gap.bag" \
     "$dir/gap" > "$dir/gap.log" 2>&1
   status=$?
   [ "$status" -eq 1 ] || failures+=("analyze_bag exited $status on a bag with a missing step")

@@ -11,7 +11,7 @@ set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
 out=$1
 root="$(cd "$(dirname "$0")/.." && pwd)"
-policy=$(/usr/bin/python3 "$root/../../scripts/hideseek_registry.py" shipped basic)
+policy=$(/usr/bin/python3 "$root/../hideseek_analysis/scripts/hideseek_registry.py" shipped basic)
 dir=$(mktemp -d /tmp/hideseek_eval_test.XXXXXX)
 port=$((11800 + RANDOM % 100))
 failures=()

@@ -594,7 +594,7 @@ def write(out_dir, rows, header):
                                                                  (" (" + r["note"] + ")") if r["note"] else "", eff,
                                                                  r["practical"], r["runs"], r["measure"],
                                                                  r["departure"]))
-    md += ["", "Beside this table (`scripts/reproduce.sh`): Table 2 across seeds in [table2_seeds/](table2_seeds/table2.md), "
+    md += ["", "Beside this table (`make reproduce`): Table 2 across seeds in [table2_seeds/](table2_seeds/table2.md), "
            "[Table 3 across seeds](table3_seeds.md), [behaviour across seeds](behaviour_seeds.md), "
            "and Figures 4-7 and the t-SNE across seeds: [states](state_frequencies_seeds.png), "
            "[transitions](transitions_seeds.png), [distance](distance_seeds.png), "

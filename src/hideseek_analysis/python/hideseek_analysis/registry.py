@@ -1,5 +1,5 @@
 """The project's two registries, read in one place by the tools, the report and CMake (its command
-line: scripts/hideseek_registry.py in a checkout, or rosrun hideseek_analysis hideseek_registry.py):
+line: src/hideseek_analysis/scripts/hideseek_registry.py in a checkout, or rosrun hideseek_analysis hideseek_registry.py):
 
 - the variants: config/variants/*.yaml (discovered, never listed; a file's `variant` is its name);
 - the runs: policies/policies.yaml, one entry per training run (variant, network, game, training

@@ -6,7 +6,7 @@ It reads one of two sources:
 - the sweep (default): every sweep run of the game (runs.py selects them), greedy and sampled,
   from docs/runs/<run>/episodes.csv and sampled/episodes.csv, beside the random hider and the
   scripted evaders (docs/calibration_table.csv); into ROOT/docs/report/table2_seeds;
-- --evaluations DIR: the shipped policies as scripts/evaluate_all.sh evaluated them, one run per
+- --evaluations DIR: the shipped policies as `hideseek_pipeline report --from-scratch` evaluated them, one run per
   variant and network, DIR/<label>_trained/episodes.csv (and, for a GRU hider, <variant>_gru_trained
   and <variant>_gru_memoryless), beside the random hider evaluated with them (DIR/<variant>_random).
 
@@ -61,7 +61,7 @@ class SweepSource:
 
 
 class EvaluationsSource:
-    """The shipped policies of one evaluation (scripts/evaluate_all.sh's OUT/evaluations)."""
+    """The shipped policies of one evaluation (hideseek_pipeline report --from-scratch's REPORT/evaluations)."""
     modes = (("greedy", "trained"), ("GRU, greedy", "gru_trained"), ("GRU memoryless, greedy", "gru_memoryless"))
     scope = ("of each shipped policy (one run per variant and network: its interval covers only the spread between "
              "its evaluation episodes), and of a shipped GRU hider with its state zeroed at every step (memoryless)")
@@ -329,7 +329,7 @@ def main(argv=None):
     args = parse_selection("Table 2 with 95 % intervals, the paper's orderings and the two readings of its stochastic "
                            "seeker: of the sweep's runs, or (--evaluations) of the shipped policies.", argv,
                            lambda p: p.add_argument("--evaluations", help="the shipped policies' evaluations "
-                                                    "(scripts/evaluate_all.sh's OUT/evaluations) instead of the sweep's runs"))
+                                                    "(hideseek_pipeline report --from-scratch's REPORT/evaluations) instead of the sweep's runs"))
     root = args.root
     cfg = Config(root)
     if args.evaluations:

@@ -1,7 +1,7 @@
 // The run registry, policies/policies.yaml: one entry per training run (its variant, network,
 // game, training seed, steps, precision, the commit it trained with, its log). The run whose
 // exported weights are committed names them in `weights`; that is the policy a variant's launch
-// file plays by default (policy:=shipped). scripts/hideseek_registry.py reads the same file.
+// file plays by default (policy:=shipped). src/hideseek_analysis/scripts/hideseek_registry.py reads the same file.
 #pragma once
 
 #include <string>
@@ -31,7 +31,7 @@ struct RunEntry {
 std::vector<RunEntry> loadRunRegistry(const std::string& registry_file);
 
 // The variants: the names of variants_dir's *.yaml files, sorted; each file's `variant` field must be
-// its name (throws ConfigError naming the file otherwise). scripts/hideseek_registry.py's
+// its name (throws ConfigError naming the file otherwise). src/hideseek_analysis/scripts/hideseek_registry.py's
 // `variants` reads the same folder under the same rule.
 std::vector<std::string> variantNames(const std::string& variants_dir);
 

@@ -55,7 +55,7 @@ def analyze_run(ws, records, name, policy, part="all", episodes=100, first=10000
         elif part == "behaviour":
             behaviour("memory", out)
         else:
-            probe = ws.command([os.path.join(ws.root, "scripts", "probe_set.sh")]).strip().splitlines()[-1]
+            probe = ws.command([ws.analysis_script("probe_set.sh")]).strip().splitlines()[-1]
             features = os.path.join(tmp, "trained.npy")
             ws.command([ws.tool("hideseek_analysis", "probe_set"), "features", probe, features, "--policy", policy])
             tsne = ["tsne", probe, features, out, "--run", name, "--baselines",

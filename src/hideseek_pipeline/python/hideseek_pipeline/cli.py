@@ -3,11 +3,12 @@
   hideseek_pipeline train basic --seed 1   one run: trained, exported, recorded, evaluated
   hideseek_pipeline evaluate RUN WEIGHTS   a recorded run's evaluation (seeds 0-99) and trajectories
   hideseek_pipeline analyze RUN WEIGHTS    a recorded run's probes, t-SNE and behaviour
+  hideseek_pipeline test                   make test: every test, ending "N passed, M failed"; the sweep held
   hideseek_pipeline bench                  make bench: this machine's throughput, the sweep held meanwhile
   hideseek_pipeline report                 make reproduce: Table 2, the claims and the figures in docs/report
   hideseek_pipeline sweep status           the sweep's phases and every run's state
   hideseek_pipeline sweep start            the queue in the background (make sweep)
-  hideseek_pipeline sweep hold CMD ...     CMD with the queue paused (make test)
+  hideseek_pipeline sweep hold CMD ...     CMD with the queue paused, resumed after
 
 Each subcommand answers --help.
 """
@@ -16,7 +17,8 @@ import os
 import subprocess
 import sys
 
-from hideseek_pipeline import analyze, control, evaluate, runner, sweep_config, train
+from hideseek_pipeline import analyze, control, evaluate, runner, sweep_config, tests, train
+from hideseek_pipeline.measure import MeasureError
 from hideseek_pipeline.queue import Sweep, SweepError
 from hideseek_pipeline.records import Records
 from hideseek_pipeline.workspace import ToolError, Workspace
@@ -62,14 +64,11 @@ def parser():
                         "checkout; the sweep passes a phase's pinned worktree)")
     _train_parser(sub, common)
     _evaluate_and_analyze_parsers(sub, common)
-    sub.add_parser("bench", help="this machine's throughput figures (scripts/bench.sh), with a running sweep held",
-                   description="One `name value` line per figure; timing goals live here, never in tests. A running "
-                   "sweep is paused meanwhile and resumed after.")
-    r = sub.add_parser("report", help="Table 2, the claims and the figures into docs/report (scripts/reproduce.sh)",
-                       description="From the committed evaluations and analyses (under a minute), or with "
-                       "--from-scratch from the weights: re-evaluates and re-analyses the shipped policies.")
-    r.add_argument("--from-scratch", action="store_true")
-    r.add_argument("report_dir", nargs="?", help="default docs/report")
+    sub.add_parser("test", help="every test of the workspace (make test), with a running sweep held",
+                   description=tests.__doc__)
+    sub.add_parser("bench", help="this machine's throughput figures, with a running sweep held",
+                   description=bench_doc(), formatter_class=argparse.RawDescriptionHelpFormatter)
+    _report_parser(sub)
     _sweep_parser(sub)
     return p
 
@@ -113,6 +112,28 @@ def _evaluate_and_analyze_parsers(sub, common):
     a.add_argument("--game", help="--baseline's game (default: config/games.yaml's)")
     a.add_argument("--episodes", type=int, default=100, help="rollouts (default 100)")
     a.add_argument("--first-seed", type=int, default=10000, help="the rollouts' first seed (default 10000)")
+
+
+def bench_doc():
+    return ("One `name value` line per figure; timing goals live here, never in tests. A running sweep is paused "
+            "meanwhile and resumed after. ARENAS (16), SECONDS_PER_RUN (10), ROS_UPDATES (20) and FLOOR_UPDATES (4) "
+            "in the environment change the runs (hideseek_pipeline/bench.py says what each group measures).")
+
+
+def _report_parser(sub):
+    r = sub.add_parser("report", help="Table 2, the claims and the figures into docs/report (make reproduce)",
+                       description="From the committed evaluations and analyses (under a minute), or with "
+                       "--from-scratch from the weights: re-evaluates and re-analyses the shipped policies "
+                       "(hideseek_pipeline/report.py says each step).")
+    r.add_argument("report_dir", nargs="?", help="default docs/report")
+    r.add_argument("--from-scratch", action="store_true", help="evaluate and analyse the shipped policies again")
+    r.add_argument("--work-dir", default="~/.ros/hideseek_reproduce",
+                   help="--from-scratch's bags and feature arrays (large; not part of the report)")
+    r.add_argument("--steps", type=int, default=50000, help="--from-scratch's recorded steps per policy (default "
+                   "50000; 5000 for a quick look)")
+    r.add_argument("--variants", nargs="+", metavar="VARIANT", help="--from-scratch: these variants only (with "
+                   "their GRU hiders), keeping what the report holds for the others")
+    r.add_argument("--port", type=int, default=11478, help="ROS master port (default 11478)")
 
 
 def _sweep_parser(sub):
@@ -186,6 +207,28 @@ def run_command(args):
     return 0
 
 
+HELD = "HIDESEEK_PIPELINE_HELD"  # set in the environment of a command that runs with the sweep held
+
+
+def workspace_command(args):
+    """test, bench and report: each on this checkout, test and bench with a running sweep held
+    (the pipeline runs itself again under `sweep hold`, marked so that it does not hold twice)."""
+    root = repository_root()
+    if args.command in ("test", "bench") and not os.environ.get(HELD):
+        here = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
+        os.environ[HELD] = "1"
+        os.environ["PYTHONPATH"] = os.pathsep.join(x for x in (here, os.environ.get("PYTHONPATH")) if x)
+        return held(root, [sys.executable, "-m", "hideseek_pipeline", args.command])
+    if args.command == "test":
+        return tests.run_tests(root)
+    if args.command == "bench":
+        from hideseek_pipeline import bench  # its progress bars need python3-tqdm, which install_deps.sh installs
+        return bench.bench(Workspace(root))
+    from hideseek_pipeline import report
+    return report.report(Workspace(root), args.report_dir, args.from_scratch, args.work_dir, args.steps,
+                         args.variants, args.port, lambda: runner.analyze_all(make_sweep(root)))
+
+
 def held(root, command, config=None):
     """`command`, with a running sweep paused meanwhile and resumed after, whatever its exit. With
     no sweep folder there is no queue to pause: just the command (no folder is created)."""
@@ -199,18 +242,14 @@ def main(argv=None):
     # No process the pipeline starts may leave __pycache__ in a pinned worktree (the trainers there
     # import the registry module): the tree would look modified and no further run would start.
     os.environ["PYTHONDONTWRITEBYTECODE"] = "1"
-    if args.command in ("bench", "report"):
-        root = repository_root()
-        if args.command == "bench":
-            return held(root, [os.path.join(root, "scripts", "bench.sh")])
-        extra = (["--from-scratch"] if args.from_scratch else []) + ([args.report_dir] if args.report_dir else [])
-        return subprocess.run([os.path.join(root, "scripts", "reproduce.sh")] + extra, cwd=root).returncode
     sys.dont_write_bytecode = True
     try:
+        if args.command in ("test", "bench", "report"):
+            return workspace_command(args)
         return sweep_command(args) if args.command == "sweep" else run_command(args)
     except (SweepError, sweep_config.ConfigError, FileNotFoundError) as e:
         print("sweep: %s" % e, file=sys.stderr)
         return 2
-    except ToolError as e:
+    except (ToolError, MeasureError) as e:
         print("hideseek_pipeline: %s" % e, file=sys.stderr)
         return 1

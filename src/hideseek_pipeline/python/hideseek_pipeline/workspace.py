@@ -43,7 +43,11 @@ class Workspace:
         return self.command(args).strip()
 
     def analysis_script(self, name):
-        return os.path.join(self.root, ANALYSIS_SCRIPTS, name)
+        """One of hideseek_analysis' scripts; probe_set.sh in a tree pinned before it moved there
+        from scripts/ (session 38) is that tree's scripts/probe_set.sh."""
+        path = os.path.join(self.root, ANALYSIS_SCRIPTS, name)
+        old = os.path.join(self.root, "scripts", name)
+        return old if name == "probe_set.sh" and not os.path.exists(path) and os.path.exists(old) else path
 
     def python(self, script, *args, log=None):
         return self.command(["/usr/bin/python3", self.analysis_script(script)] + list(args), log=log)

@@ -3,11 +3,11 @@
 # UndefinedBehaviorSanitizer (clang), then run; any report fails. The suppressions for libraries we
 # do not build (libtorch, Mesa) are in config/sanitizers/, each with its reason.
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$(realpath "$0")")/../.."
 TESTS=(game_core_test seeker_core_test hider_core_test episode_tally_test training_run_test teleop_test
   analysis_core_test vec_game_test config_fuzz_replay action_batch_fuzz_replay checkpoint_fuzz_replay bag_fuzz_replay)
 start=$(date +%s)
-scripts/sanitize_build.sh "${TESTS[@]}" > build_sanitize.log 2>&1 || {
+test/sanitize/sanitize_build.sh "${TESTS[@]}" > build_sanitize.log 2>&1 || {
   tail -n 30 build_sanitize.log; echo "test-sanitize: the build failed (build_sanitize.log)"; exit 1; }
 built=$(date +%s)
 supp="$PWD/config/sanitizers"

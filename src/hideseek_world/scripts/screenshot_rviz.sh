@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # The README's rviz picture: basic.launch with rviz on a virtual display (Xvfb), a screenshot
 # after SECONDS of play. Look at it before committing it.
-# usage: scripts/screenshot_rviz.sh [OUT.png] [SECONDS] [launch args...]
+# usage: src/hideseek_world/scripts/screenshot_rviz.sh [OUT.png] [SECONDS] [launch args...]
 set -euo pipefail
 out=$(realpath -m "${1:-docs/rviz_basic.png}")
 wait_s=${2:-12}
 shift $(( $# > 2 ? 2 : $# ))
-cd "$(dirname "$0")/.."
+cd "$(dirname "$(realpath "$0")")/../../.."
 source scripts/env.sh
 port=${HIDESEEK_PORT:-11483}
 display=:${HIDESEEK_DISPLAY:-93}

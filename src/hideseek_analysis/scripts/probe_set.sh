@@ -5,10 +5,10 @@
 # probes the baselines (five random-init networks and the pixels) into docs/probe_set/baselines.csv,
 # and their t-SNE neighbourhood scores into docs/probe_set/tsne_baselines.csv, when those are
 # missing. Prints the probe set's folder.
-# usage: scripts/probe_set.sh [--fix]   --fix (re)writes docs/probe_set/ from a new probe set: the
+# usage: src/hideseek_analysis/scripts/probe_set.sh [--fix]   --fix (re)writes docs/probe_set/ from a new probe set: the
 #        probe set is fixed once, before any sweep run is analysed; do not move it after.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$(realpath "$0")")/../../.."
 source scripts/env.sh
 dir=$(realpath -m "${PROBE_SET:-$HOME/.cache/hideseek/probe_set}")
 docs=docs/probe_set
@@ -33,7 +33,7 @@ elif [ -s "$docs/labels.csv" ]; then
   cmp -s "$dir/labels.csv" "$docs/labels.csv" || { echo "probe_set.sh: $dir/labels.csv differs from the committed $docs/labels.csv: remove $dir to make it again" >&2; exit 1; }
   [ "$sha" = "$(cut -d' ' -f1 "$docs/images.sha256")" ] || { echo "probe_set.sh: $dir/images.npy ($sha) is not the committed probe set's images ($docs/images.sha256)" >&2; exit 1; }
 else
-  echo "probe_set.sh: no committed probe set in $docs: fix one first (scripts/probe_set.sh --fix)" >&2
+  echo "probe_set.sh: no committed probe set in $docs: fix one first (src/hideseek_analysis/scripts/probe_set.sh --fix)" >&2
   exit 1
 fi
 random_init() {

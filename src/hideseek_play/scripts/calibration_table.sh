@@ -6,8 +6,8 @@
 # game (v1) or a game file of one's own. The in-process game is the one the ROS graph plays
 # (evaluate_test.sh checks that episode by episode); it takes about 3 minutes.
 set -euo pipefail
-out=$(realpath -m "${1:-$(dirname "$0")/../docs}")
-cd "$(dirname "$0")/.."
+out=$(realpath -m "${1:-$(dirname "$(realpath "$0")")/../../../docs}")
+cd "$(dirname "$(realpath "$0")")/../../.."
 source scripts/env.sh
 mkdir -p "$out"
 devel/lib/hideseek_play/calibration_table --game "${GAME:-}" --csv "$out/calibration_table.csv" | tee "$out/calibration_table.md"

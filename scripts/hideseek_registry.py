@@ -1,1 +1,0 @@
-../src/hideseek_analysis/scripts/hideseek_registry.py

@@ -1,0 +1,137 @@
+"""make reproduce: the whole reproduction in one command, into one report folder (docs/report).
+
+By default from the committed outputs alone, in under a minute: Table 2 across training seeds
+(table2_seeds/), the claims table and Figures 4-7 across seeds, from every sweep run's evaluation
+and per-run analysis (hideseek_analysis: table2.py, claims.py, seed_figures.py).
+
+--from-scratch, given the weights: first analyses every sweep run whose weights are on this
+machine and lacks its analysis (hideseek_pipeline sweep analyze); then evaluates every shipped
+policy and the random hider on every variant through the ROS graph (evaluate.launch, seeds 0-99:
+evaluations/ and Table 2 of the shipped policies, table2_shipped/); analyses every variant that has
+a shipped policy (analyze.launch: --steps recorded steps, probes, t-SNE, state statistics, distance
+over time; the bags and feature arrays go to --work-dir, large, not part of the report); gathers
+Table 3, the figures across variants and an index.md (reproduce_report.py); and ends with the
+tables across seeds as above. --variants V ... evaluates and analyses those variants only (with
+their GRU hiders) and keeps what the report already holds for the others: for a newly trained
+policy; after a change to the game, run it all.
+"""
+import os
+import shutil
+import time
+
+from tqdm import tqdm
+
+from hideseek_pipeline.records import load_registry_module
+from hideseek_pipeline.workspace import ToolError
+
+
+def across_seeds(ws, report, say):
+    """Table 2, the claims and the figures across training seeds, from the committed records."""
+    say("report: across training seeds, from the committed evaluations and analyses")
+    for script, out in (("table2.py", os.path.join(report, "table2_seeds")), ("claims.py", report),
+                        ("seed_figures.py", report)):
+        for line in ws.python(script, "--out", out).splitlines():
+            say("  " + line)
+
+
+def _evaluation(ws, variant, policy, folder, port, extra=()):
+    """One evaluation through evaluate.launch into `folder`; its evaluation.csv is the verdict
+    (roslaunch exits 0 even when a required node dies)."""
+    shutil.rmtree(folder, ignore_errors=True)
+    os.makedirs(folder)
+    log = os.path.join(folder, "launch.log")
+    ws.command(["roslaunch", "-p", port, "hideseek_world", "evaluate.launch", "variant:=" + variant,
+                "policy:=" + policy, "output_dir:=" + folder] + list(extra),
+               env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=log, check=False)
+    table = os.path.join(folder, "evaluation.csv")
+    if not os.path.isfile(table) or os.path.getsize(table) == 0:
+        raise ToolError("report: the evaluation of %s (%s) failed, see %s" % (variant, policy, log))
+    os.remove(log)
+    with open(table) as f:
+        last = f.read().strip().splitlines()[-1].split(",")
+    return "%s %s" % (last[3], last[4])
+
+
+def evaluations_of(reg, variants):
+    """(variant, label, policy, extra launch arguments) of every evaluation: the random hider, the
+    shipped feed-forward policy, the shipped GRU hider with and without its memory."""
+    jobs = []
+    for v in variants:
+        jobs.append((v, "random", "random", ()))
+        _, ff = reg.shipped(v, "ff")
+        if ff:
+            jobs.append((v, "trained", ff, ()))
+        _, gru = reg.shipped(v, "gru")
+        if gru:
+            jobs += [(v, "gru_trained", gru, ()), (v, "gru_memoryless", gru, ("memoryless:=true",))]
+    return jobs
+
+
+def evaluate_shipped(ws, reg, report, variants, keep, port, say):
+    """Every shipped policy and the random hider of `variants`, then Table 2 of the shipped policies
+    (table2_shipped/). `keep`: leave the other variants' evaluations in place."""
+    folder = os.path.join(report, "evaluations")
+    if not keep:
+        shutil.rmtree(folder, ignore_errors=True)
+    os.makedirs(folder, exist_ok=True)
+    jobs = evaluations_of(reg, variants)
+    for v in variants:
+        if not reg.shipped(v, "ff")[1]:
+            say("report: %s: no shipped policy" % v)
+    for v, label, policy, extra in tqdm(jobs, desc="report: evaluations", unit="evaluation"):
+        start = time.time()
+        result = _evaluation(ws, v, policy, os.path.join(folder, "%s_%s" % (v, label)), port, extra)
+        tqdm.write("report: %s %s: %s (living steps, success; %d s)" % (v, label, result, time.time() - start))
+    ws.python("table2.py", "--evaluations", folder, "--out", os.path.join(report, "table2_shipped"))
+
+
+def analyse_shipped(ws, reg, report, work, variants, steps, port, say):
+    """analyze.launch on every shipped policy of `variants` (its label's folder of the report)."""
+    shipped = [(reg.label(v, n), v, path) for v in reg.paper_order() for n in reg.NETWORKS
+               for _, path in [reg.shipped(v, n)] if path and v in variants]
+    os.makedirs(work, exist_ok=True)
+    for label, variant, weights in tqdm(shipped, desc="report: analyses", unit="policy"):
+        shutil.rmtree(os.path.join(report, label), ignore_errors=True)
+        log = os.path.join(work, label + ".log")
+        # roslaunch exits 0 even when a required node dies: the report's files are the verdict.
+        ws.command(["roslaunch", "-p", port, "hideseek_world", "analyze.launch", "variant:=" + variant,
+                    "policy:=" + weights, "steps:=%d" % steps, "output_dir:=" + os.path.join(work, label),
+                    "report_dir:=" + os.path.join(report, label)],
+                   env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=log, check=False)
+        with open(log) as f:
+            for line in f:
+                if line.startswith("analysis:") or "report:" in line:
+                    tqdm.write("  " + line.rstrip())
+        if not os.path.isfile(os.path.join(report, label, "distance_time.png")):
+            raise ToolError("report: the analysis of %s failed, see %s" % (label, log))
+
+
+def report(ws, report_dir=None, from_scratch=False, work_dir=None, steps=50000, variants=None, port=11478,
+           analyze_sweep=None, say=print):
+    """The report into `report_dir` (default ws.root/docs/report), as the module's docstring says.
+    `analyze_sweep`: a callable that analyses the sweep's runs lacking their analysis (--from-scratch)."""
+    start = time.time()
+    report_dir = os.path.abspath(report_dir or os.path.join(ws.root, "docs", "report"))
+    os.makedirs(report_dir, exist_ok=True)
+    if not from_scratch:
+        across_seeds(ws, report_dir, say)
+        say("report: done in %d s; open %s/claims.md (--from-scratch also re-evaluates and re-analyses)"
+            % (time.time() - start, report_dir))
+        return 0
+    reg = load_registry_module(ws.root)
+    known = reg.paper_order()
+    unknown = [v for v in variants or [] if v not in known]
+    if unknown:
+        raise ToolError("report: --variants names %s, not among: %s" % (", ".join(unknown), " ".join(known)))
+    if analyze_sweep:
+        analyze_sweep()
+    say("report: [1/3] Table 2: every shipped policy and the random hider, seeds 0-99")
+    evaluate_shipped(ws, reg, report_dir, variants or known, bool(variants), port, say)
+    say("report: [2/3] the analysis of every shipped policy (%d steps each; %d s so far)" % (steps, time.time() - start))
+    work = os.path.abspath(os.path.expanduser(work_dir or "~/.ros/hideseek_reproduce"))
+    analyse_shipped(ws, reg, report_dir, work, variants or known, steps, port, say)
+    say("report: [3/3] tables and figures across variants")
+    ws.python("reproduce_report.py", report_dir, "--paper", os.path.join(ws.root, "config", "paper_reference.yaml"))
+    across_seeds(ws, report_dir, say)
+    say("report: done in %d s; open %s/index.md" % (time.time() - start, report_dir))
+    return 0

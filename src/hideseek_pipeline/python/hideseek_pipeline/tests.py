@@ -1,0 +1,59 @@
+"""make test: every test (core gtests, rostests, the Python tests) through catkin_make run_tests,
+then the verdict from the results: catkin_make run_tests exits 0 even when tests fail, so the
+count comes from build/test_results, and the last line is `N passed, M failed`."""
+import glob
+import os
+import re
+import subprocess
+import xml.etree.ElementTree as ET
+
+# The lines of catkin_make's output worth seeing while the tests run.
+SHOWN = re.compile(r"^\[ *(RUN|OK|FAILED|PASSED) *\]|^\[ROSTEST\]|^SUMMARY|^ \* RESULT|^  \* |Error|error:|Failure|FAIL")
+PORT = 11411  # tests that start roscore need a free port of their own
+
+
+def count(results):
+    """(passed, failed) test cases over every JUnit file under `results`; a file that cannot be read
+    counts as one failure, a skipped case as neither."""
+    passed = failed = 0
+    for path in glob.glob(os.path.join(results, "**", "*.xml"), recursive=True):
+        try:
+            cases = ET.parse(path).getroot().iter("testcase")
+        except ET.ParseError:
+            failed += 1
+            continue
+        for case in cases:
+            if case.find("failure") is not None or case.find("error") is not None:
+                failed += 1
+            elif case.find("skipped") is None:
+                passed += 1
+    return passed, failed
+
+
+def run_tests(root, say=print):
+    """Runs every test of the workspace at `root`; returns 0 when every test passed."""
+    results = os.path.join(root, "build", "test_results")
+    subprocess.run(["rm", "-rf", results])
+    cmd = ("source scripts/env.sh && catkin_make run_tests -j1 -DPYTHON_EXECUTABLE=/usr/bin/python3 "
+           "-DPython3_EXECUTABLE=/usr/bin/python3")
+    env = dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % PORT)
+    with subprocess.Popen(["bash", "-c", cmd], cwd=root, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          text=True, errors="replace") as p:
+        for line in p.stdout:
+            if SHOWN.search(line):
+                say(line.rstrip())
+    say("")
+    summary = subprocess.run(["bash", "-c", "source scripts/env.sh && catkin_test_results build/test_results --all"],
+                             cwd=root, capture_output=True, text=True)
+    with open(os.path.join(root, "build", "test_summary.txt"), "w") as f:
+        f.write(summary.stdout + summary.stderr)
+    lines = [x for x in (summary.stdout + summary.stderr).splitlines() if not x.startswith("Skipping")]
+    for line in lines[-40:]:
+        say(line)
+    passed, failed = count(results) if os.path.isdir(results) else (0, 0)
+    if passed + failed == 0:
+        failed = 1  # no result at all: the tests did not run
+    elif summary.returncode != 0 and failed == 0:
+        failed = 1
+    say("%d passed, %d failed" % (passed, failed))
+    return 0 if summary.returncode == 0 and failed == 0 else 1

@@ -1,0 +1,120 @@
+"""hideseek_pipeline test, bench and report, the parts that need no ROS: the one throughput
+measurement, the tests' verdict from JUnit files, and report --from-scratch against stand-ins (fake
+roslaunch and analysis scripts): what it evaluates and analyses, in which order, and what it refuses."""
+import os
+import shutil
+import subprocess
+import sys
+
+import pytest
+from stand_ins import stand_in_workspace
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+PACKAGE = os.path.join(ROOT, "src", "hideseek_pipeline", "python")
+sys.path.insert(0, PACKAGE)
+from hideseek_pipeline import measure, tests  # noqa: E402
+
+
+def test_samples_per_s_counts_from_the_end_of_the_warm_up_to_the_last_update(tmp_path):
+    log = tmp_path / "training_log.csv"
+    log.write_text("update,steps,wall_s\n1,1000,5\n2,2000,10\n3,3000,12\n4,4000,14\n")
+    assert measure.samples_per_s(log) == pytest.approx(2000 / 4)   # updates 3-4 after the 2 warm-up ones
+    assert measure.samples_per_s(log, 1, 3) == pytest.approx(2000 / 7)
+    with pytest.raises(measure.MeasureError, match="no updates after update 4"):
+        measure.samples_per_s(log, 4)
+
+
+def test_loop_shares_are_each_part_of_the_loop_after_the_warm_up(tmp_path):
+    profile = tmp_path / "loop_profile.csv"
+    profile.write_text("update,x,wait,inference,update_s,other\n2,0,100,100,100,100\n3,0,1,2,6,1\n4,0,1,2,6,1\n")
+    update, inference, wait, other = measure.loop_shares(profile)
+    assert (update, inference, wait, other) == pytest.approx((0.6, 0.2, 0.1, 0.1))
+
+
+def test_the_measure_command_line_prints_what_the_throughput_studies_read(tmp_path):
+    log = tmp_path / "training_log.csv"
+    log.write_text("update,steps,wall_s\n2,2000,10\n3,3001,12\n")
+    env = dict(os.environ, PYTHONPATH=PACKAGE)
+    run = [sys.executable, "-m", "hideseek_pipeline.measure"]
+    r = subprocess.run(run + ["samples-per-s", str(log)], env=env, capture_output=True, text=True)
+    assert r.returncode == 0 and r.stdout == "500\n"   # 1001 samples in 2 s, to the whole sample
+    r = subprocess.run(run + ["rollout-steps", os.path.join(ROOT, "config", "ppo.yaml")], env=env, capture_output=True,
+                       text=True)
+    assert r.returncode == 0 and int(r.stdout) > 0
+    r = subprocess.run(run + ["samples-per-s", str(tmp_path / "missing.csv")], env=env, capture_output=True, text=True)
+    assert r.returncode == 1 and "missing.csv" in r.stderr
+
+
+def test_the_verdict_counts_cases_failures_errors_and_an_unreadable_file(tmp_path):
+    (tmp_path / "a").mkdir()
+    (tmp_path / "a" / "one.xml").write_text(
+        '<testsuite><testcase name="p1"/><testcase name="p2"/><testcase name="f"><failure/></testcase>'
+        '<testcase name="e"><error/></testcase><testcase name="s"><skipped/></testcase></testsuite>')
+    (tmp_path / "broken.xml").write_text("<testsuite><testcase")
+    assert tests.count(str(tmp_path)) == (2, 3)
+
+
+@pytest.fixture
+def checkout(tmp_path):
+    """Stand-ins in a checkout with basic (a feed-forward and a GRU policy shipped) and slowerhider
+    (nothing shipped), and the real registry module."""
+    w = stand_in_workspace(tmp_path / "ws")
+    lib = w / "src" / "hideseek_analysis" / "python" / "hideseek_analysis"
+    lib.mkdir(parents=True)
+    shutil.copy(os.path.join(ROOT, "src", "hideseek_analysis", "python", "hideseek_analysis", "registry.py"), lib)
+    (w / "config" / "variants").mkdir(parents=True)
+    for v in ("basic", "slowerhider"):
+        (w / "config" / "variants" / (v + ".yaml")).write_text("variant: %s\n" % v)
+    (w / "config" / "paper_reference.yaml").write_text("variants:\n  basic: {}\n  slowerhider: {}\n")
+    (w / "config" / "games.yaml").write_text("default: v2\n")
+    # A sweep none of whose runs is done: report --from-scratch's sweep analysis finds nothing to do.
+    (w / "config" / "sweep.yaml").write_text("precision: fp32\njobs: 1\nhider_threads: 1\nsteps: 2048\nnetwork: ff\n"
+                                             "port: 12900\nphases:\n  - {name: p, commit: '0123456789ab', game: v2, "
+                                             "variants: [basic], seeds: [5]}\n")
+    (w / "policies").mkdir()
+    (w / "policies" / "policies.yaml").write_text(
+        "basic_seed0: {variant: basic, network: ff, game: v2, weights: basic.pt}\n"
+        "basic_gru_seed0: {variant: basic, network: gru, game: v2, weights: basic_gru.pt}\n")
+    return w
+
+
+def report(w, tmp_path, *args, **env):
+    e = dict(os.environ, PYTHONPATH=PACKAGE, CALLS=str(tmp_path / "calls.txt"), HIDESEEK_ROOT=str(w),
+             SWEEP_DIR=str(tmp_path / "sweep"),
+             PATH="/usr/bin:" + os.environ["PATH"])
+    e.update(env)
+    return subprocess.run([sys.executable, "-m", "hideseek_pipeline", "report", str(tmp_path / "report"),
+                           "--work-dir", str(tmp_path / "work")] + list(args), env=e, capture_output=True, text=True,
+                          timeout=120)
+
+
+def test_report_from_scratch_evaluates_every_shipped_policy_then_analyses_it(checkout, tmp_path):
+    r = report(checkout, tmp_path, "--from-scratch", "--steps", "500")
+    assert r.returncode == 0, r.stdout + r.stderr
+    calls = (tmp_path / "calls.txt").read_text().splitlines()
+    evaluations = [c.split("output_dir:=")[1].split()[0].rsplit("/", 1)[1] for c in calls if "evaluate.launch" in c]
+    assert evaluations == ["basic_random", "basic_trained", "basic_gru_trained", "basic_gru_memoryless",
+                           "slowerhider_random"]
+    assert "memoryless:=true" in [c for c in calls if "basic_gru_memoryless" in c][0]
+    analyses = [c for c in calls if "analyze.launch" in c]
+    assert len(analyses) == 2 and "report_dir:=%s/basic " % (tmp_path / "report") in analyses[0] + " "
+    assert "steps:=500" in analyses[0] and "policy:=%s/policies/basic_gru.pt" % checkout in analyses[1]
+    ran = [c.split()[0] for c in calls if c.endswith(".py") or ".py " in c]
+    assert ran == ["table2.py", "reproduce_report.py", "table2.py", "claims.py", "seed_figures.py"]
+    assert "slowerhider: no shipped policy" in r.stdout
+    assert not (tmp_path / "report" / "evaluations" / "basic_trained" / "launch.log").exists()
+
+
+def test_report_names_a_failed_evaluation_and_an_unknown_variant(checkout, tmp_path):
+    r = report(checkout, tmp_path, "--from-scratch", FAIL_VARIANT="slowerhider")
+    assert r.returncode == 1
+    assert "the evaluation of slowerhider (random) failed, see" in r.stderr and "launch.log" in r.stderr
+    r = report(checkout, tmp_path, "--from-scratch", "--variants", "basic", "fastest")
+    assert r.returncode == 1 and "--variants names fastest, not among: basic slowerhider" in r.stderr
+
+
+def test_report_without_from_scratch_only_remakes_the_tables_across_seeds(checkout, tmp_path):
+    r = report(checkout, tmp_path)
+    assert r.returncode == 0, r.stderr
+    calls = (tmp_path / "calls.txt").read_text().splitlines()
+    assert [c.split()[0] for c in calls] == ["table2.py", "claims.py", "seed_figures.py"]
