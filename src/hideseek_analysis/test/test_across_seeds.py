@@ -218,7 +218,7 @@ def run_claims(tmp_path, rec, *extra):
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config", dirs_exist_ok=True)
     shutil.copy(os.path.join(ROOT, "docs", "calibration_table.csv"), rec / "docs" / "calibration_table.csv")
     out = tmp_path / "report"
-    run_analysis("claims.py", rec, out, *extra)
+    run_analysis("claims.py", rec, out, "--game", "v2", *extra)
     with open(out / "claims.csv") as f:
         return {x["claim"]: x for x in csv.DictReader(f)}
 
@@ -489,3 +489,32 @@ def test_a_retrain_never_enters_table2_or_a_claim(tmp_path):
     r = subprocess.run([sys.executable, os.path.join(ANALYSIS, "table2.py"), "--root", str(rec), "--out",
                         str(tmp_path / "t3"), "--extra", "basic_seed0_retrain"], capture_output=True, text=True)
     assert r.returncode != 0 and "a retrain never enters Table 2 or a claim" in r.stderr
+
+
+def test_the_claims_on_both_games_sit_side_by_side_with_the_budget_check_last(tmp_path):
+    """Each game's claims into REPORT/<game>/, both in one table; basic's 8M runs against its 2M runs
+    on v3, and which verdicts move with them; a run of one game never counts for the other."""
+    runs = {"basic_seed%d" % s: ("basic", s, 2048, [100 + s] * 20, None) for s in range(3)}
+    runs.update({"basic_v3_seed%d" % s: ("basic", s, 2048, [300 + 10 * s] * 20, None) for s in range(3)})
+    runs.update({"basic_v3_8m_seed%d" % s: ("basic", s, 8000000, [600 + 10 * s] * 20, None) for s in range(3)})
+    rec = make_records(tmp_path, runs)
+    entries = yaml.safe_load((rec / "policies" / "policies.yaml").read_text())
+    for name, e in entries.items():
+        e["game"] = "v3" if "_v3" in name else "v2"
+    (rec / "policies" / "policies.yaml").write_text(yaml.safe_dump(entries, sort_keys=False))
+    shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
+    for f in ("calibration_table.csv", "calibration_table_v3.csv"):
+        shutil.copy(os.path.join(ROOT, "docs", f), rec / "docs" / f)
+    out = tmp_path / "report"
+    run_analysis("claims.py", rec, out)
+    both = (out / "claims.md").read_text()
+    assert "| claim | paper | v2: result | v2: effect [95 % CI] (runs) | v3: result |" in both
+    for game in ("v2", "v3"):
+        with open(out / game / "claims.csv") as f:
+            rows = {x["claim"]: x for x in csv.DictReader(f)}
+        assert "basic 3" in rows["Table 2's ordering of the variants"]["runs"]
+    last = both.strip().splitlines()[-1]
+    assert last.startswith("| Training longer: basic at 8M steps against 2M |")
+    # 8M minus 2M on v3: (600 + 610 + 620) / 3 - (300 + 310 + 320) / 3 = 300 living steps
+    assert "| **supported** | 300.000 [" in last and "(basic 8m 3, basic 2M 3)" in last
+    assert "the A mode: v2 brakes on every turn, v3 keeps the hider's momentum" in both

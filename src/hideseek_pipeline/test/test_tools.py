@@ -100,7 +100,7 @@ def test_report_from_scratch_evaluates_every_shipped_policy_then_analyses_it(che
     assert len(analyses) == 2 and "report_dir:=%s/basic " % (tmp_path / "report") in analyses[0] + " "
     assert "steps:=500" in analyses[0] and "policy:=%s/policies/basic_gru.pt" % checkout in analyses[1]
     ran = [c.split()[0] for c in calls if c.endswith(".py") or ".py " in c]
-    assert ran == ["table2.py", "reproduce_report.py", "table2.py", "claims.py", "seed_figures.py"]
+    assert ran == ["table2.py", "reproduce_report.py", "table2.py", "seed_figures.py", "claims.py"]
     assert "slowerhider: no shipped policy" in r.stdout
     assert not (tmp_path / "report" / "evaluations" / "basic_trained" / "launch.log").exists()
 
@@ -117,4 +117,4 @@ def test_report_without_from_scratch_only_remakes_the_tables_across_seeds(checko
     r = report(checkout, tmp_path)
     assert r.returncode == 0, r.stderr
     calls = (tmp_path / "calls.txt").read_text().splitlines()
-    assert [c.split()[0] for c in calls] == ["table2.py", "claims.py", "seed_figures.py"]
+    assert [c.split()[0] for c in calls] == ["table2.py", "seed_figures.py", "claims.py"]

@@ -31,7 +31,7 @@ import numpy as np
 
 from . import stats as st
 from .config import Config
-from .runs import Runs, calibration, evaluation_by_seed, load_episodes, parse_selection, read_csv, run_name, sweep_runs
+from .runs import Runs, calibration, calibration_file, evaluation_by_seed, load_episodes, parse_selection, read_csv, run_name, sweep_runs
 from .states import state_freq, transition_prob, transition_rate
 from .tables import probe_value, write_rows
 
@@ -54,8 +54,21 @@ DEPARTURES = {
 }
 
 
-def causes(*keys):
-    return "; ".join(DEPARTURES[k] for k in keys)
+# The departures a game no longer has: game v3 reads the paper's motion as its engine would run it.
+FIXED_ON = {"v3": ("a_mode", "seeker_motion")}
+# What changed from game v2 to v3 that bears on a claim whose miss a departure could cause.
+CHANGED = {"a_mode": "the A mode: v2 brakes on every turn, v3 keeps the hider's momentum",
+           "seeker_motion": "the seeker: v2 turns or moves, v3 turns while it moves"}
+
+
+class Causes(str):
+    """The departures that could cause a miss, in words, with their DEPARTURES keys (`keys`)."""
+
+    def __new__(cls, keys, game="v2"):
+        text = "; ".join(DEPARTURES[k] for k in keys if k not in FIXED_ON.get(game, ()))
+        made = super().__new__(cls, text)
+        made.keys = tuple(keys)
+        return made
 
 
 # The smallest effect that counts, per measure (in the measure's own units). A claim whose interval
@@ -93,7 +106,7 @@ def claim(name, paper, measure, point=None, ci=None, runs="", result="inconclusi
             "ci_low": "" if ci is None or not np.isfinite(ci[0]) else round(ci[0], 4),
             "ci_high": "" if ci is None or not np.isfinite(ci[1]) else round(ci[1], 4),
             "practical": practical, "runs": runs, "result": result, "note": note,
-            "departure": "" if result == "supported" else departure}
+            "departure": "" if result == "supported" else departure, "causes": getattr(departure, "keys", ())}
 
 
 def decide(ci, n_min, point, kind, sign=1.0):
@@ -132,16 +145,21 @@ class Context:
     Each claim bootstraps with its own generator (stats.keyed_rng)."""
 
     def __init__(self, root, found, cfg, seed, reps, game="v2", gru_found=None):
-        self.root, self.R, self.seed, self.reps, self.game = root, Runs(root, found), seed, reps, game
+        self.root, self.R, self.seed, self.reps, self.game = root, Runs(root, found, game), seed, reps, game
+        self.cfg = cfg
         self.paper = cfg.paper
         self.variants = tuple(cfg.paper_variants)
         self.faster = cfg.faster_hiders
         self.gru_variants = cfg.gru_variants(game)
-        self.calib = calibration(root)
+        self.calib = calibration(root, game)
         self.gru_found = gru_found or {}
 
     def rng(self, *key):
         return st.keyed_rng(self.seed, *key)
+
+    def causes(self, *keys):
+        """The departures of this game that could cause a miss (those it no longer has left out)."""
+        return Causes(keys, self.game)
 
 
 ORDERING = ("Table 2's ordering of the variants", "the order of Table 2's living steps")
@@ -158,7 +176,7 @@ def ordering_claim(c, living):
                                   c.reps)
     res, size = decide(ci, fewest(living, c.variants), rho, "rho")
     return claim(*ORDERING, "Spearman's rho with the paper's living steps (%d variants)" % len(vs), rho, ci,
-                 runs_text(living), res, missing(living, c.variants), causes("a_mode", "seeker_motion"), size)
+                 runs_text(living), res, missing(living, c.variants), c.causes("a_mode", "seeker_motion"), size)
 
 
 BEATS_RANDOM = ("Every variant's hider outlives the random hider", "Table 2: trained > random on every variant")
@@ -175,7 +193,7 @@ def beats_random_claim(c, living):
             diffs[v] = (point - rnd[0], (ci[0] - rnd[0], ci[1] - rnd[0]), len(runs))
     if not diffs:
         return claim(*BEATS_RANDOM, "living steps, trained minus random", runs=runs_text(living),
-                     note="needs evaluated runs and the random hider's row of docs/calibration_table.csv")
+                     note="needs evaluated runs and the random hider's row of docs/%s" % calibration_file(c.game))
     lows = {v: d[1][0] for v, d in diffs.items()}
     v_worst = min(lows, key=lows.get)
     d = diffs[v_worst]
@@ -185,7 +203,7 @@ def beats_random_claim(c, living):
         res = "contradicted"
     return claim(*BEATS_RANDOM, "living steps, trained minus random; the variant with the lowest lower bound (%s)"
                  % v_worst, d[0], d[1], runs_text(living), res, missing(living, c.variants),
-                 causes("a_mode", "steps"), size)
+                 c.causes("a_mode", "steps"), size)
 
 
 def features_claims(c):
@@ -195,15 +213,15 @@ def features_claims(c):
         gains = {v: [probe_value(rows, target) for _, rows in c.R.analysed(v, "probes")] for v in c.variants}
         gains = {v: x for v, x in gains.items() if x}
         if not gains:
-            out.append(claim("Trained features beat random-init ones on %s" % label, "Table 3: trained > random init",
-                             "balanced accuracy gain on the shared probe set", note="no run analysed yet"))
+            out.append(claim("Trained features beat random-init ones on %s" % target, "Table 3: trained > random init",
+                             "balanced accuracy gain on %s, on the shared probe set" % label, note="no run analysed yet"))
             continue
         point, ci = st.boot_runs(gains, mean_of_means, c.rng("features", target), c.reps)
         res, size = decide(ci, fewest(gains, c.variants), point, "accuracy")
         out.append(claim("Trained features beat random-init ones on %s" % target, "Table 3: trained > random init",
                          "balanced accuracy on the shared probe set, trained minus the mean of 5 random-init "
                          "networks, mean over variants", point, ci, runs_text(gains), res,
-                         missing(gains, c.variants), causes("colours", "steps"), size))
+                         missing(gains, c.variants), c.causes("colours", "steps"), size))
     return out
 
 
@@ -225,7 +243,7 @@ def perception_claim(c):
     point, ci = st.boot_runs(acc, margin, c.rng("worst at perception"), c.reps)
     res, size = decide(ci, fewest(acc, c.variants), point, "accuracy", -1.0)
     return claim(*PERCEPTION, "mean of S and H balanced accuracy, %s minus the lowest other variant" % WORST,
-                 point, ci, runs_text(acc), res, missing(acc, c.variants), causes("colours", "a_mode"), size)
+                 point, ci, runs_text(acc), res, missing(acc, c.variants), c.causes("colours", "a_mode"), size)
 
 
 CONCAVE = ("Survival and representation follow a concave curve", "Figure 7: an inverted U")
@@ -277,7 +295,7 @@ def concave_claim(c):
     return claim(*CONCAVE, "quadratic coefficient of probe gain (mean of S, H) against living steps / 1000, one point "
                  "per run; its bend across the runs' range %.4f; leave-one-variant-out RMSE linear %.4f, quadratic "
                  "%.4f (%s predicts better)" % (bend, err[1], err[2], "the quadratic" if err[2] < err[1] else "the linear"),
-                 quad, ci, "%d runs of %d variants" % (len(pts), len(variants_in)), res, "", causes("steps", "a_mode"),
+                 quad, ci, "%d runs of %d variants" % (len(pts), len(variants_in)), res, "", c.causes("steps", "a_mode"),
                  PRACTICAL["bend"][1])
 
 
@@ -309,7 +327,7 @@ TURN_AWAY, RUN_OFF = ((1, 1), (0, 1)), ((0, 1), (0, 0))
 
 def transition_claim(c, variants, label, paper_text, move, what):
     """A transition decided on its rate per 100 steps; the conditional form beside it."""
-    motion = causes("seeker_motion")
+    motion = c.causes("seeker_motion")
     by_rate = relative(c, variants, ("transitions", "states"),
                        lambda get: transition_rate(get("transitions"), get("states"), *move), label, paper_text,
                        motion, "rate")
@@ -333,7 +351,7 @@ def turn_then_run_claim(c):
     return claim("basic turns away, then runs", "Figure 5 and section 5: turn away from the seeker, then run",
                  "S1H1 -> S0H1 and S0H1 -> S0H0 per 100 steps, trained minus random: turn away %s; run %s "
                  "(both must hold)" % (effect_text(c6a), effect_text(c6b)),
-                 runs=c6a["runs"], result=res, note=c6a["note"] or c6b["note"], departure=causes("seeker_motion"),
+                 runs=c6a["runs"], result=res, note=c6a["note"] or c6b["note"], departure=c.causes("seeker_motion"),
                  practical=PRACTICAL["rate"][1])
 
 
@@ -344,10 +362,10 @@ def behaviour_claims(c):
         relative(c, ("slowerhider",), ("states",),
                  lambda get: state_freq(get("states"), lambda s, h, o: s == 0 and h == 0 and o == 1),
                  "slowerhider uses obstacles (not S, not H, O)", "Figure 4: slowerhider's state S0 H0 O1 above random",
-                 causes("seeker_motion"), "share"),
+                 c.causes("seeker_motion"), "share"),
         relative(c, (WORST,), ("states",), lambda get: state_freq(get("states"), lambda s, h, o: s == 1 and h == 0),
                  "%s watches while hidden (S, not H)" % WORST, "Figure 4: %s's states S1 H0 above random" % WORST,
-                 causes("a_mode"), "share"),
+                 c.causes("a_mode"), "share"),
         transition_claim(c, c.variants, "Transition 1: seen and seeing, the trained hider turns away (S1H1 -> S0H1)",
                          "Figure 5's first highlighted transition (this project's reading)", TURN_AWAY, "S1H1 -> S0H1"),
         transition_claim(c, c.variants, "Transition 2: seen and not seeing, it leaves the seeker's view (S0H1 -> S0H0)",
@@ -390,7 +408,7 @@ def oscillation_claim(c):
                "oscillation_thresholds.md)" % old)
     note = ("no swings measured for %s (analysed before the measure existed, weights lost)" % ", ".join(lacking)
             if lacking else "")
-    departure = causes("a_mode", "seeker_motion")
+    departure = c.causes("a_mode", "seeker_motion")
     if "basic" not in osc or not any(v in osc for v in c.faster):
         return claim(*OSCILLATES, measure, runs=runs_text(osc), note=note or "needs basic and a faster hider analysed",
                      departure=departure, practical=PRACTICAL["swings"][1])
@@ -537,13 +555,13 @@ def memory_claim(c):
         if not no_ablation:
             notes.append("the GRU outlives its twins, but without its memory it lives as long: not shown to be memory")
     return claim(*MEMORY_CLAIM, measure + " (%s)" % gain_text, point, ci, runs_text(pairs), result, "; ".join(notes),
-                 causes("steps"), size), table
+                 c.causes("steps"), size), table
 MEMORY_FIELDS = ["variant", "runs", "gru", "gru_ci_low", "gru_ci_high", "ff", "ff_ci_low", "ff_ci_high", "difference",
                  "difference_ci_low", "difference_ci_high", "difference_runs", "memory_gain", "memory_gain_ci_low",
                  "memory_gain_ci_high", "memory_gain_runs"]
 
 
-def write_memory(out_dir, rows):
+def write_memory(out_dir, rows, game="v2"):
     """memory_seeds.md and .csv: per variant, the GRU runs against their feed-forward twins."""
     write_rows(os.path.join(out_dir, "memory_seeds.csv"), rows, MEMORY_FIELDS)
 
@@ -553,12 +571,13 @@ def write_memory(out_dir, rows):
         lo, hi = r.get(key + "_ci_low", ""), r.get(key + "_ci_high", "")
         return "%.1f" % r[key] + (" [%.1f, %.1f]" % (lo, hi) if lo != "" else "")
     md = ["# The hider with memory (GRU) against its feed-forward twin", "",
-          "Each GRU run `<variant>_gru_seed<S>` beside the feed-forward run of the same variant and training seed, "
+          "Each GRU run `%s` beside the feed-forward run of the same variant and training seed, "
           "both evaluated greedy on the same evaluation seeds (0-99). Living steps: the pooled mean with a 95 % two-level "
           "bootstrap (runs, then episodes). Difference: GRU minus feed-forward on each evaluation seed, pooled over "
           "the pairs of runs, with the same two-level bootstrap (pairs, then evaluation seeds). Memory: the GRU's "
           "living steps on the per-run analysis' 100 rollouts (seeds 10000-10099) minus those of its memoryless ablation (its state zeroed at "
-          "every step) on the same rollouts, mean over runs. The claim it decides is in [claims.md](claims.md).", "",
+          "every step) on the same rollouts, mean over runs. The claim it decides is in [claims.md](claims.md)."
+          .replace("%s", run_name("<variant>", 0, game, "gru").replace("seed0", "seed<S>"), 1), "",
           "| variant | GRU runs | GRU living steps | feed-forward, same seeds | GRU minus feed-forward | "
           "memory minus memoryless |", "| --- | --- | --- | --- | --- | --- |"]
     for r in rows:
@@ -580,12 +599,12 @@ def mark_provisional(r):
                                           % min(counts), r["note"]) if x)
 
 
-def write(out_dir, rows, header):
+def write(out_dir, rows, header, game="v2"):
     os.makedirs(out_dir, exist_ok=True)
     fields = ["claim", "paper", "result", "effect", "ci_low", "ci_high", "practical", "runs", "measure", "note",
               "departure"]
     write_rows(os.path.join(out_dir, "claims.csv"), rows, fields)
-    md = ["# The paper's claims, decided", "", header, "",
+    md = ["# The paper's claims, decided on game %s" % game, "", header, "",
           "| claim | result | effect [95 % CI] | practical size | runs | measure | what could cause a miss |",
           "| --- | --- | --- | --- | --- | --- | --- |"]
     for r in rows:
@@ -635,19 +654,103 @@ def header(found, reps):
                 n, ", ".join("%s %d" % (v, len(x)) for v, x in found.items()) or "none", reps, MIN_RUNS))
 
 
-def main(argv=None):
-    """claims.py: the claims table, memory_seeds and oscillation_thresholds into --out (default ROOT/docs/report)."""
-    args = parse_selection("The paper's claims decided on the sweep's runs, each with its effect size and 95 % "
-                           "interval.", argv)
-    root, extra = args.root, set(args.extra)
-    found = sweep_runs(root, args.steps, extra, warn=False, game=args.game)  # --extra may name runs of either network
-    gru_found = sweep_runs(root, args.steps, extra, "gru", warn=False, game=args.game)
-    c = Context(root, found, Config(root), args.seed, args.reps, args.game, gru_found)
+def decide_game(root, cfg, game, steps, extra, seed, reps, out_dir):
+    """Every claim of one game decided on its sweep runs, with its tables, into `out_dir`; returns
+    (rows, the Context it was decided in)."""
+    found = sweep_runs(root, steps, extra, warn=False, game=game)  # --extra may name runs of either network
+    gru_found = sweep_runs(root, steps, extra, "gru", warn=False, game=game)
+    c = Context(root, found, cfg, seed, reps, game, gru_found)
     rows, memory_table = build(c)
-    out_dir = args.out or os.path.join(root, "docs", "report")
-    write(out_dir, rows, header(found, args.reps))
-    write_memory(out_dir, memory_table)
+    write(out_dir, rows, header(found, reps), game)
+    write_memory(out_dir, memory_table, game)
     oscillation_thresholds(c, out_dir)
     for r in rows:
-        print("claims: %-70s %s" % (r["claim"], r["result"]))
+        print("claims: %s %-67s %s" % (game, r["claim"], r["result"]))
+    return rows, c
+
+
+BUDGET = ("Training longer: basic at %s steps against 2M", "section 4: the paper trains each hider for 8M steps")
+
+
+def budget_check(c, rows, big):
+    """basic trained for `big` steps (its sweep runs <basic>_<game>_<budget>_seed<S>) against basic at
+    2M: the difference of greedy living steps with its two-level bootstrap interval, and which
+    verdicts move when basic's 8M runs stand in for its 2M runs. Supported: the longer budget lives
+    longer by the practical size."""
+    label = "%dm" % (big // 1000000)
+    found_big = sweep_runs(c.root, big, set(), warn=False, game=c.game, budget=label)
+    name, paper = BUDGET[0] % label.upper(), BUDGET[1]
+    long_runs, short_runs = Runs(c.root, found_big, c.game).episodes("basic"), c.R.episodes("basic")
+    per = {"basic %s" % label: long_runs, "basic 2M": short_runs}
+    if not long_runs or not short_runs:
+        return claim(name, paper, "living steps, basic at %s minus basic at 2M" % label, runs=runs_text(per),
+                     note="needs basic's %s runs (config/sweep.yaml's last phase) and its 2M runs" % label,
+                     practical=PRACTICAL["living"][1])
+    d, ci = st.mean_difference(long_runs, short_runs, c.rng("budget", label), c.reps)
+    res, size = decide(ci, min(len(long_runs), len(short_runs)), d, "living")
+    swapped = dict(c.R.found, basic=found_big.get("basic", []))
+    moved = [(a["claim"], a["result"], b["result"]) for a, b in zip(
+        rows, build(Context(c.root, swapped, c.cfg, c.seed, c.reps, c.game, c.gru_found))[0]) if a["result"] != b["result"]]
+    moved_text = "; ".join("%s: %s -> %s" % m for m in moved) or "none"
+    return claim(name, paper, "living steps, basic at %s minus basic at 2M (two-level bootstrap); verdicts that move "
+                 "with basic's %s runs in place of its 2M runs: %s" % (label, label, moved_text), d, ci, runs_text(per),
+                 res, "", c.causes("steps"), size)
+
+
+def _cell(r):
+    """A claim's verdict and effect on one game, for the table on both games."""
+    if r is None:
+        return "-", "-"
+    note = " (%s)" % r["note"] if r["note"] else ""
+    return "**%s**%s" % (r["result"], note), "%s (%s)" % (effect_text(r), r["runs"])
+
+
+def write_both(out_dir, by_game, reps):
+    """claims.md on both games: one row per claim, each game's verdict and effect side by side, and
+    what changed between the games that could explain a difference."""
+    games = list(by_game)
+    names = []
+    for rows in by_game.values():
+        names += [r["claim"] for r in rows if r["claim"] not in names]
+    md = ["# The paper's claims on both games", "",
+          "Each claim decided on each game's sweep runs, as in each game's own table (%s), which gives every "
+          "measure, practical size and possible cause. Intervals: 95 %% bootstrap over each variant's training "
+          "seeds (%d resamples): over as many runs as the cell's count says (three seeds per variant, five once "
+          "seeds 3-4 are trained). Game v3 reads the paper's motion as its engine would run it: the last column "
+          "names what changed from v2 that bears on a claim; the map's cross, longer on v3, bears on every one." % (
+              ", ".join("[%s](%s/claims.md)" % (g, g) for g in games), reps), "",
+          "| claim | paper | " + " | ".join("%s: result | %s: effect [95 %% CI] (runs)" % (g, g) for g in games) +
+          " | what changed between the games that could explain a difference |",
+          "|" + " --- |" * (3 + 2 * len(games))]
+    for name in names:
+        cells = [next((r for r in by_game[g] if r["claim"] == name), None) for g in games]
+        first = next(r for r in cells if r is not None)
+        changed = "; ".join(CHANGED[k] for k in first.get("causes", ()) if k in CHANGED) or "-"
+        md.append("| %s | %s | %s | %s |" % (name, first["paper"], " | ".join(" | ".join(_cell(r)) for r in cells),
+                                            changed))
+    with open(os.path.join(out_dir, "claims.md"), "w") as f:
+        f.write("\n".join(md + [""]))
+
+
+def main(argv=None):
+    """claims.py: with --game, one game's claims table, memory_seeds and oscillation_thresholds into
+    --out; with --games (default: config/sweep.yaml's), each game's into OUT/<game>/ and the table on
+    both games into OUT/claims.md (default OUT: ROOT/docs/report). The 8M budget check is the last
+    game's row."""
+    args = parse_selection("The paper's claims decided on the sweep's runs, each with its effect size and 95 % "
+                           "interval, on one game or side by side on several.", argv,
+                           lambda p: p.add_argument("--games", nargs="+", help="decide on these games side by side "
+                                                    "(default: the games config/sweep.yaml trains)"), game=None)
+    root, extra = args.root, set(args.extra)
+    cfg = Config(root)
+    out_dir = args.out or os.path.join(root, "docs", "report")
+    if args.game:
+        decide_game(root, cfg, args.game, args.steps, extra, args.seed, args.reps, out_dir)
+        return 0
+    by_game = {}
+    for game in args.games or cfg.sweep_games():
+        by_game[game], c = decide_game(root, cfg, game, args.steps, extra, args.seed, args.reps,
+                                       os.path.join(out_dir, game))
+    by_game[game].append(budget_check(c, by_game[game], 8000000))
+    write_both(out_dir, by_game, args.reps)
     return 0

@@ -69,6 +69,17 @@ class Config:
         """The variants the paper calls its faster hiders (Figure 6)."""
         return tuple(self._required("faster_hiders"))
 
+    def sweep_games(self):
+        """The games config/sweep.yaml's phases train, in the phases' order (v2, v3)."""
+        sweep = _load(self.root, "sweep.yaml")
+        default_game = sweep.get("game") or registry.default_game(os.path.join(self.root, "config", "games.yaml"))
+        games = []
+        for phase in sweep.get("phases") or []:
+            game = str(phase.get("game", default_game))
+            if game not in games:
+                games.append(game)
+        return games
+
     def gru_variants(self, game="v2"):
         """The variants config/sweep.yaml trains GRU hiders of on `game`, in the phases' order."""
         sweep = _load(self.root, "sweep.yaml")

@@ -344,5 +344,5 @@ def main(argv=None):
     out = args.out or os.path.join(root, "docs", "report")
     os.makedirs(out, exist_ok=True)
     found = sweep_runs(root, args.steps, set(args.extra), game=args.game)
-    draw_all(root, out, Runs(root, found), Config(root), found, args.seed, args.reps)
+    draw_all(root, out, Runs(root, found, args.game), Config(root), found, args.seed, args.reps)
     return 0

@@ -21,17 +21,18 @@ from .stats import BOOTSTRAP
 NAME = re.compile(r"^(?P<variant>.+)_seed(?P<seed>\d+)$")
 
 
-def run_name(variant, seed, game="v2", network="ff"):
-    """A sweep run's name: basic_seed0, basic_v3_gru_seed1."""
-    return "%s%s%s_seed%d" % (variant, "" if game == "v2" else "_" + game, "" if network == "ff" else "_" + network,
-                              int(seed))
+def run_name(variant, seed, game="v2", network="ff", budget=""):
+    """A sweep run's name: basic_seed0, basic_v3_gru_seed1, basic_v3_8m_seed0 (budget: the label of
+    a budget other than the sweep's 2M steps)."""
+    return "%s%s%s%s_seed%d" % (variant, "" if game == "v2" else "_" + game, "" if network == "ff" else "_" + network,
+                                "_" + budget if budget else "", int(seed))
 
 
-def parse_selection(description, argv=None, more=None):
-    """The command line of a tool across training seeds: selection_arguments(), then more(parser)'s
-    own; --root made absolute."""
+def parse_selection(description, argv=None, more=None, game="v2"):
+    """The command line of a tool across training seeds: selection_arguments() (`game`: --game's
+    default), then more(parser)'s own; --root made absolute."""
     parser = argparse.ArgumentParser(description=description)
-    selection_arguments(parser)
+    selection_arguments(parser, game)
     if more:
         more(parser)
     args = parser.parse_args(argv)
@@ -39,13 +40,14 @@ def parse_selection(description, argv=None, more=None):
     return args
 
 
-def selection_arguments(parser):
+def selection_arguments(parser, game="v2"):
     """The options every tool across training seeds takes: which checkout, where to write, which
     runs (the sweep's, by game and steps, plus --extra by name), and how many bootstrap resamples."""
     parser.add_argument("--root", default=registry.ROOT,
                         help="the checkout (registry, docs/runs, config; default: the one holding this code)")
     parser.add_argument("--out", help="output folder")
-    parser.add_argument("--game", default="v2", help="the game whose sweep runs count (default v2)")
+    parser.add_argument("--game", default=game, help="the game whose sweep runs count (default %s)" % (
+        game or "each game config/sweep.yaml trains, side by side"))
     parser.add_argument("--steps", type=int, default=2000000, help="a sweep run's training steps (default 2000000)")
     parser.add_argument("--extra", nargs="*", default=[], help="other runs to count, by registry name")
     parser.add_argument("--reps", type=int, default=BOOTSTRAP, help="bootstrap resamples (default %d)" % BOOTSTRAP)
@@ -75,17 +77,22 @@ def evaluation_by_seed(path):
     return {int(r["seed"]): float(r["living_steps"]) for r in read_csv(path)}
 
 
-def calibration(root):
-    """variant -> the rows of docs/calibration_table.csv (the random hider and the scripted evaders)."""
+def calibration_file(game="v2"):
+    """The game's calibration table under docs/: calibration_table.csv for v2, else calibration_table_<game>.csv."""
+    return "calibration_table.csv" if game == "v2" else "calibration_table_%s.csv" % game
+
+
+def calibration(root, game="v2"):
+    """variant -> the rows of the game's calibration table (the random hider and the scripted evaders)."""
     found = {}
-    for r in read_csv(os.path.join(root, "docs", "calibration_table.csv")) or []:
+    for r in read_csv(os.path.join(root, "docs", calibration_file(game))) or []:
         found.setdefault(r["variant"], []).append(r)
     return found
 
 
-def _is_sweep_run(name, e, steps, network, game):
+def _is_sweep_run(name, e, steps, network, game, budget):
     m = NAME.match(name)
-    return bool(m and m.group("variant") == run_name(e["variant"], 0, game, network)[:-len("_seed0")]
+    return bool(m and m.group("variant") == run_name(e["variant"], 0, game, network, budget)[:-len("_seed0")]
                 and e.get("network") == network and str(e.get("game")) == game and int(e.get("steps", 0)) >= steps
                 and str(e.get("note", "")).startswith(registry.SWEEP_NOTE))
 
@@ -104,17 +111,19 @@ def _check_extra(entries, extra, network, warn):
               file=sys.stderr)
 
 
-def sweep_runs(root, steps, extra, network="ff", warn=True, game="v2"):
+def sweep_runs(root, steps, extra, network="ff", warn=True, game="v2", budget=""):
     """variant -> [(run, entry)], in training-seed order: the sweep's first draws of `network` on
-    `game` (see the module's docstring), plus the runs named in `extra` of that network (`warn`:
-    say on stderr which of `extra` are of another network and so left out)."""
+    `game` trained for at least `steps` (see the module's docstring; `budget`: their names' budget
+    label, 8m, where it is not the sweep's 2M), plus the runs named in `extra` of that network
+    (`warn`: say on stderr which of `extra` are of another network and so left out)."""
     entries = registry.runs(os.path.join(root, "policies", "policies.yaml"))
     _check_extra(entries, extra, network, warn)
     found = {}
     for name, e in entries.items():
         if registry.draw(e) != "first":
             continue  # a retrain: shown beside its first draw in the run's records, never counted
-        if (name in extra and e.get("network", "ff") == network) or _is_sweep_run(name, e, steps, network, game):
+        if (name in extra and e.get("network", "ff") == network) or \
+                _is_sweep_run(name, e, steps, network, game, budget):
             found.setdefault(e["variant"], []).append((name, e))
     for v in found:
         found[v].sort(key=lambda ne: (int(ne[1].get("training_seed", 0)), ne[0]))
@@ -124,9 +133,10 @@ def sweep_runs(root, steps, extra, network="ff", warn=True, game="v2"):
 class Runs:
     """The selected runs' evaluations and per-run analyses, read on demand from ROOT/docs."""
 
-    def __init__(self, root, found):
+    def __init__(self, root, found, game="v2"):
         self.root = root
         self.found = found
+        self.game = game
 
     def names(self, variant):
         return [n for n, _ in self.found.get(variant, [])]
@@ -147,5 +157,7 @@ class Runs:
                 if os.path.exists(self.path(n, "episodes.csv"))]
 
     def baseline(self, variant, table, policy="random"):
-        """A table of the random hider's analysis (docs/analysis/baselines/<variant>/<policy>/)."""
-        return read_csv(os.path.join(self.root, "docs", "analysis", "baselines", variant, policy, table + ".csv"))
+        """A table of the random hider's analysis on the runs' game
+        (docs/analysis/baselines/[<game> unless v2/]<variant>/<policy>/)."""
+        game = [] if self.game == "v2" else [self.game]
+        return read_csv(os.path.join(self.root, "docs", "analysis", "baselines", *game, variant, policy, table + ".csv"))

@@ -37,12 +37,12 @@ from .tables import fmt_ci, write_rows
 class SweepSource:
     """The sweep's runs of a game, greedy and sampled, beside docs/calibration_table.csv."""
     modes = (("greedy", ""), ("sampled", "sampled"))
-    title = "Table 2 across training seeds"
     scope = "per run; greedy is the headline, sampled beside it"
     nothing = "No sweep run evaluated yet"
 
-    def __init__(self, root, found):
-        self.root, self.found, self.calib = root, found, calibration(root)
+    def __init__(self, root, found, game="v2"):
+        self.root, self.found, self.calib = root, found, calibration(root, game)
+        self.title = "Table 2 across training seeds, game %s" % game
 
     def runs_of(self, variant):
         return [n for n, _ in self.found.get(variant, [])]
@@ -336,7 +336,7 @@ def main(argv=None):
         source = EvaluationsSource(os.path.abspath(args.evaluations))
         out = args.out or os.path.join(os.path.dirname(source.folder), "table2_shipped")
     else:
-        source = SweepSource(root, sweep_runs(root, args.steps, set(args.extra), game=args.game))
+        source = SweepSource(root, sweep_runs(root, args.steps, set(args.extra), game=args.game), args.game)
         out = args.out or os.path.join(root, "docs", "report", "table2_seeds")
     try:
         n = write_all(out, source, cfg, cfg.table_order(), args.seed, args.reps)

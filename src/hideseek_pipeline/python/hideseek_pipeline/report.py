@@ -1,8 +1,9 @@
 """make reproduce: the whole reproduction in one command, into one report folder (docs/report).
 
-By default from the committed outputs alone, in under a minute: Table 2 across training seeds
-(table2_seeds/), the claims table and Figures 4-7 across seeds, from every sweep run's evaluation
-and per-run analysis (hideseek_analysis: table2.py, claims.py, seed_figures.py).
+By default from the committed outputs alone, in about a minute: for each game the sweep trains,
+Table 2 across training seeds (<game>/table2_seeds/), the game's claims table and Figures 4-7 across
+seeds (<game>/), from every sweep run's evaluation and per-run analysis; and the claims on both
+games side by side (claims.md) (hideseek_analysis: table2.py, seed_figures.py, claims.py).
 
 --from-scratch, given the weights: first analyses every sweep run whose weights are on this
 machine and lacks its analysis (hideseek_pipeline sweep analyze); then evaluates every shipped
@@ -19,19 +20,37 @@ import os
 import shutil
 import time
 
+import yaml
 from tqdm import tqdm
 
 from hideseek_pipeline.records import load_registry_module
 from hideseek_pipeline.workspace import ToolError
 
 
+def sweep_games(root):
+    """The games config/sweep.yaml's phases train, in their order (v2, v3)."""
+    with open(os.path.join(root, "config", "sweep.yaml")) as f:
+        sweep = yaml.safe_load(f) or {}
+    games = []
+    for phase in sweep.get("phases") or []:
+        game = str(phase.get("game", sweep.get("game", "v2")))
+        if game not in games:
+            games.append(game)
+    return games
+
+
 def across_seeds(ws, report, say):
-    """Table 2, the claims and the figures across training seeds, from the committed records."""
+    """Per game the sweep trains, Table 2 and the figures across training seeds into REPORT/<game>/,
+    then the claims of every game, each into REPORT/<game>/ and side by side into REPORT/claims.md,
+    from the committed records."""
     say("report: across training seeds, from the committed evaluations and analyses")
-    for script, out in (("table2.py", os.path.join(report, "table2_seeds")), ("claims.py", report),
-                        ("seed_figures.py", report)):
-        for line in ws.python(script, "--out", out).splitlines():
-            say("  " + line)
+    steps = []
+    for game in sweep_games(ws.root):
+        steps += [("table2.py", "--game", game, "--out", os.path.join(report, game, "table2_seeds")),
+                  ("seed_figures.py", "--game", game, "--out", os.path.join(report, game))]
+    for step in tqdm(steps + [("claims.py", "--out", report)], desc="report: across seeds", unit="table"):
+        for line in ws.python(*step).splitlines():
+            tqdm.write("  " + line)
 
 
 def _evaluation(ws, variant, policy, folder, port, extra=()):
