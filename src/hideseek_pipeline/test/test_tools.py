@@ -83,9 +83,9 @@ def report(w, tmp_path, *args, **env):
              SWEEP_DIR=str(tmp_path / "sweep"),
              PATH="/usr/bin:" + os.environ["PATH"])
     e.update(env)
-    return subprocess.run([sys.executable, "-m", "hideseek_pipeline", "report", str(tmp_path / "report"),
-                           "--work-dir", str(tmp_path / "work")] + list(args), env=e, capture_output=True, text=True,
-                          timeout=120)
+    work = ["--work-dir", str(tmp_path / "work")] if "--from-scratch" in args else []
+    return subprocess.run([sys.executable, "-m", "hideseek_pipeline", "report", str(tmp_path / "report")] + work +
+                          list(args), env=e, capture_output=True, text=True, timeout=120)
 
 
 def test_report_from_scratch_evaluates_every_shipped_policy_then_analyses_it(checkout, tmp_path):
@@ -118,3 +118,15 @@ def test_report_without_from_scratch_only_remakes_the_tables_across_seeds(checko
     assert r.returncode == 0, r.stderr
     calls = (tmp_path / "calls.txt").read_text().splitlines()
     assert [c.split()[0] for c in calls] == ["table2.py", "seed_figures.py", "claims.py"]
+
+
+def test_report_takes_its_from_scratch_options_only_with_from_scratch(checkout, tmp_path):
+    r = report(checkout, tmp_path, "--steps", "500")
+    assert r.returncode == 1 and "--steps only with --from-scratch" in r.stderr
+
+
+def test_a_malformed_log_is_named_not_a_traceback(tmp_path):
+    log = tmp_path / "training_log.csv"
+    log.write_text("update,steps,wall_s\n2,2000,10\n3,x,12\n")
+    with pytest.raises(measure.MeasureError, match="training_log.csv: a malformed row"):
+        measure.samples_per_s(log)

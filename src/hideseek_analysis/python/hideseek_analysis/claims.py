@@ -1,15 +1,17 @@
 """The claims table: every claim of the paper decided on the sweep's runs, with the effect size and
-the 95 % interval that decide it.
+the 95 % interval that decide it, on each game the sweep trains and side by side.
 
-Reads the sweep's runs (runs.py selects them: registry entries <variant>_seed<S>, plus --extra), each run's evaluation (docs/runs/<run>/episodes.csv) and per-run analysis
-(docs/runs/<run>/analysis/: probes.csv, states.csv, transitions.csv, behaviour.csv, written by
-hideseek_pipeline analyze), the random hider's behaviour per variant
-(docs/analysis/baselines/<variant>/random/) and its living steps (docs/calibration_table.csv), and
-for the memory claim the sweep's GRU runs (<variant>_gru_seed<S>, network gru, of the variants
-config/sweep.yaml trains GRU hiders of) with their
-memoryless ablations (docs/runs/<run>/analysis/memoryless/behaviour.csv).
-Writes OUT/claims.md and OUT/claims.csv, and OUT/memory_seeds.md and .csv (the GRU runs against
-their feed-forward twins), default OUT ROOT/docs/report.
+Reads each game's sweep runs (runs.py selects them: registry entries <variant>[_<game>]_seed<S>,
+plus --extra of that game), each run's evaluation (docs/runs/<run>/episodes.csv) and per-run
+analysis (docs/runs/<run>/analysis/: probes.csv, states.csv, transitions.csv, behaviour.csv,
+written by hideseek_pipeline analyze), the random hider's behaviour per variant
+(docs/analysis/baselines/[<game>/]<variant>/random/) and its living steps (the game's calibration
+table), and for the memory claim the sweep's GRU runs (of the variants config/sweep.yaml trains GRU
+hiders of) with their memoryless ablations (docs/runs/<run>/analysis/memoryless/behaviour.csv).
+Writes each game's claims.md/.csv, memory_seeds.md/.csv (the GRU runs against their feed-forward
+twins) and oscillation_thresholds.md/.csv into OUT/<game>/, and the claims on both games side by
+side into OUT/claims.md (default OUT ROOT/docs/report); the budget check (basic at the longer
+budget config/sweep.yaml trains, against 2M) is the last row of that game's table.
 
 Every interval is a 95 % percentile bootstrap over the runs (training seeds) of each variant
 involved, resampled within each variant; living steps use the two-level bootstrap (runs, then
@@ -144,7 +146,7 @@ class Context:
     """What every claim reads: the runs, the lists from config/, and the bootstrap's seed and size.
     Each claim bootstraps with its own generator (stats.keyed_rng)."""
 
-    def __init__(self, root, found, cfg, seed, reps, game="v2", gru_found=None):
+    def __init__(self, root, found, cfg, seed, reps, game="v2", gru_found=None, twins=None):
         self.root, self.R, self.seed, self.reps, self.game = root, Runs(root, found, game), seed, reps, game
         self.cfg = cfg
         self.paper = cfg.paper
@@ -153,6 +155,9 @@ class Context:
         self.gru_variants = cfg.gru_variants(game)
         self.calib = calibration(root, game)
         self.gru_found = gru_found or {}
+        # The feed-forward runs the GRU runs are paired with (the budget check swaps basic's runs
+        # for its longer ones, not the GRU's twins).
+        self.twins = Runs(root, twins if twins is not None else found, game)
 
     def rng(self, *key):
         return st.keyed_rng(self.seed, *key)
@@ -485,7 +490,7 @@ def memory_pairs(c):
     gain per GRU run]}, the table's rows, the GRU runs without a twin)."""
     pairs, ablation, table, unpaired = {}, {}, [], []
     for v in c.gru_variants:
-        ff_names = set(c.R.names(v))
+        ff_names = set(c.twins.names(v))
         gru_living, ff_living = [], []
         for name, e in c.gru_found.get(v, []):
             twin = run_name(v, int(e.get("training_seed", -1)), c.game)
@@ -613,14 +618,19 @@ def write(out_dir, rows, header, game="v2"):
                                                                  (" (" + r["note"] + ")") if r["note"] else "", eff,
                                                                  r["practical"], r["runs"], r["measure"],
                                                                  r["departure"]))
-    md += ["", "Beside this table (`make reproduce`): Table 2 across seeds in [table2_seeds/](table2_seeds/table2.md), "
-           "[Table 3 across seeds](table3_seeds.md), [behaviour across seeds](behaviour_seeds.md), "
-           "and Figures 4-7 and the t-SNE across seeds: [states](state_frequencies_seeds.png), "
-           "[transitions](transitions_seeds.png), [distance](distance_seeds.png), "
-           "[survival against representation](survival_representation.png), [t-SNE](tsne_seeds.png) "
-           "(each with its numbers in the .csv of the same name), and the GRU runs against their feed-forward "
-           "twins in [memory_seeds.md](memory_seeds.md); the oscillation threshold's effect in "
-           "[oscillation_thresholds.md](oscillation_thresholds.md).", ""]
+    if not os.path.exists(os.path.join(out_dir, "state_frequencies_seeds.png")):  # no analysed run of the game yet
+        md += ["", "Beside this table (`make reproduce`): Table 2 across seeds in [table2_seeds/](table2_seeds/table2.md) "
+               "and the GRU runs against their feed-forward twins in [memory_seeds.md](memory_seeds.md); Table 3, the "
+               "behaviour table and Figures 4-7 across seeds come with the game's first analysed run.", ""]
+    else:
+        md += ["", "Beside this table (`make reproduce`): Table 2 across seeds in [table2_seeds/](table2_seeds/table2.md), "
+               "[Table 3 across seeds](table3_seeds.md), [behaviour across seeds](behaviour_seeds.md), "
+               "and Figures 4-7 and the t-SNE across seeds: [states](state_frequencies_seeds.png), "
+               "[transitions](transitions_seeds.png), [distance](distance_seeds.png), "
+               "[survival against representation](survival_representation.png), [t-SNE](tsne_seeds.png) "
+               "(each with its numbers in the .csv of the same name), and the GRU runs against their feed-forward "
+               "twins in [memory_seeds.md](memory_seeds.md); the oscillation threshold's effect in "
+               "[oscillation_thresholds.md](oscillation_thresholds.md).", ""]
     with open(os.path.join(out_dir, "claims.md"), "w") as f:
         f.write("\n".join(md))
 
@@ -654,19 +664,26 @@ def header(found, reps):
                 n, ", ".join("%s %d" % (v, len(x)) for v, x in found.items()) or "none", reps, MIN_RUNS))
 
 
-def decide_game(root, cfg, game, steps, extra, seed, reps, out_dir):
-    """Every claim of one game decided on its sweep runs, with its tables, into `out_dir`; returns
-    (rows, the Context it was decided in)."""
+def decide_game(root, cfg, game, steps, extra, seed, reps, budget=None):
+    """Every claim of one game decided on its sweep runs, with the budget check's row last where
+    `budget` (the longer budget's steps) is given; returns (rows, memory table rows, Context)."""
     found = sweep_runs(root, steps, extra, warn=False, game=game)  # --extra may name runs of either network
     gru_found = sweep_runs(root, steps, extra, "gru", warn=False, game=game)
     c = Context(root, found, cfg, seed, reps, game, gru_found)
     rows, memory_table = build(c)
-    write(out_dir, rows, header(found, reps), game)
-    write_memory(out_dir, memory_table, game)
+    if budget:
+        rows.append(budget_check(c, rows, budget))
+        mark_provisional(rows[-1])
+    return rows, memory_table, c
+
+
+def write_game(out_dir, rows, memory_table, c):
+    """A game's claims table, memory study and oscillation thresholds into `out_dir`."""
+    write(out_dir, rows, header(c.R.found, c.reps), c.game)
+    write_memory(out_dir, memory_table, c.game)
     oscillation_thresholds(c, out_dir)
     for r in rows:
-        print("claims: %s %-67s %s" % (game, r["claim"], r["result"]))
-    return rows, c
+        print("claims: %s %-67s %s" % (c.game, r["claim"], r["result"]))
 
 
 BUDGET = ("Training longer: basic at %s steps against 2M", "section 4: the paper trains each hider for 8M steps")
@@ -677,7 +694,7 @@ def budget_check(c, rows, big):
     2M: the difference of greedy living steps with its two-level bootstrap interval, and which
     verdicts move when basic's 8M runs stand in for its 2M runs. Supported: the longer budget lives
     longer by the practical size."""
-    label = "%dm" % (big // 1000000)
+    label = "%dm" % (big // 1000000) if big % 1000000 == 0 else "%dk" % (big // 1000)
     found_big = sweep_runs(c.root, big, set(), warn=False, game=c.game, budget=label)
     name, paper = BUDGET[0] % label.upper(), BUDGET[1]
     long_runs, short_runs = Runs(c.root, found_big, c.game).episodes("basic"), c.R.episodes("basic")
@@ -688,13 +705,16 @@ def budget_check(c, rows, big):
                      practical=PRACTICAL["living"][1])
     d, ci = st.mean_difference(long_runs, short_runs, c.rng("budget", label), c.reps)
     res, size = decide(ci, min(len(long_runs), len(short_runs)), d, "living")
+    # The same claims with basic's longer runs in its 2M runs' place (the GRU runs keep their 2M twins).
     swapped = dict(c.R.found, basic=found_big.get("basic", []))
-    moved = [(a["claim"], a["result"], b["result"]) for a, b in zip(
-        rows, build(Context(c.root, swapped, c.cfg, c.seed, c.reps, c.game, c.gru_found))[0]) if a["result"] != b["result"]]
-    moved_text = "; ".join("%s: %s -> %s" % m for m in moved) or "none"
-    return claim(name, paper, "living steps, basic at %s minus basic at 2M (two-level bootstrap); verdicts that move "
-                 "with basic's %s runs in place of its 2M runs: %s" % (label, label, moved_text), d, ci, runs_text(per),
-                 res, "", c.causes("steps"), size)
+    again = build(Context(c.root, swapped, c.cfg, c.seed, c.reps, c.game, c.gru_found, twins=c.R.found))[0]
+    moved = [(a["claim"], a["result"], b["result"]) for a, b in zip(rows, again) if a["result"] != b["result"]]
+    row = claim(name, paper, "living steps, basic at %s minus basic at 2M (two-level bootstrap)" % label, d, ci,
+                runs_text(per), res, "", c.causes("steps"), size)
+    row["moved"] = "verdicts that move with basic's %s runs in place of its 2M runs: %s" % (
+        label, "; ".join("%s: %s -> %s" % m for m in moved) or "none")
+    row["measure"] += "; " + row["moved"]
+    return row
 
 
 def _cell(r):
@@ -702,7 +722,7 @@ def _cell(r):
     if r is None:
         return "-", "-"
     note = " (%s)" % r["note"] if r["note"] else ""
-    return "**%s**%s" % (r["result"], note), "%s (%s)" % (effect_text(r), r["runs"])
+    return "**%s**%s" % (r["result"], note), effect_text(r) + (" (%s)" % r["runs"] if r["runs"] else "")
 
 
 def write_both(out_dir, by_game, reps):
@@ -725,7 +745,7 @@ def write_both(out_dir, by_game, reps):
     for name in names:
         cells = [next((r for r in by_game[g] if r["claim"] == name), None) for g in games]
         first = next(r for r in cells if r is not None)
-        changed = "; ".join(CHANGED[k] for k in first.get("causes", ()) if k in CHANGED) or "-"
+        changed = first.get("moved") or "; ".join(CHANGED[k] for k in first.get("causes", ()) if k in CHANGED) or "-"
         md.append("| %s | %s | %s | %s |" % (name, first["paper"], " | ".join(" | ".join(_cell(r)) for r in cells),
                                             changed))
     with open(os.path.join(out_dir, "claims.md"), "w") as f:
@@ -735,22 +755,28 @@ def write_both(out_dir, by_game, reps):
 def main(argv=None):
     """claims.py: with --game, one game's claims table, memory_seeds and oscillation_thresholds into
     --out; with --games (default: config/sweep.yaml's), each game's into OUT/<game>/ and the table on
-    both games into OUT/claims.md (default OUT: ROOT/docs/report). The 8M budget check is the last
-    game's row."""
+    both games into OUT/claims.md (default OUT: ROOT/docs/report, and with --game ROOT/docs/report/<game>). The
+    budget check is the row of the game config/sweep.yaml trains a longer budget on."""
     args = parse_selection("The paper's claims decided on the sweep's runs, each with its effect size and 95 % "
                            "interval, on one game or side by side on several.", argv,
                            lambda p: p.add_argument("--games", nargs="+", help="decide on these games side by side "
                                                     "(default: the games config/sweep.yaml trains)"), game=None)
     root, extra = args.root, set(args.extra)
     cfg = Config(root)
-    out_dir = args.out or os.path.join(root, "docs", "report")
+    report = os.path.join(root, "docs", "report")
     if args.game:
-        decide_game(root, cfg, args.game, args.steps, extra, args.seed, args.reps, out_dir)
+        rows, memory_table, c = decide_game(root, cfg, args.game, args.steps, extra, args.seed, args.reps)
+        write_game(args.out or os.path.join(report, args.game), rows, memory_table, c)
         return 0
+    games = args.games or cfg.sweep_games()
+    if not games:
+        raise SystemExit("claims: no game to decide on (config/sweep.yaml has no phase; name one with --games)")
     by_game = {}
-    for game in args.games or cfg.sweep_games():
-        by_game[game], c = decide_game(root, cfg, game, args.steps, extra, args.seed, args.reps,
-                                       os.path.join(out_dir, game))
-    by_game[game].append(budget_check(c, by_game[game], 8000000))
-    write_both(out_dir, by_game, args.reps)
+    for game in games:
+        # The budget check is on the game config/sweep.yaml trains a longer budget on (v3's 8M).
+        rows, memory_table, c = decide_game(root, cfg, game, args.steps, extra, args.seed, args.reps,
+                                            cfg.longer_budget(game))
+        write_game(os.path.join(args.out or report, game), rows, memory_table, c)
+        by_game[game] = rows
+    write_both(args.out or report, by_game, args.reps)
     return 0

@@ -2,7 +2,7 @@
 from the committed per-run analysis outputs (docs/runs/<run>/analysis/, hideseek_pipeline analyze)
 and the random hider's (docs/analysis/baselines/<variant>/random/).
 
-Into OUT (default ROOT/docs/report), with their numbers beside them as .csv:
+Into OUT (default ROOT/docs/report/<game>), with their numbers beside them as .csv:
 - state_frequencies_seeds.png (Figure 4): each state's frequency, trained minus the random hider
   of the same variant, mean over runs with a 95 % bootstrap interval over runs;
 - transitions_seeds.png (Figure 5): P(S1H1 -> S0H1 | leaving S1H1) (turning away) and
@@ -337,11 +337,11 @@ def draw_all(root, out, R, cfg, found, seed, reps):
 
 
 def main(argv=None):
-    """seed_figures.py: every figure and table across training seeds, into --out (default ROOT/docs/report)."""
+    """seed_figures.py: every figure and table across training seeds, into --out (default ROOT/docs/report/<game>)."""
     args = parse_selection("The paper's Figures 4-7, Table 3, the behaviour table and the t-SNE across training "
                            "seeds, from the committed per-run analyses.", argv)
     root = args.root
-    out = args.out or os.path.join(root, "docs", "report")
+    out = args.out or os.path.join(root, "docs", "report", args.game)
     os.makedirs(out, exist_ok=True)
     found = sweep_runs(root, args.steps, set(args.extra), game=args.game)
     draw_all(root, out, Runs(root, found, args.game), Config(root), found, args.seed, args.reps)

@@ -122,7 +122,7 @@ def sweep_runs(root, steps, extra, network="ff", warn=True, game="v2", budget=""
     for name, e in entries.items():
         if registry.draw(e) != "first":
             continue  # a retrain: shown beside its first draw in the run's records, never counted
-        if (name in extra and e.get("network", "ff") == network) or \
+        if (name in extra and e.get("network", "ff") == network and str(e.get("game")) == game) or \
                 _is_sweep_run(name, e, steps, network, game, budget):
             found.setdefault(e["variant"], []).append((name, e))
     for v in found:

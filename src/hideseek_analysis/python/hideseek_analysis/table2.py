@@ -5,7 +5,7 @@ interval from the two-level bootstrap (stats.py), beside the paper's figures and
 It reads one of two sources:
 - the sweep (default): every sweep run of the game (runs.py selects them), greedy and sampled,
   from docs/runs/<run>/episodes.csv and sampled/episodes.csv, beside the random hider and the
-  scripted evaders (docs/calibration_table.csv); into ROOT/docs/report/table2_seeds;
+  scripted evaders (the game's calibration table); into ROOT/docs/report/<game>/table2_seeds;
 - --evaluations DIR: the shipped policies as `hideseek_pipeline report --from-scratch` evaluated them, one run per
   variant and network, DIR/<label>_trained/episodes.csv (and, for a GRU hider, <variant>_gru_trained
   and <variant>_gru_memoryless), beside the random hider evaluated with them (DIR/<variant>_random).
@@ -337,7 +337,7 @@ def main(argv=None):
         out = args.out or os.path.join(os.path.dirname(source.folder), "table2_shipped")
     else:
         source = SweepSource(root, sweep_runs(root, args.steps, set(args.extra), game=args.game), args.game)
-        out = args.out or os.path.join(root, "docs", "report", "table2_seeds")
+        out = args.out or os.path.join(root, "docs", "report", args.game, "table2_seeds")
     try:
         n = write_all(out, source, cfg, cfg.table_order(), args.seed, args.reps)
     except ValueError as e:  # an evaluation without episodes

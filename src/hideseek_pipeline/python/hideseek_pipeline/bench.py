@@ -61,7 +61,11 @@ class Bench:
         text = self.ws.command(["roslaunch", "-p", PORT, "hideseek_world", launch, "num_arenas:=%d" % self.o.arenas,
                                 "duration:=%d" % self.o.seconds], env={"ROS_MASTER_URI": "http://localhost:%d" % PORT},
                                check=False)
-        return [line for line in text.splitlines() if line.startswith(pattern)]
+        lines = [line for line in text.splitlines() if line.startswith(pattern)]
+        if not lines:
+            raise measure.MeasureError("%s printed no %s line (roslaunch -p %d hideseek_world %s to see why)"
+                                       % (launch, pattern, PORT, launch))
+        return lines
 
     def train_through_graph(self, out, network, memory_format="auto"):
         """PPO through the ROS graph (world, seeker, hider in train mode) for WARMUP + ROS_UPDATES
@@ -94,8 +98,14 @@ class Bench:
                  "output_dir:=" + (run0, run1)[r], "checkpoint_interval:=100000"], cwd=self.ws.root,
                 env=dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % (DD_PORT + r)),
                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL) for r in (0, 1)]
-            for p in ranks:
-                p.wait()
+            try:
+                for p in ranks:
+                    p.wait()
+            finally:  # Ctrl-C: no rank outlives the bench (their output folders go with it)
+                for p in ranks:
+                    if p.poll() is None:
+                        p.terminate()
+                        p.wait()
             return float("%.0f" % measure.samples_per_s(os.path.join(run0, "training_log.csv")))
 
     # The groups, each printing its lines through self.out.

@@ -127,12 +127,12 @@ def _report_parser(sub):
                        "(hideseek_pipeline/report.py says each step).")
     r.add_argument("report_dir", nargs="?", help="default docs/report")
     r.add_argument("--from-scratch", action="store_true", help="evaluate and analyse the shipped policies again")
-    r.add_argument("--work-dir", default="~/.ros/hideseek_reproduce",
-                   help="--from-scratch's bags and feature arrays (large; not part of the report)")
-    r.add_argument("--steps", type=int, default=50000, help="--from-scratch's recorded steps per policy (default "
-                   "50000; 5000 for a quick look)")
+    r.add_argument("--work-dir", help="--from-scratch's bags and feature arrays (default ~/.ros/hideseek_reproduce; "
+                   "large, not part of the report)")
+    r.add_argument("--steps", type=int, help="--from-scratch's recorded steps per policy (default 50000; 5000 for a "
+                   "quick look)")
     r.add_argument("--variants", nargs="+", metavar="VARIANT", help="--from-scratch: these variants only (with "
-                   "their GRU hiders), keeping what the report holds for the others")
+                   "their GRU hiders), keeping what the report holds for the others (give REPORT_DIR before it)")
     r.add_argument("--port", type=int, default=11478, help="ROS master port (default 11478)")
 
 
@@ -224,8 +224,13 @@ def workspace_command(args):
     if args.command == "bench":
         from hideseek_pipeline import bench  # its progress bars need python3-tqdm, which install_deps.sh installs
         return bench.bench(Workspace(root))
+    given = [name for name, value in (("--work-dir", args.work_dir), ("--steps", args.steps),
+                                      ("--variants", args.variants)) if value is not None]
+    if given and not args.from_scratch:
+        raise ToolError("report: %s only with --from-scratch (without it the report is made from the committed "
+                        "records alone)" % ", ".join(given))
     from hideseek_pipeline import report
-    return report.report(Workspace(root), args.report_dir, args.from_scratch, args.work_dir, args.steps,
+    return report.report(Workspace(root), args.report_dir, args.from_scratch, args.work_dir, args.steps or 50000,
                          args.variants, args.port, lambda: runner.analyze_all(make_sweep(root)))
 
 
@@ -233,7 +238,8 @@ def held(root, command, config=None):
     """`command`, with a running sweep paused meanwhile and resumed after, whatever its exit. With
     no sweep folder there is no queue to pause: just the command (no folder is created)."""
     if not os.path.isdir(os.path.expanduser(os.environ.get("SWEEP_DIR", "~/hideseek_sweep"))):
-        return subprocess.run(command).returncode
+        rc = subprocess.run(command).returncode
+        return 128 - rc if rc < 0 else rc  # killed by a signal: 128 + its number, as a shell says
     return control.hold(make_sweep(root, config), command)
 
 
@@ -243,13 +249,17 @@ def main(argv=None):
     # import the registry module): the tree would look modified and no further run would start.
     os.environ["PYTHONDONTWRITEBYTECODE"] = "1"
     sys.dont_write_bytecode = True
-    try:
-        if args.command in ("test", "bench", "report"):
+    if args.command in ("test", "bench", "report"):
+        try:
             return workspace_command(args)
+        except (ToolError, MeasureError, SweepError, FileNotFoundError) as e:
+            print("hideseek_pipeline: %s" % e, file=sys.stderr)
+            return 1
+    try:
         return sweep_command(args) if args.command == "sweep" else run_command(args)
     except (SweepError, sweep_config.ConfigError, FileNotFoundError) as e:
         print("sweep: %s" % e, file=sys.stderr)
         return 2
-    except (ToolError, MeasureError) as e:
+    except ToolError as e:
         print("hideseek_pipeline: %s" % e, file=sys.stderr)
         return 1

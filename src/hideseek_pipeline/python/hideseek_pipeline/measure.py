@@ -31,8 +31,14 @@ def rollout_steps(ppo_config):
 
 
 def _rows(path):
+    """The rows after the header, each update number first and numbers after; MeasureError naming
+    the file where a row is malformed."""
     with open(path) as f:
-        return list(csv.reader(f))[1:]
+        rows = list(csv.reader(f))[1:]
+    try:
+        return [[int(r[0])] + [float(x) if x != "" else float("nan") for x in r[1:6]] for r in rows]
+    except (ValueError, IndexError) as e:
+        raise MeasureError("%s: a malformed row (%s)" % (path, e))
 
 
 def samples_per_s(log, first=None, last=0):
@@ -41,11 +47,11 @@ def samples_per_s(log, first=None, last=0):
     first = WARMUP if first is None else first
     start = end = None
     for r in _rows(log):
-        update = int(r[0])
+        update = r[0]
         if update == first:
-            start = (float(r[1]), float(r[2]))
+            start = (r[1], r[2])
         if last == 0 or update <= last:
-            end = (float(r[1]), float(r[2]))
+            end = (r[1], r[2])
     if start is None or end is None or end[1] <= start[1]:
         raise MeasureError("%s holds no updates after update %d" % (log, first))
     return (end[0] - start[0]) / (end[1] - start[1])
@@ -57,9 +63,8 @@ def loop_shares(profile, first=None, last=0):
     first = WARMUP if first is None else first
     wait = inference = update = other = 0.0
     for r in _rows(profile):
-        if int(r[0]) > first and (last == 0 or int(r[0]) <= last):
-            wait, inference, update, other = (wait + float(r[2]), inference + float(r[3]), update + float(r[4]),
-                                              other + float(r[5]))
+        if r[0] > first and (last == 0 or r[0] <= last):
+            wait, inference, update, other = wait + r[2], inference + r[3], update + r[4], other + r[5]
     total = wait + inference + update + other
     if total <= 0:
         raise MeasureError("%s holds no loop after update %d" % (profile, first))

@@ -28,12 +28,14 @@ from hideseek_pipeline.workspace import ToolError
 
 
 def sweep_games(root):
-    """The games config/sweep.yaml's phases train, in their order (v2, v3)."""
+    """The games config/sweep.yaml's phases train, in their order (v2, v3); a phase without one
+    trains config/games.yaml's default, as the queue does."""
     with open(os.path.join(root, "config", "sweep.yaml")) as f:
         sweep = yaml.safe_load(f) or {}
+    default = sweep.get("game") or load_registry_module(root).default_game(os.path.join(root, "config", "games.yaml"))
     games = []
     for phase in sweep.get("phases") or []:
-        game = str(phase.get("game", sweep.get("game", "v2")))
+        game = str(phase.get("game", default))
         if game not in games:
             games.append(game)
     return games
@@ -49,7 +51,7 @@ def across_seeds(ws, report, say):
         steps += [("table2.py", "--game", game, "--out", os.path.join(report, game, "table2_seeds")),
                   ("seed_figures.py", "--game", game, "--out", os.path.join(report, game))]
     for step in tqdm(steps + [("claims.py", "--out", report)], desc="report: across seeds", unit="table"):
-        for line in ws.python(*step).splitlines():
+        for line in ws.python(*step, show_stderr=True).splitlines():
             tqdm.write("  " + line)
 
 
@@ -101,7 +103,7 @@ def evaluate_shipped(ws, reg, report, variants, keep, port, say):
         start = time.time()
         result = _evaluation(ws, v, policy, os.path.join(folder, "%s_%s" % (v, label)), port, extra)
         tqdm.write("report: %s %s: %s (living steps, success; %d s)" % (v, label, result, time.time() - start))
-    ws.python("table2.py", "--evaluations", folder, "--out", os.path.join(report, "table2_shipped"))
+    ws.python("table2.py", "--evaluations", folder, "--out", os.path.join(report, "table2_shipped"), show_stderr=True)
 
 
 def analyse_shipped(ws, reg, report, work, variants, steps, port, say):
@@ -150,7 +152,8 @@ def report(ws, report_dir=None, from_scratch=False, work_dir=None, steps=50000, 
     work = os.path.abspath(os.path.expanduser(work_dir or "~/.ros/hideseek_reproduce"))
     analyse_shipped(ws, reg, report_dir, work, variants or known, steps, port, say)
     say("report: [3/3] tables and figures across variants")
-    ws.python("reproduce_report.py", report_dir, "--paper", os.path.join(ws.root, "config", "paper_reference.yaml"))
+    ws.python("reproduce_report.py", report_dir, "--paper", os.path.join(ws.root, "config", "paper_reference.yaml"),
+              show_stderr=True)
     across_seeds(ws, report_dir, say)
     say("report: done in %d s; open %s/index.md" % (time.time() - start, report_dir))
     return 0

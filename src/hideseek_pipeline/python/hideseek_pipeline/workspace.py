@@ -17,9 +17,10 @@ class Workspace:
         if not os.path.isfile(os.path.join(self.root, "scripts", "env.sh")):
             raise ToolError("%s is not a hideseek checkout (no scripts/env.sh)" % self.root)
 
-    def command(self, args, env=None, log=None, check=True):
+    def command(self, args, env=None, log=None, check=True, show_stderr=False):
         """Runs `args` in the workspace's environment; stdout to `log` (a path) when given, else
-        captured and returned. Raises ToolError naming the command when `check` and it fails."""
+        captured and returned; stderr with it, or (`show_stderr`) to this process's stderr. Raises
+        ToolError naming the command when `check` and it fails."""
         wrapped = ["bash", "-c", 'source scripts/env.sh && exec "$@"', "hideseek"] + [str(a) for a in args]
         full_env = dict(os.environ, **(env or {}))
         if log:
@@ -27,10 +28,12 @@ class Workspace:
                 r = subprocess.run(wrapped, cwd=self.root, env=full_env, stdout=f, stderr=subprocess.STDOUT)
             out = ""
         else:
-            r = subprocess.run(wrapped, cwd=self.root, env=full_env, capture_output=True, text=True)
+            r = subprocess.run(wrapped, cwd=self.root, env=full_env, stdout=subprocess.PIPE, text=True,
+                               stderr=None if show_stderr else subprocess.PIPE)
             out = r.stdout
         if check and r.returncode != 0:
-            where = ("see %s" % log) if log else (r.stderr.strip().splitlines() or ["no message"])[-1]
+            where = ("see %s" % log) if log else ("its message above" if show_stderr else
+                                                   (r.stderr.strip().splitlines() or ["no message"])[-1])
             raise ToolError("%s exited %d (%s)" % (os.path.basename(str(args[0])), r.returncode, where))
         return out
 
@@ -49,5 +52,6 @@ class Workspace:
         old = os.path.join(self.root, "scripts", name)
         return old if name == "probe_set.sh" and not os.path.exists(path) and os.path.exists(old) else path
 
-    def python(self, script, *args, log=None):
-        return self.command(["/usr/bin/python3", self.analysis_script(script)] + list(args), log=log)
+    def python(self, script, *args, log=None, show_stderr=False):
+        return self.command(["/usr/bin/python3", self.analysis_script(script)] + list(args), log=log,
+                            show_stderr=show_stderr)
