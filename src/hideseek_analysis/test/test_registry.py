@@ -85,6 +85,32 @@ def test_a_v3_policy_ships_beside_the_v2_one_of_its_variant(tree, tmp_path):
     assert reg.problems(registry, variants) == []
 
 
+def test_a_seeker_run_ships_beside_the_hider_and_never_as_it(tree, tmp_path):
+    """A learning seeker's run records its role: it ships to its own file, the hider's shipped policy
+    and median stay the hider's, and a role other than hider or seeker is refused by name."""
+    registry, variants = tree
+    for name, role, content in (("basic_seed0", None, b"hider"), ("basic_seeker_seed0", "seeker", b"seeker")):
+        weights = tmp_path / (name + ".pt")
+        weights.write_bytes(content)
+        fields = {"variant": "basic", "network": "ff", "game": "v2", "training_seed": 0, "steps": 2048,
+                  "note": "sweep run (config/sweep.yaml)"}
+        if role:
+            fields["role"] = role
+        reg.record(name, fields, registry)
+        reg.ship(name, str(weights), registry)
+    hider, seeker = reg.shipped("basic", registry=registry), reg.shipped("basic", registry=registry, of="seeker")
+    assert hider[0] == "basic_seed0" and open(hider[1], "rb").read() == b"hider"
+    assert seeker[1].endswith("policies/basic_seeker.pt") and open(seeker[1], "rb").read() == b"seeker"
+    assert reg.problems(registry, variants) == []
+    for name in ("basic_seed0", "basic_seeker_seed0"):
+        docs = tmp_path / "docs" / "runs" / name
+        docs.mkdir(parents=True)
+        (docs / "evaluation.csv").write_text("variant,policy,episodes,avg_living_steps,success_rate\nb,p,100,50,0\n")
+    assert reg.median_run("basic", registry=registry, root=str(tmp_path)) == "basic_seed0"
+    with pytest.raises(reg.RegistryError, match="field 'role' is 'referee', not one of hider, seeker"):
+        reg.record("basic_seed1", {"variant": "basic", "network": "ff", "game": "v2", "role": "referee"}, registry)
+
+
 def test_the_median_of_a_budget_leaves_out_the_runs_of_another(tree, tmp_path):
     """The 8M budget check's runs never become the 2M median that a variant ships, nor the reverse."""
     registry, _ = tree

@@ -40,7 +40,7 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
   std::vector<RunEntry> runs;
   if (root.IsNull()) return runs;  // no run yet
   if (!root.IsMap()) throw ConfigError(registry_file, "(top level)", "must map run names to runs");
-  std::map<std::tuple<std::string, std::string, std::string>, std::string> shipped;
+  std::map<std::tuple<std::string, std::string, std::string, std::string>, std::string> shipped;
   for (const auto& kv : root) {
     RunEntry r;
     r.name = kv.first.as<std::string>();
@@ -55,6 +55,7 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
     r.training_seed = f.integer("training_seed", 0, 0, kMaxSeed);
     r.steps = static_cast<long long>(f.number("steps", 0, 0, static_cast<double>(kMaxSteps)));
     const std::string weights = f.text("weights", "", {});
+    r.role = f.text("role", "hider", {"hider", "seeker"});
     r.draw = f.text("draw", "first", {"first", "retrain"});
     r.retrain_of = f.text("retrain_of", "", {});
     if (r.draw == "retrain" && r.retrain_of.empty()) {
@@ -74,12 +75,12 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
       if (!std::ifstream(r.weights).good()) {
         throw ConfigError(registry_file, f.field("weights"), "names " + r.weights + ", which cannot be read");
       }
-      const auto key = std::make_tuple(r.variant, r.network, r.game);
+      const auto key = std::make_tuple(r.variant, r.network, r.game, r.role);
       const auto [it, fresh] = shipped.emplace(key, r.name);
       if (!fresh) {
         throw ConfigError(registry_file, f.field("weights"),
                           "run " + it->second + " already ships weights for variant " + r.variant + ", network " +
-                              r.network + ", game " + r.game + ": one shipped policy per variant");
+                              r.network + ", game " + r.game + ", role " + r.role + ": one shipped policy per variant");
       }
     }
     runs.push_back(r);
@@ -88,9 +89,11 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
 }
 
 std::string shippedPolicyFile(const std::string& registry_file, const std::string& variant, const std::string& network,
-                              const std::string& game) {
+                              const std::string& game, const std::string& role) {
   for (const RunEntry& r : loadRunRegistry(registry_file)) {
-    if (r.variant == variant && r.network == network && r.game == game && !r.weights.empty()) return r.weights;
+    if (r.variant == variant && r.network == network && r.game == game && r.role == role && !r.weights.empty()) {
+      return r.weights;
+    }
   }
   return "";
 }

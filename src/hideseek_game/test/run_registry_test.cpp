@@ -66,6 +66,24 @@ TEST_F(RunRegistryTest, NoPolicyIsShippedForAnotherVariantNetworkOrGame) {
   EXPECT_EQ(shippedPolicyFile(write("# no run yet\n"), "basic", "ff", "v2"), "");
 }
 
+// A run says whose policy it trained; the hider's launch files play a hider's shipped weights, never
+// a seeker's of the same variant, and a role other than hider or seeker is refused by name.
+TEST_F(RunRegistryTest, ASeekersShippedRunIsNotTheHidersPolicy) {
+  std::ofstream(dir_ / "basic_seeker.pt") << "weights";
+  const std::string registry =
+      write(std::string(kTwoRuns) +
+            "basic_seeker_seed0: {variant: basic, network: ff, game: v2, role: seeker, weights: basic_seeker.pt}\n");
+  const auto runs = loadRunRegistry(registry);
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_EQ(runs[0].role, "hider");
+  EXPECT_EQ(runs[2].role, "seeker");
+  EXPECT_EQ(shippedPolicyFile(registry, "basic", "ff", "v2"), (dir_ / "basic.pt").string());
+  EXPECT_EQ(shippedPolicyFile(registry, "basic", "ff", "v2", "seeker"), (dir_ / "basic_seeker.pt").string());
+  const std::string e = errorOf("x: {variant: basic, network: ff, game: v2, role: referee}\n");
+  EXPECT_NE(e.find("role"), std::string::npos) << e;
+  EXPECT_NE(e.find("referee"), std::string::npos) << e;
+}
+
 TEST_F(RunRegistryTest, TwoShippedRunsOfOneVariantAreRefusedNamingBoth) {
   std::ofstream(dir_ / "other.pt") << "weights";
   const std::string error =

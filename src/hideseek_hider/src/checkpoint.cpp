@@ -45,6 +45,7 @@ void saveCheckpoint(const std::string& path, HiderNet& net, const CheckpointInfo
   archive.write("image_width", c10::IValue(static_cast<int64_t>(info.image_width)));
   archive.write("variant", c10::IValue(info.variant));
   archive.write("game", c10::IValue(info.game));
+  archive.write("role", c10::IValue(info.role));
   archive.write("steps", c10::IValue(info.steps));
   archive.write("wall_s", c10::IValue(info.wall_s));
   archive.write("episodes", c10::IValue(info.episodes));
@@ -126,6 +127,7 @@ CheckpointInfo infoOf(torch::serialize::InputArchive& archive, const std::string
   info.image_width = static_cast<int>(read("image_width").toInt());
   info.variant = read("variant").toStringRef();
   if (archive.try_read("game", v)) info.game = v.toStringRef();  // absent: written before v3, so v2
+  if (archive.try_read("role", v)) info.role = v.toStringRef();  // absent: written before the seeker learned
   info.steps = read("steps").toInt();
   info.network = info.architecture == kArchitectureGru ? NetworkKind::kGru : NetworkKind::kFeedForward;
   // Progress entries are younger than the format: a checkpoint without them starts from zero.
@@ -150,9 +152,15 @@ CheckpointInfo readCheckpointInfo(const std::string& path) {
 }
 
 HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width, CheckpointInfo* info_out,
-                        std::optional<NetworkKind> expected_network) {
+                        std::optional<NetworkKind> expected_network, const std::string& expected_role) {
   auto archive = openArchive(path);
   const CheckpointInfo info = infoOf(archive, path);
+  if (info.role != expected_role) {
+    throw std::runtime_error("checkpoint " + path + " is a " + info.role + "'s policy (role " + info.role +
+                             "), not a " + expected_role + "'s: the " + expected_role +
+                             "'s nodes and tools play and train " + expected_role + "s only; give a " + expected_role +
+                             "'s checkpoint");
+  }
   if (info.architecture != kArchitecture && info.architecture != kArchitectureGru) {
     throw std::runtime_error("checkpoint " + path + " holds architecture '" + info.architecture +
                              "', this build runs '" + kArchitecture + "' (network ff) or '" + kArchitectureGru +

@@ -113,6 +113,28 @@ TEST(Checkpoint, AWriteThatRunsOutOfSpaceLeavesThePreviousFileIntact) {
   EXPECT_FALSE(std::ifstream(path + ".tmp").good()) << "the temporary file was left behind";
 }
 
+// A checkpoint says whose policy it is; every hider node and tool asks for a hider's and refuses a
+// seeker's by name, and a checkpoint from before the field is a hider's.
+TEST(Checkpoint, ASeekersCheckpointIsRefusedWhereAHidersIsAsked) {
+  HiderNet net(84, 84);
+  CheckpointInfo info = infoFor(84, 84);
+  EXPECT_EQ(info.role, "hider");
+  info.role = "seeker";
+  const std::string path = tempPath("seeker.pt");
+  saveCheckpoint(path, net, info);
+  EXPECT_EQ(readCheckpointInfo(path).role, "seeker");
+  const std::string e = errorOf([&] { loadCheckpoint(path, 84, 84); });
+  EXPECT_NE(e.find("checkpoint " + path + " is a seeker's policy (role seeker), not a hider's"), std::string::npos)
+      << e;
+  CheckpointInfo loaded;
+  loadCheckpoint(path, 84, 84, &loaded, std::nullopt, "seeker");  // what a seeker's node will ask for
+  EXPECT_EQ(loaded.role, "seeker");
+  const std::string hider_path = tempPath("hider.pt");
+  saveCheckpoint(hider_path, net, infoFor(84, 84));
+  const std::string r = errorOf([&] { loadCheckpoint(hider_path, 84, 84, nullptr, std::nullopt, "seeker"); });
+  EXPECT_NE(r.find("is a hider's policy (role hider), not a seeker's"), std::string::npos) << r;
+}
+
 TEST(Checkpoint, WrongImageSizeIsRefusedSayingWhy) {
   HiderNet net(64, 64);
   const std::string path = tempPath("small.pt");

@@ -73,12 +73,16 @@ GAMES = os.path.join(ROOT, "config", "games.yaml")  # the default game: config/g
 NETWORKS = ("ff", "gru")
 # Keys a run may carry (the C++ loader refuses any other, so that a typo is found).
 RUN_KEYS = ("variant", "network", "game", "training_seed", "steps", "wall_s", "paused_s", "precision", "commit",
-            "log", "curve", "command", "note", "weights", "draw", "retrain_of")
+            "log", "curve", "command", "note", "weights", "draw", "retrain_of", "role")
 REQUIRED = ("variant", "network", "game")
 # A run's draw: `first`, the first training of its variant and seed (the default, and the only
 # draw that Table 2 and the claims count), or `retrain`, the same variant and seed trained again to
 # recover weights to ship, named <run>_retrain and pointing at its first draw with `retrain_of`.
 DRAWS = ("first", "retrain")
+# Whose policy a run trained: a hider's (the default, every run before the seeker learned) or a
+# seeker's. Table 2, the claims, shipping for the hider's launch files and every hider tool take
+# hider runs only.
+ROLES = ("hider", "seeker")
 RETRAIN_SUFFIX = "_retrain"
 
 
@@ -169,6 +173,9 @@ def _checked(entries, registry):
         if entry["network"] not in NETWORKS:
             raise RegistryError("%s: run %s: field 'network' is %r, not one of %s" % (registry, name, entry["network"],
                                                                                       ", ".join(NETWORKS)))
+        if role(entry) not in ROLES:
+            raise RegistryError("%s: run %s: field 'role' is %r, not one of %s" % (registry, name, entry["role"],
+                                                                                   ", ".join(ROLES)))
         if draw(entry) not in DRAWS:
             raise RegistryError("%s: run %s: field 'draw' is %r, not one of %s" % (registry, name, entry["draw"],
                                                                                    ", ".join(DRAWS)))
@@ -181,6 +188,11 @@ def _checked(entries, registry):
 def draw(entry):
     """first or retrain (see DRAWS)."""
     return entry.get("draw", "first")
+
+
+def role(entry):
+    """hider or seeker (see ROLES)."""
+    return entry.get("role", "hider")
 
 
 def weights_path(entry, registry=REGISTRY):
@@ -199,12 +211,13 @@ def default_game(games=GAMES):
     return str(game)
 
 
-def shipped(variant, network="ff", game=None, registry=REGISTRY):
-    """(run name, absolute weights path) of the shipped run of a game (None: the default game), or
-    (None, None)."""
+def shipped(variant, network="ff", game=None, registry=REGISTRY, of="hider"):
+    """(run name, absolute weights path) of the shipped run of a game (None: the default game) and
+    role (`of`: a hider's unless said), or (None, None)."""
     game = game or default_game()
     for name, entry in runs(registry).items():
-        if (entry["variant"], entry["network"], entry["game"]) == (variant, network, game) and entry.get("weights"):
+        if (entry["variant"], entry["network"], entry["game"], role(entry)) == (variant, network, game, of) and \
+                entry.get("weights"):
             return name, weights_path(entry, registry)
     return None, None
 
@@ -264,15 +277,17 @@ def ship(name, weights, registry=REGISTRY):
     if name not in entries:
         raise RegistryError("%s: no run %s to ship" % (registry, name))
     entry = entries[name]
-    # One file per variant, network and game: game v2's policies keep their names (basic.pt), another
-    # game's carry it (basic_v3.pt), so that shipping v3 leaves v2 playable under game:=v2.
-    file_name = label(entry["variant"], entry["network"]) + ("" if entry["game"] == "v2" else "_" + entry["game"]) + ".pt"
+    # One file per variant, network, game and role: game v2's hiders keep their names (basic.pt), another
+    # game's carry it (basic_v3.pt), so that shipping v3 leaves v2 playable under game:=v2; a seeker's
+    # carries its role (basic_seeker_v3.pt).
+    file_name = (label(entry["variant"], entry["network"]) + ("" if role(entry) == "hider" else "_" + role(entry)) +
+                 ("" if entry["game"] == "v2" else "_" + entry["game"]) + ".pt")
     target = os.path.join(os.path.dirname(registry), file_name)
     if os.path.abspath(weights) != os.path.abspath(target):
         shutil.copyfile(weights, target)
     for other, e in entries.items():
-        if other != name and (e["variant"], e["network"], e["game"]) == (entry["variant"], entry["network"],
-                                                                         entry["game"]):
+        if other != name and (e["variant"], e["network"], e["game"], role(e)) == (
+                entry["variant"], entry["network"], entry["game"], role(entry)):
             e.pop("weights", None)
     entry["weights"] = file_name
     _write(entries, registry)
@@ -296,14 +311,14 @@ def greedy_living_steps(name, root=ROOT):
 
 
 def median_run(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE, steps=None):
-    """The run to ship for a variant: among its runs whose note starts with `note` and that have a
+    """The hider run to ship for a variant: among its runs whose note starts with `note` and that have a
     greedy evaluation, the one whose mean living steps is the median (the lower of the middle two
     for an even count; ties broken by name). With `steps`, only runs of that budget count (recorded
     steps from `steps` to under twice it: a run ends at the first whole rollout past its budget).
     None when there is no such run."""
     scored = []
     for name, e in runs(registry).items():
-        if (e["variant"], e["network"], e["game"]) != (variant, network, game):
+        if (e["variant"], e["network"], e["game"], role(e)) != (variant, network, game, "hider"):
             continue
         if steps is not None and not steps <= int(e.get("steps", 0)) < 2 * steps:
             continue
@@ -361,9 +376,9 @@ def problems(registry=REGISTRY, variants_dir=VARIANTS_DIR):
         if path:
             if not os.path.isfile(path):
                 found.append("run %s: weights %s do not exist" % (name, path))
-            key = (e["variant"], e["network"], e["game"])
+            key = (e["variant"], e["network"], e["game"], role(e))
             if key in keys:
-                found.append("runs %s and %s both ship weights for variant %s, network %s, game %s"
+                found.append("runs %s and %s both ship weights for variant %s, network %s, game %s, role %s"
                              % (keys[key], name, *key))
             keys[key] = name
         for field in ("log", "curve"):

@@ -120,8 +120,8 @@ def sweep_runs(root, steps, extra, network="ff", warn=True, game="v2", budget=""
     _check_extra(entries, extra, network, warn)
     found = {}
     for name, e in entries.items():
-        if registry.draw(e) != "first":
-            continue  # a retrain: shown beside its first draw in the run's records, never counted
+        if registry.draw(e) != "first" or registry.role(e) != "hider":
+            continue  # a retrain (shown beside its first draw in the run's records) or a seeker: never counted
         if (name in extra and e.get("network", "ff") == network and str(e.get("game")) == game) or \
                 _is_sweep_run(name, e, steps, network, game, budget):
             found.setdefault(e["variant"], []).append((name, e))

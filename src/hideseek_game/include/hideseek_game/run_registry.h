@@ -24,10 +24,13 @@ struct RunEntry {
   // the same variant and seed trained again (only to recover weights to ship), named in retrain_of.
   std::string draw = "first";
   std::string retrain_of;  // the first draw a retrain repeats; "" for a first draw
+  // hider (the default: every run before the seeker learned) or seeker. Table 2, the claims,
+  // shipping for the hider's launch files and every hider tool take hider runs only.
+  std::string role = "hider";
 };
 
 // Reads the registry; throws ConfigError naming the run and field at fault, also where two runs
-// ship weights for the same variant, network and game, or where shipped weights are missing.
+// ship weights for the same variant, network, game and role, or where shipped weights are missing.
 std::vector<RunEntry> loadRunRegistry(const std::string& registry_file);
 
 // The variants: the names of variants_dir's *.yaml files, sorted; each file's `variant` field must be
@@ -35,8 +38,9 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file);
 // `variants` reads the same folder under the same rule.
 std::vector<std::string> variantNames(const std::string& variants_dir);
 
-// The weights shipped for variant, network and game, or "" when no run ships any.
+// The weights shipped for variant, network, game and role (a hider's unless said), or "" when no run
+// ships any.
 std::string shippedPolicyFile(const std::string& registry_file, const std::string& variant, const std::string& network,
-                              const std::string& game);
+                              const std::string& game, const std::string& role = "hider");
 
 }  // namespace hideseek_game

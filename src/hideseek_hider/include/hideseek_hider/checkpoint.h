@@ -33,6 +33,9 @@ struct CheckpointInfo {
   // The game it trained on (game.yaml's `game`); a checkpoint written before the field existed is
   // game v2's, the only game then trained.
   std::string game = "v2";
+  // Whose policy it is: hider, or seeker (a learning seeker's, issue #68). A checkpoint written
+  // before the field existed is a hider's, the only role then trained.
+  std::string role = "hider";
 };
 
 // Writes `data` to path.tmp, syncs it, then renames it over `path`. On any error (a full disk:
@@ -51,9 +54,11 @@ void loadTrainingState(const std::string& path, torch::optim::Optimizer& optimiz
 // Reads only the description; throws std::runtime_error naming the file when unreadable.
 CheckpointInfo readCheckpointInfo(const std::string& path);
 // Builds the network a checkpoint describes (feed-forward or GRU) and loads its weights. Throws
-// std::runtime_error saying what does not match (architecture, the network asked for, image size,
-// tensor shapes) or that the file is truncated or corrupt; never returns a half-loaded network.
+// std::runtime_error saying what does not match (the role asked for: every hider node and tool asks
+// for a hider's; architecture, the network asked for, image size, tensor shapes) or that the file
+// is truncated or corrupt; never returns a half-loaded network.
 HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width,
-                        CheckpointInfo* info = nullptr, std::optional<NetworkKind> expected_network = std::nullopt);
+                        CheckpointInfo* info = nullptr, std::optional<NetworkKind> expected_network = std::nullopt,
+                        const std::string& expected_role = "hider");
 
 }  // namespace hideseek_hider
