@@ -96,8 +96,10 @@ def test_rank_correlation_follows_the_reference_order():
 
 def run_analysis(script, rec, out, *extra):
     """One of the analysis scripts across training seeds on the made-up checkout `rec`, into `out`."""
+    game = ["--game", "v2"] if script != "claims.py" and "--game" not in extra else []  # one game, into `out`
     r = subprocess.run([sys.executable, os.path.join(ANALYSIS, script), "--root", str(rec), "--out", str(out),
-                        "--steps", "2048", "--reps", "200"] + list(extra), capture_output=True, text=True, timeout=120)
+                        "--steps", "2048", "--reps", "200"] + game + list(extra), capture_output=True, text=True,
+                       timeout=120)
     assert r.returncode == 0, r.stderr
     return r
 

@@ -33,7 +33,8 @@ import numpy as np
 
 from . import stats as st
 from .config import Config
-from .runs import Runs, calibration, calibration_file, evaluation_by_seed, load_episodes, parse_selection, read_csv, run_name, sweep_runs
+from .runs import (Runs, calibration, calibration_file, evaluation_by_seed, load_episodes, outputs, parse_selection,
+                   read_csv, run_name, sweep_runs)
 from .states import state_freq, transition_prob, transition_rate
 from .tables import probe_value, write_rows
 
@@ -763,20 +764,16 @@ def main(argv=None):
                                                     "(default: the games config/sweep.yaml trains)"), game=None)
     root, extra = args.root, set(args.extra)
     cfg = Config(root)
-    report = os.path.join(root, "docs", "report")
-    if args.game:
-        rows, memory_table, c = decide_game(root, cfg, args.game, args.steps, extra, args.seed, args.reps)
-        write_game(args.out or os.path.join(report, args.game), rows, memory_table, c)
-        return 0
-    games = args.games or cfg.sweep_games()
+    games = outputs(args, args.games or cfg.sweep_games())
     if not games:
         raise SystemExit("claims: no game to decide on (config/sweep.yaml has no phase; name one with --games)")
     by_game = {}
-    for game in games:
+    for game, out in games:
         # The budget check is on the game config/sweep.yaml trains a longer budget on (v3's 8M).
         rows, memory_table, c = decide_game(root, cfg, game, args.steps, extra, args.seed, args.reps,
-                                            cfg.longer_budget(game))
-        write_game(os.path.join(args.out or report, game), rows, memory_table, c)
+                                            cfg.longer_budget(game) if not args.game else None)
+        write_game(out, rows, memory_table, c)
         by_game[game] = rows
-    write_both(args.out or report, by_game, args.reps)
+    if not args.game:
+        write_both(args.out or os.path.join(root, "docs", "report"), by_game, args.reps)
     return 0

@@ -33,7 +33,7 @@ import numpy as np  # noqa: E402
 
 from . import stats as st  # noqa: E402
 from .config import Config  # noqa: E402
-from .runs import Runs, load_episodes, parse_selection, read_csv, sweep_runs  # noqa: E402
+from .runs import Runs, load_episodes, outputs, parse_selection, read_csv, sweep_runs  # noqa: E402
 from .states import STATE_NAMES, transition_prob  # noqa: E402
 from .tables import behaviour_table, ci_over_runs, probe_value, rounded, table3, write_rows  # noqa: E402
 
@@ -337,12 +337,12 @@ def draw_all(root, out, R, cfg, found, seed, reps):
 
 
 def main(argv=None):
-    """seed_figures.py: every figure and table across training seeds, into --out (default ROOT/docs/report/<game>)."""
+    """seed_figures.py: every figure and table across training seeds, per game (runs.outputs)."""
     args = parse_selection("The paper's Figures 4-7, Table 3, the behaviour table and the t-SNE across training "
-                           "seeds, from the committed per-run analyses.", argv)
-    root = args.root
-    out = args.out or os.path.join(root, "docs", "report", args.game)
-    os.makedirs(out, exist_ok=True)
-    found = sweep_runs(root, args.steps, set(args.extra), game=args.game)
-    draw_all(root, out, Runs(root, found, args.game), Config(root), found, args.seed, args.reps)
+                           "seeds of each game, from the committed per-run analyses.", argv, game=None)
+    cfg = Config(args.root)
+    for game, out in outputs(args, cfg.sweep_games()):
+        os.makedirs(out, exist_ok=True)
+        found = sweep_runs(args.root, args.steps, set(args.extra), game=game)
+        draw_all(args.root, out, Runs(args.root, found, game), cfg, found, args.seed, args.reps)
     return 0

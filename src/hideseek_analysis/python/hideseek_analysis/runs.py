@@ -40,6 +40,15 @@ def parse_selection(description, argv=None, more=None, game="v2"):
     return args
 
 
+def outputs(args, games, *sub):
+    """[(game, its output folder)]: --game's alone into --out (default ROOT/docs/report/<game>/SUB),
+    or each of `games` (config/sweep.yaml's) into OUT/<game>/SUB (default OUT: ROOT/docs/report)."""
+    report = os.path.join(args.root, "docs", "report")
+    if args.game:
+        return [(args.game, args.out or os.path.join(report, args.game, *sub))]
+    return [(game, os.path.join(args.out or report, game, *sub)) for game in games]
+
+
 def selection_arguments(parser, game="v2"):
     """The options every tool across training seeds takes: which checkout, where to write, which
     runs (the sweep's, by game and steps, plus --extra by name), and how many bootstrap resamples."""

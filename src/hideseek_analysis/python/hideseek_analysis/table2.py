@@ -30,7 +30,7 @@ import numpy as np
 from . import stats as st
 from .config import Config
 from .figures import performance_profile
-from .runs import calibration, load_episodes, parse_selection, read_csv, sweep_runs
+from .runs import calibration, load_episodes, outputs, parse_selection, read_csv, sweep_runs
 from .tables import fmt_ci, write_rows
 
 
@@ -327,21 +327,22 @@ def write_all(out, source, cfg, order, seed, reps):
 def main(argv=None):
     """table2.py: Table 2 of the sweep's runs (default) or of one evaluation of the shipped policies."""
     args = parse_selection("Table 2 with 95 % intervals, the paper's orderings and the two readings of its stochastic "
-                           "seeker: of the sweep's runs, or (--evaluations) of the shipped policies.", argv,
+                           "seeker: of each game's sweep runs, or (--evaluations) of the shipped policies.", argv,
                            lambda p: p.add_argument("--evaluations", help="the shipped policies' evaluations "
-                                                    "(hideseek_pipeline report --from-scratch's REPORT/evaluations) instead of the sweep's runs"))
-    root = args.root
-    cfg = Config(root)
+                                                    "(hideseek_pipeline report --from-scratch's REPORT/evaluations) "
+                                                    "instead of the sweep's runs"), game=None)
+    cfg = Config(args.root)
     if args.evaluations:
         source = EvaluationsSource(os.path.abspath(args.evaluations))
-        out = args.out or os.path.join(os.path.dirname(source.folder), "table2_shipped")
+        made = [(source, args.out or os.path.join(os.path.dirname(source.folder), "table2_shipped"))]
     else:
-        source = SweepSource(root, sweep_runs(root, args.steps, set(args.extra), game=args.game), args.game)
-        out = args.out or os.path.join(root, "docs", "report", args.game, "table2_seeds")
-    try:
-        n = write_all(out, source, cfg, cfg.table_order(), args.seed, args.reps)
-    except ValueError as e:  # an evaluation without episodes
-        print("table2: %s" % e, file=sys.stderr)
-        return 2
-    print("table2: %d variant rows from %d runs into %s" % (n, source.run_count(), out))
+        made = [(SweepSource(args.root, sweep_runs(args.root, args.steps, set(args.extra), game=game), game), out)
+                for game, out in outputs(args, cfg.sweep_games(), "table2_seeds")]
+    for source, out in made:
+        try:
+            n = write_all(out, source, cfg, cfg.table_order(), args.seed, args.reps)
+        except ValueError as e:  # an evaluation without episodes
+            print("table2: %s" % e, file=sys.stderr)
+            return 2
+        print("table2: %d variant rows from %d runs into %s" % (n, source.run_count(), out))
     return 0

@@ -20,38 +20,19 @@ import os
 import shutil
 import time
 
-import yaml
 from tqdm import tqdm
 
 from hideseek_pipeline.records import load_registry_module
 from hideseek_pipeline.workspace import ToolError
 
 
-def sweep_games(root):
-    """The games config/sweep.yaml's phases train, in their order (v2, v3); a phase without one
-    trains config/games.yaml's default, as the queue does."""
-    with open(os.path.join(root, "config", "sweep.yaml")) as f:
-        sweep = yaml.safe_load(f) or {}
-    default = sweep.get("game") or load_registry_module(root).default_game(os.path.join(root, "config", "games.yaml"))
-    games = []
-    for phase in sweep.get("phases") or []:
-        game = str(phase.get("game", default))
-        if game not in games:
-            games.append(game)
-    return games
-
-
 def across_seeds(ws, report, say):
-    """Per game the sweep trains, Table 2 and the figures across training seeds into REPORT/<game>/,
-    then the claims of every game, each into REPORT/<game>/ and side by side into REPORT/claims.md,
-    from the committed records."""
+    """Per game the sweep trains (the analysis reads them from config/sweep.yaml), Table 2 and the
+    figures across training seeds into REPORT/<game>/, then the claims of every game, each into
+    REPORT/<game>/ and side by side into REPORT/claims.md, from the committed records."""
     say("report: across training seeds, from the committed evaluations and analyses")
-    steps = []
-    for game in sweep_games(ws.root):
-        steps += [("table2.py", "--game", game, "--out", os.path.join(report, game, "table2_seeds")),
-                  ("seed_figures.py", "--game", game, "--out", os.path.join(report, game))]
-    for step in tqdm(steps + [("claims.py", "--out", report)], desc="report: across seeds", unit="table"):
-        for line in ws.python(*step, show_stderr=True).splitlines():
+    for step in tqdm(("table2.py", "seed_figures.py", "claims.py"), desc="report: across seeds", unit="step"):
+        for line in ws.python(step, "--out", report, show_stderr=True).splitlines():
             tqdm.write("  " + line)
 
 
