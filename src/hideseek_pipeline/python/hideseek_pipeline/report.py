@@ -87,7 +87,7 @@ def evaluate_shipped(ws, reg, report, variants, keep, port, say):
     ws.python("table2.py", "--evaluations", folder, "--out", os.path.join(report, "table2_shipped"), show_stderr=True)
 
 
-def analyse_shipped(ws, reg, report, work, variants, steps, port, say):
+def analyse_shipped(ws, reg, report, work, variants, steps, port):
     """analyze.launch on every shipped policy of `variants` (its label's folder of the report)."""
     shipped = [(reg.label(v, n), v, path) for v in reg.paper_order() for n in reg.NETWORKS
                for _, path in [reg.shipped(v, n)] if path and v in variants]
@@ -131,7 +131,7 @@ def report(ws, report_dir=None, from_scratch=False, work_dir=None, steps=50000, 
     evaluate_shipped(ws, reg, report_dir, variants or known, bool(variants), port, say)
     say("report: [2/3] the analysis of every shipped policy (%d steps each; %d s so far)" % (steps, time.time() - start))
     work = os.path.abspath(os.path.expanduser(work_dir or "~/.ros/hideseek_reproduce"))
-    analyse_shipped(ws, reg, report_dir, work, variants or known, steps, port, say)
+    analyse_shipped(ws, reg, report_dir, work, variants or known, steps, port)
     say("report: [3/3] tables and figures across variants")
     ws.python("reproduce_report.py", report_dir, "--paper", os.path.join(ws.root, "config", "paper_reference.yaml"),
               show_stderr=True)
