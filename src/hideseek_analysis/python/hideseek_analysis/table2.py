@@ -209,12 +209,9 @@ ORDER_INTRO = (
 
 def write_orderings(out, rows, rho, in_paper):
     """orderings.csv; returns orderings.md's lines."""
-    with open(os.path.join(out, "orderings.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=ORDER_FIELDS)
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: (round(r[k], 4) if isinstance(r[k], float) else r[k]) for k in ORDER_FIELDS})
-        if rho:
+    _rounded_rows(os.path.join(out, "orderings.csv"), rows, ORDER_FIELDS)
+    if rho:
+        with open(os.path.join(out, "orderings.csv"), "a") as f:
             f.write("# spearman_rho_with_paper,%d variants,%.4f,%.4f,%.4f\n" % (len(in_paper), rho[0], *rho[1]))
     md = ["# The paper's orderings", "", ORDER_INTRO, "",
           "| ordering (paper) | runs | P(X > Y), runs [95 % CI] | P(X > Y), episodes [95 % CI] |", "| --- | --- | --- | --- |"]
