@@ -160,14 +160,17 @@ std::optional<StepResult> Arena::advanceFrame(Action hider, Action seeker) {
   ++step_;
   updateLabels();
   StepResult result;
-  const RewardOptions& r = options_.rewards;
+  // One rule, two agents: the seeker's reward mirrors the hider's through its own numbers.
+  auto reward = [&](const RewardOptions& r) {
+    if (captured_) return r.capture;
+    return r.survive + (r.visibility ? (labels_.seeker_sees_hider ? r.seen : r.unseen) : 0.0);
+  };
+  result.reward = reward(options_.rewards);
+  result.seeker_reward = reward(options_.seeker_rewards);
   if (captured_) {
-    result.reward = r.capture;
     result.outcome = Outcome::kCaptured;
-  } else {
-    result.reward = r.survive;
-    if (r.visibility) result.reward += labels_.seeker_sees_hider ? r.seen : r.unseen;
-    if (step_ >= options_.max_steps) result.outcome = Outcome::kSurvived;
+  } else if (step_ >= options_.max_steps) {
+    result.outcome = Outcome::kSurvived;
   }
   return_ += result.reward;
   return result;

@@ -11,10 +11,21 @@ GameLoop::GameLoop(const GameOptions& game, std::shared_ptr<const MapSpec> map, 
              options.seed_stride),
       scheduler_(options.mode, options.num_arenas, options.stale_action_timeout, options.resend_period,
                  actionCount(game, true)),
-      render_(options.render) {
+      render_(options.render),
+      render_seeker_(options.render_seeker) {
+  if (render_seeker_ && game.seeker_decision_frames != game.action_repeat) {
+    throw std::invalid_argument(
+        "GameLoop: a learning seeker decides once a decision step, but the game's seeker "
+        "decides every " +
+        std::to_string(game.seeker_decision_frames) + " of its " + std::to_string(game.action_repeat) +
+        " frames (play withLearnedSeeker(game))");
+  }
+  if (render_seeker_ && !render_) throw std::invalid_argument("GameLoop: render_seeker needs render");
   const size_t n = static_cast<size_t>(options.num_arenas);
   if (render_) images_.resize(world_.imageBytes() * n);
+  if (render_seeker_) seeker_images_.resize(world_.imageBytes() * n);
   rewards_.assign(n, 0.f);
+  seeker_rewards_.assign(n, 0.f);
   done_.assign(n, 0);
   outcomes_.assign(n, 0);
   last_hider_.assign(n, Action::kStay);
@@ -27,6 +38,7 @@ GameLoop::GameLoop(const GameOptions& game, std::shared_ptr<const MapSpec> map, 
 
 void GameLoop::render() {
   if (render_) world_.renderHiderViews(images_.data());
+  if (render_seeker_) world_.renderSeekerViews(seeker_images_.data());
 }
 
 uint32_t GameLoop::expectedStepId(Player player, int arena) const {
@@ -116,6 +128,7 @@ Decision GameLoop::conclude(std::vector<ArenaStep> steps) {
   d.seeker = step_first_seeker_;
   for (size_t i = 0; i < steps.size(); ++i) {
     rewards_[i] = static_cast<float>(steps[i].result.reward);
+    seeker_rewards_[i] = static_cast<float>(steps[i].result.seeker_reward);
     done_[i] = steps[i].result.done();
     outcomes_[i] = static_cast<uint8_t>(steps[i].result.outcome);
   }
@@ -143,6 +156,7 @@ std::optional<Decision> GameLoop::reset(int arena, int64_t seed) {
     if (seed >= 0) s = static_cast<uint32_t>(seed + (arena == -1 ? i : 0));
     world_.resetArena(i, s);
     rewards_[i] = 0.f;
+    seeker_rewards_[i] = 0.f;
     done_[i] = 0;
     outcomes_[i] = 0;
   }

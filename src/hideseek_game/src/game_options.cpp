@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <utility>
 
 #include "hideseek_game/yaml_fields.h"
 
@@ -109,13 +110,13 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
     g.camera.far_clip = c.number("far_clip", g.camera.far_clip, 1.0, 1000.0);
     c.rejectUnknown();
   }
-  {
-    YamlFields r = section("rewards");
-    g.rewards.survive = r.number("survive", g.rewards.survive, -10.0, 10.0);
-    g.rewards.capture = r.number("capture", g.rewards.capture, -100.0, 100.0);
-    g.rewards.visibility = r.boolean("visibility", g.rewards.visibility);
-    g.rewards.unseen = r.number("unseen", g.rewards.unseen, -10.0, 10.0);
-    g.rewards.seen = r.number("seen", g.rewards.seen, -10.0, 10.0);
+  for (auto [name, rewards] : {std::pair{"rewards", &g.rewards}, std::pair{"seeker_rewards", &g.seeker_rewards}}) {
+    YamlFields r = section(name);
+    rewards->survive = r.number("survive", rewards->survive, -10.0, 10.0);
+    rewards->capture = r.number("capture", rewards->capture, -100.0, 100.0);
+    rewards->visibility = r.boolean("visibility", rewards->visibility);
+    rewards->unseen = r.number("unseen", rewards->unseen, -10.0, 10.0);
+    rewards->seen = r.number("seen", rewards->seen, -10.0, 10.0);
     r.rejectUnknown();
   }
   f.rejectUnknown();
@@ -156,6 +157,11 @@ std::string applyGameFile(const std::string& path, GameOptions& g, int depth) {
 }
 
 }  // namespace
+
+GameOptions withLearnedSeeker(GameOptions game) {
+  game.seeker_decision_frames = game.action_repeat;
+  return game;
+}
 
 VariantConfig loadVariantConfig(const std::string& game_file, const std::string& variant_file) {
   VariantConfig v;

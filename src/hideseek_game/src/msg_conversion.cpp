@@ -274,12 +274,20 @@ const std::vector<hideseek_msgs::ArenaMap>& ArenaMapCache::update(const World& w
 }
 
 hideseek_msgs::SeekerObservationBatch toSeekerObservationBatch(const World& world, const std::vector<uint8_t>& done,
-                                                               const std::vector<hideseek_msgs::ArenaMap>& maps) {
+                                                               const std::vector<hideseek_msgs::ArenaMap>& maps,
+                                                               const std::vector<float>& rewards,
+                                                               const std::vector<uint8_t>& outcome,
+                                                               const std::vector<uint8_t>& images) {
   hideseek_msgs::SeekerObservationBatch seen;
   const int n = world.numArenas();
   seen.num_arenas = static_cast<uint32_t>(n);
   seen.done = done;
   seen.maps = maps;
+  seen.rewards = rewards;
+  seen.outcome = outcome;
+  seen.height = static_cast<uint32_t>(world.options().camera.height);
+  seen.width = static_cast<uint32_t>(world.options().camera.width);
+  seen.images = images;
   for (int i = 0; i < n; ++i) {
     const Arena& a = world.arena(i);
     const SeekerPerception perception = seekerPerception(a);
@@ -356,16 +364,33 @@ std::string checkObservationBatch(const hideseek_msgs::ObservationBatch& msg, in
                               {"done", msg.done.size()}});
 }
 
-std::string checkSeekerObservationBatch(const hideseek_msgs::SeekerObservationBatch& msg, size_t max_arenas) {
+std::string checkSeekerObservationBatch(const hideseek_msgs::SeekerObservationBatch& msg, size_t max_arenas, int height,
+                                        int width) {
   const size_t n = msg.num_arenas;
   if (n == 0 || n > max_arenas) return "num_arenas " + std::to_string(n) + " (1 to " + std::to_string(max_arenas) + ")";
-  return firstWrongLength(n, {{"pose", msg.pose.size()},
-                              {"sees_hider", msg.sees_hider.size()},
-                              {"hider_position", msg.hider_position.size()},
-                              {"step", msg.step.size()},
-                              {"episode", msg.episode.size()},
-                              {"seed", msg.seed.size()},
-                              {"maps", msg.maps.size()}});
+  const std::string wrong = firstWrongLength(n, {{"pose", msg.pose.size()},
+                                                 {"sees_hider", msg.sees_hider.size()},
+                                                 {"hider_position", msg.hider_position.size()},
+                                                 {"done", msg.done.size()},
+                                                 {"step", msg.step.size()},
+                                                 {"episode", msg.episode.size()},
+                                                 {"seed", msg.seed.size()},
+                                                 {"maps", msg.maps.size()},
+                                                 {"rewards", msg.rewards.size()},
+                                                 {"outcome", msg.outcome.size()}});
+  if (!wrong.empty() || height == 0) return wrong;
+  if (msg.images.empty()) {
+    return "no images: a learning seeker needs the world's seeker cameras (start the world with learned_seeker:=true)";
+  }
+  if (msg.height != static_cast<uint32_t>(height) || msg.width != static_cast<uint32_t>(width)) {
+    return "images of " + std::to_string(msg.height) + "x" + std::to_string(msg.width) + ", the seeker sees " +
+           std::to_string(height) + "x" + std::to_string(width);
+  }
+  const size_t bytes = static_cast<size_t>(height) * width * 3;
+  if (msg.images.size() != n * bytes) {
+    return std::to_string(msg.images.size()) + " image bytes for " + std::to_string(n) + " RGB8 images";
+  }
+  return "";
 }
 
 }  // namespace hideseek_game

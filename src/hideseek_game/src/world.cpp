@@ -95,6 +95,14 @@ void World::renderHiderViews(uint8_t* out, RenderMode mode) {
   renderer_->render(views_, mode, out);
 }
 
+void World::renderSeekerViews(uint8_t* out, RenderMode mode) {
+  if (!renderer_) throw std::logic_error("World: built without a renderer");
+  syncScenes();
+  views_.resize(arenas_.size());
+  for (int i = 0; i < numArenas(); ++i) views_[i] = {i, arenas_[i].seeker(), arenas_[i].hider(), true};
+  renderer_->render(views_, mode, out);
+}
+
 void World::renderSeekerView(int i, uint8_t* out, RenderMode mode) {
   if (!renderer_) throw std::logic_error("World: built without a renderer");
   syncScenes();

@@ -29,6 +29,9 @@ hideseek_msgs::SeekerObservationBatch seekerObservations(uint32_t n) {
   b.episode.assign(n, 0);
   b.seed.assign(n, 1);
   b.maps.resize(n);
+  b.done.assign(n, 0);
+  b.rewards.assign(n, 0.f);
+  b.outcome.assign(n, 0);
   return b;
 }
 
@@ -57,6 +60,24 @@ TEST(CheckSeekerObservationBatch, AcceptsAWholeBatchAndNamesWhatIsWrong) {
   b.hider_position.clear();
   EXPECT_EQ(checkSeekerObservationBatch(b, 64), "hider_position has 0 entries for 3 arenas");
   EXPECT_EQ(checkSeekerObservationBatch(seekerObservations(65), 64), "num_arenas 65 (1 to 64)");
+  b = seekerObservations(3);
+  b.rewards.pop_back();
+  EXPECT_EQ(checkSeekerObservationBatch(b, 64), "rewards has 2 entries for 3 arenas");
+}
+
+// A learning seeker needs every arena's camera image, of its size; the scripted one needs none.
+TEST(CheckSeekerObservationBatch, ALearningSeekerNeedsItsImages) {
+  auto b = seekerObservations(2);
+  EXPECT_EQ(checkSeekerObservationBatch(b, 64), "");
+  EXPECT_EQ(
+      checkSeekerObservationBatch(b, 64, 2, 2),
+      "no images: a learning seeker needs the world's seeker cameras (start the world with learned_seeker:=true)");
+  b.height = b.width = 2;
+  b.images.assign(2 * 2 * 2 * 3, 7);
+  EXPECT_EQ(checkSeekerObservationBatch(b, 64, 2, 2), "");
+  EXPECT_EQ(checkSeekerObservationBatch(b, 64, 84, 84), "images of 2x2, the seeker sees 84x84");
+  b.images.pop_back();
+  EXPECT_EQ(checkSeekerObservationBatch(b, 64, 2, 2), "23 image bytes for 2 RGB8 images");
 }
 
 }  // namespace

@@ -247,4 +247,51 @@ TEST(GameLoop, RendersTheHiderViewsAfterEveryDecision) {
   EXPECT_EQ(game.hiderImages(), expected);
 }
 
+namespace {
+
+// A learning seeker plays: every arena's seeker view is rendered after each decision (its input),
+// with its rewards, the hider's mirrored: -0.001 a step, +1 on capture. A game whose seeker
+// decides inside a step is refused (a learning seeker decides once a step: withLearnedSeeker).
+TEST(GameLoop, ALearningSeekerGetsItsViewsAndRewards) {
+  VariantConfig v = loadVariant("basic");
+  GameLoopOptions o = unrendered(2, 3);
+  o.render = true;
+  o.render_seeker = true;
+  o.render_threads = 1;
+  EXPECT_THROW(GameLoop(v.game, loadMap("deterministic"), o), std::invalid_argument);
+  const GameOptions game_options = withLearnedSeeker(v.game);
+  EXPECT_EQ(game_options.seekerDecisionsPerStep(), 1);
+  GameLoop game(game_options, loadMap("deterministic"), o);
+  ASSERT_EQ(game.seekerImages().size(), 2 * game.world().imageBytes());
+  int asked = 0;
+  game.step({Action::kStay, Action::kStay}, [&](int, const SeekerPerception&) {
+    ++asked;
+    return Action::kTurnLeft;
+  });
+  EXPECT_EQ(asked, 2);  // once per arena and step
+  std::vector<uint8_t> expected(2 * game.world().imageBytes());
+  game.world().renderSeekerViews(expected.data());
+  EXPECT_EQ(game.seekerImages(), expected);
+  std::vector<uint8_t> one(game.world().imageBytes());
+  game.world().renderSeekerView(1, one.data());
+  EXPECT_TRUE(std::equal(one.begin(), one.end(), game.seekerImages().begin() + one.size()));
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_FLOAT_EQ(game.seekerRewards()[i], -0.001f);
+    EXPECT_FLOAT_EQ(game.rewards()[i], 0.001f);
+  }
+  // Chase the standing hiders: the capture pays +1.
+  std::vector<bool> captured(2, false);
+  for (uint32_t step = 1; step < 400 && !(captured[0] && captured[1]); ++step) {
+    game.step({Action::kStay, Action::kStay}, [&](int, const SeekerPerception& p) { return probeSeeker(p, step); });
+    for (int i = 0; i < 2; ++i) {
+      if (game.outcomes()[i] != static_cast<uint8_t>(Outcome::kCaptured) || captured[i]) continue;
+      captured[i] = true;
+      EXPECT_FLOAT_EQ(game.seekerRewards()[i], 1.0f);
+      EXPECT_FLOAT_EQ(game.rewards()[i], -1.0f);
+    }
+  }
+  EXPECT_TRUE(captured[0] && captured[1]);
+}
+
+}  // namespace
 }  // namespace hideseek_game

@@ -129,7 +129,10 @@ CheckpointInfo infoOf(torch::serialize::InputArchive& archive, const std::string
   if (archive.try_read("game", v)) info.game = v.toStringRef();  // absent: written before v3, so v2
   if (archive.try_read("role", v)) info.role = v.toStringRef();  // absent: written before the seeker learned
   info.steps = read("steps").toInt();
-  info.network = info.architecture == kArchitectureGru ? NetworkKind::kGru : NetworkKind::kFeedForward;
+  if (const std::optional<ArchitectureParts> parts = parseArchitecture(info.architecture)) {
+    info.network = parts->network;
+    info.actions = parts->actions;
+  }
   // Progress entries are younger than the format: a checkpoint without them starts from zero.
   if (archive.try_read("wall_s", v)) info.wall_s = v.toDouble();
   if (archive.try_read("episodes", v)) info.episodes = v.toInt();
@@ -152,7 +155,8 @@ CheckpointInfo readCheckpointInfo(const std::string& path) {
 }
 
 HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width, CheckpointInfo* info_out,
-                        std::optional<NetworkKind> expected_network, const std::string& expected_role) {
+                        std::optional<NetworkKind> expected_network, const std::string& expected_role,
+                        int expected_actions) {
   auto archive = openArchive(path);
   const CheckpointInfo info = infoOf(archive, path);
   if (info.role != expected_role) {
@@ -161,10 +165,15 @@ HiderNet loadCheckpoint(const std::string& path, int expected_height, int expect
                              "'s nodes and tools play and train " + expected_role + "s only; give a " + expected_role +
                              "'s checkpoint");
   }
-  if (info.architecture != kArchitecture && info.architecture != kArchitectureGru) {
+  if (!parseArchitecture(info.architecture)) {
     throw std::runtime_error("checkpoint " + path + " holds architecture '" + info.architecture +
                              "', this build runs '" + kArchitecture + "' (network ff) or '" + kArchitectureGru +
-                             "' (network gru)");
+                             "' (network gru), with 2 to " + std::to_string(kMaxActions) + " actions");
+  }
+  if (info.actions != expected_actions) {
+    throw std::runtime_error("checkpoint " + path + " chooses among " + std::to_string(info.actions) +
+                             " actions, this game gives the " + expected_role + " " + std::to_string(expected_actions) +
+                             " (a seeker's actions differ between games: train it on this game)");
   }
   if (expected_network && *expected_network != info.network) {
     throw std::runtime_error("checkpoint " + path + " holds a " +
@@ -178,7 +187,7 @@ HiderNet loadCheckpoint(const std::string& path, int expected_height, int expect
                              std::to_string(info.image_width) + " images, the world renders " +
                              std::to_string(expected_height) + "x" + std::to_string(expected_width));
   }
-  HiderNet net(info.image_height, info.image_width, info.network);
+  HiderNet net(info.image_height, info.image_width, info.network, info.actions);
   torch::serialize::InputArchive weights;
   if (!archive.try_read("model", weights)) throw std::runtime_error("checkpoint " + path + " has no weights");
   // libtorch's load replaces tensors whatever their shape, so compare against the built network.

@@ -22,8 +22,30 @@ NetworkKind parseNetwork(const std::string& name, const std::string& what) {
   throw std::invalid_argument(what + " must be ff or gru, got '" + name + "'");
 }
 
-HiderNetImpl::HiderNetImpl(int image_height, int image_width, NetworkKind network)
-    : image_height_(image_height), image_width_(image_width), network_(network) {
+std::string architectureName(NetworkKind kind, int actions) {
+  std::string name = kind == NetworkKind::kGru ? kArchitectureGru : kArchitecture;
+  if (actions != kActions) {
+    const std::string five = "actor fc512-" + std::to_string(kActions) + " ";
+    name.replace(name.find(five), five.size(), "actor fc512-" + std::to_string(actions) + " ");
+  }
+  return name;
+}
+
+std::optional<ArchitectureParts> parseArchitecture(const std::string& architecture) {
+  for (NetworkKind kind : {NetworkKind::kFeedForward, NetworkKind::kGru}) {
+    for (int actions = 2; actions <= kMaxActions; ++actions) {
+      if (architectureName(kind, actions) == architecture) return ArchitectureParts{kind, actions};
+    }
+  }
+  return std::nullopt;
+}
+
+HiderNetImpl::HiderNetImpl(int image_height, int image_width, NetworkKind network, int actions)
+    : image_height_(image_height), image_width_(image_width), network_(network), actions_(actions) {
+  if (actions < 2 || actions > kMaxActions) {
+    throw std::invalid_argument("hider network: " + std::to_string(actions) + " actions (2 to " +
+                                std::to_string(kMaxActions) + ")");
+  }
   const int h = convOut(convOut(convOut(image_height, 8, 4), 4, 2), 3, 1);
   const int w = convOut(convOut(convOut(image_width, 8, 4), 4, 2), 3, 1);
   if (h < 1 || w < 1) {
@@ -37,7 +59,7 @@ HiderNetImpl::HiderNetImpl(int image_height, int image_width, NetworkKind networ
   if (recurrent()) gru_ = register_module("gru", torch::nn::GRUCell(torch::nn::GRUCellOptions(kFeatures, kHidden)));
   const int head_in = recurrent() ? kHidden : kFeatures;
   actor_hidden_ = register_module("actor_hidden", torch::nn::Linear(head_in, 512));
-  actor_out_ = register_module("actor_out", torch::nn::Linear(512, kActions));
+  actor_out_ = register_module("actor_out", torch::nn::Linear(512, actions_));
   critic_hidden_ = register_module("critic_hidden", torch::nn::Linear(head_in, 512));
   critic_out_ = register_module("critic_out", torch::nn::Linear(512, 1));
 }
@@ -104,7 +126,7 @@ HiderOutput HiderNetImpl::forwardSequence(const torch::Tensor& images, const tor
     *hidden_out = hidden;
   }
   heads(x, out);
-  out.logits = out.logits.view({steps, batch, kActions});
+  out.logits = out.logits.view({steps, batch, actions_});
   out.value = out.value.view({steps, batch});
   return out;
 }
@@ -121,7 +143,7 @@ HiderNetImpl::Flops HiderNetImpl::forwardFlops() const {
   f.total = f.first_conv + conv(h2, w2, 64, 4, 32) + conv(h3, w3, 64, 3, 64) + fc(64 * h3 * w3, kFeatures);
   if (recurrent()) f.total += fc(kFeatures, 3 * kHidden) + fc(kHidden, 3 * kHidden);
   const int head_in = recurrent() ? kHidden : kFeatures;
-  f.total += 2 * fc(head_in, 512) + fc(512, kActions) + fc(512, 1);
+  f.total += 2 * fc(head_in, 512) + fc(512, actions_) + fc(512, 1);
   return f;
 }
 

@@ -2,9 +2,6 @@
 
 #include <hideseek_msgs/ActionBatch.h>
 
-#include <algorithm>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "hideseek_game/game_selection.h"
@@ -14,217 +11,79 @@
 #include "hideseek_game/run_registry.h"
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/wall_throttle.h"
-#include "hideseek_hider/checkpoint.h"
-#include "hideseek_hider/code_version.h"
 #include "hideseek_hider/hider_defaults.h"
 
 namespace hideseek_hider {
 
-namespace {
-
-torch::Device deviceFrom(const std::string& name, const std::string& param) {
-  if (name == "cpu") return torch::kCPU;
-  if (name == "cuda") {
-    if (!torch::cuda::is_available()) {
-      throw std::runtime_error("parameter " + param + " is 'cuda' but the linked libtorch has no usable CUDA device");
-    }
-    return torch::kCUDA;
-  }
-  throw std::runtime_error("parameter " + param + " must be 'cpu' or 'cuda', got '" + name + "'");
-}
-
-}  // namespace
-
 HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   using hideseek_game::readString;
   HiderNodeOptions o;
+  LearnerOptions& l = o.learner;
   // Every default below comes from the defaults file (config/hider.yaml); a parameter overrides it.
   const HiderDefaults d =
       loadHiderDefaults(readString(pnh, "defaults", hideseek_game::configDirectory() + "/hider.yaml"));
-  o.variant = hideseek_game::loadVariantParams(pnh);
+  l.variant = hideseek_game::loadVariantParams(pnh);
   o.policy = readString(pnh, "policy", "random");
   // Parsed in every mode, so that a typo is refused even where the network is not used.
   const std::string network = hideseek_game::readChoice(pnh, "network", d.network, {"auto", "ff", "gru"});
-  if (network != "auto") o.network = parseNetwork(network, pnh.resolveName("network"));
+  if (network != "auto") l.network = parseNetwork(network, pnh.resolveName("network"));
   std::string mode =
       hideseek_game::readChoice(pnh, "mode", o.policy == "random" ? "random" : "policy", {"random", "policy", "train"});
   if (o.policy == hideseek_game::kShippedPolicy && mode == "policy") {
     const std::string registry = hideseek_game::requireString(pnh, "policy_registry", "the run registry file");
-    o.policy = hideseek_game::shippedPolicyFile(registry, o.variant.name, network == "gru" ? "gru" : "ff",
-                                                o.variant.game.name);
+    o.policy = hideseek_game::shippedPolicyFile(registry, l.variant.name, network == "gru" ? "gru" : "ff",
+                                                l.variant.game.name);
     if (o.policy.empty()) {
       ROS_WARN(
           "hider: no policy is shipped for variant '%s' on game %s (%s); playing the uniformly random hider. "
-          "policy:=FILE plays a checkpoint; scripts/train_variant.sh trains one.",
-          o.variant.name.c_str(), o.variant.game.name.c_str(), registry.c_str());
+          "policy:=FILE plays a checkpoint; hideseek_pipeline train trains one.",
+          l.variant.name.c_str(), l.variant.game.name.c_str(), registry.c_str());
       o.policy = "random";
       mode = "random";
     }
   }
-  o.mode = mode == "random" ? HiderMode::kRandom : mode == "policy" ? HiderMode::kPolicy : HiderMode::kTrain;
-  o.threads = hideseek_game::readInt(pnh, "threads", d.threads, 1, 64);
-  o.precision = parsePrecision(readString(pnh, "precision", d.precision), pnh.resolveName("precision"));
-  o.memory_format =
-      parseMemoryFormat(readString(pnh, "memory_format", d.memory_format), pnh.resolveName("memory_format"));
-  o.memoryless = hideseek_game::readBool(pnh, "memoryless", d.memoryless);
-  if (o.memoryless && o.mode != HiderMode::kPolicy) {
-    throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true, but the hider is in " + mode +
-                                " mode: memoryless applies to a GRU policy only");
-  }
-  if (o.mode == HiderMode::kRandom) return o;
-  o.device = deviceFrom(readString(pnh, "device", d.device), pnh.resolveName("device"));
-  o.greedy = hideseek_game::readBool(pnh, "greedy", d.greedy);
-  if (o.mode == HiderMode::kPolicy) return o;
-  TrainingOptions& t = o.training;
-  t.variant = o.variant.name;
-  t.game = o.variant.game.name;
-  t.image_height = o.variant.game.camera.height;
-  t.image_width = o.variant.game.camera.width;
-  t.output_dir = hideseek_game::requireString(pnh, "output_dir", "a folder, in train mode");
-  // A double: launch files write large step counts as 2e6.
-  t.total_steps = static_cast<int64_t>(hideseek_game::readDouble(pnh, "total_steps", d.total_steps, 1.0, 1e12));
-  t.checkpoint_interval_s = hideseek_game::readDouble(pnh, "checkpoint_interval", d.checkpoint_interval_s, 1e-3, 1e6);
-  o.ppo = loadPpoOptions(hideseek_game::requireString(pnh, "ppo_config", "a file path, in train mode"));
-  o.num_arenas =
-      hideseek_game::readInt(pnh, "num_arenas", hideseek_game::kWatchingArenas, 1, hideseek_game::kMaxArenas);
-  o.seed = hideseek_game::readInt(pnh, "seed", 0, 0, hideseek_game::kMaxSeed);
-  RendezvousOptions& r = o.rendezvous;
-  r.world_size = hideseek_game::readInt(pnh, "world_size", 1, 1, 4096);
-  r.rank = hideseek_game::readInt(pnh, "rank", 0, 0, 4095);
-  if (r.rank >= r.world_size) {
-    throw std::invalid_argument("parameter " + pnh.resolveName("rank") + " is " + std::to_string(r.rank) +
-                                ", not below " + pnh.resolveName("world_size") + " (" + std::to_string(r.world_size) +
-                                ")");
-  }
-  r.address = readString(pnh, "rendezvous", r.address);
-  if (r.world_size > 1) parseHostPort(r.address, "parameter " + pnh.resolveName("rendezvous"));
-  r.timeout_s = hideseek_game::readDouble(pnh, "rendezvous_timeout", r.timeout_s, 1.0, 86400.0);
-  r.interface_host = readString(pnh, "rendezvous_interface", "");
-  return o;
-}
-
-namespace {
-
-// What every rank of a training across machines must share, compared at the rendezvous.
-Fingerprint trainingFingerprint(const TrainingOptions& t, const PpoOptions& p, int num_arenas,
-                                const hideseek_game::VariantConfig& variant) {
-  auto text = [](double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
-  };
-  return {{"variant", t.variant},
-          {"game", variant.game.name},
-          {"network", networkName(t.network)},
-          {"precision", precisionName(t.precision)},
-          {"code_version", codeVersion()},
-          {"image", std::to_string(t.image_width) + "x" + std::to_string(t.image_height)},
-          {"num_arenas", std::to_string(num_arenas)},
-          {"total_steps", std::to_string(t.total_steps)},
-          {"ppo", "rollout_steps=" + std::to_string(p.rollout_steps) + " epochs=" + std::to_string(p.epochs) +
-                      " minibatches=" + std::to_string(p.minibatches) + " learning_rate=" + text(p.learning_rate) +
-                      " anneal=" + std::to_string(p.anneal_learning_rate) + " adam_epsilon=" + text(p.adam_epsilon) +
-                      " gamma=" + text(p.gamma) + " gae_lambda=" + text(p.gae_lambda) + " clip=" + text(p.clip) +
-                      " clip_value_loss=" + std::to_string(p.clip_value_loss) + " value_coef=" + text(p.value_coef) +
-                      " entropy_coef=" + text(p.entropy_coef) + " max_grad_norm=" + text(p.max_grad_norm) +
-                      " normalize_advantages=" + std::to_string(p.normalize_advantages) +
-                      " sequence_length=" + std::to_string(p.sequence_length)}};
-}
-
-}  // namespace
-
-HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
-  const HiderNodeOptions o = loadHiderNodeOptions(pnh);
-  image_height_ = o.variant.game.camera.height;
-  image_width_ = o.variant.game.camera.width;
-  // Measured on the 2-core reference machine: 2 intra-op threads train 1.5x faster than 1.
-  torch::set_num_threads(o.threads);
   std::optional<EvaderKind> evader;
   try {
-    if (o.mode == HiderMode::kPolicy) evader = scriptedPolicy(o.policy);
+    if (mode == "policy") evader = scriptedPolicy(o.policy);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("parameter " + pnh.resolveName("policy") + ": " + e.what());
   }
-  if (o.mode == HiderMode::kRandom) {
-    policy_ = std::make_unique<RandomHiderPolicy>();
-    ROS_INFO("hider: uniformly random policy");
-  } else if (evader) {
-    if (o.memoryless) {
-      throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true for " + o.policy +
-                                  ": memoryless applies to a GRU policy only");
-    }
-    policy_ = std::make_unique<ScriptedHiderPolicy>(*evader, o.variant);
-    ROS_INFO("hider: scripted evader %s (a baseline that reads the true state, not the image)", o.policy.c_str());
-  } else if (o.mode == HiderMode::kPolicy) {
-    const CpuBf16Support cpu = detectCpuBf16();
-    const PrecisionChoice precision = choosePrecision(o.precision, o.device, cpu);
-    CheckpointInfo info;
-    HiderNet net = loadCheckpoint(o.policy, image_height_, image_width_, &info, o.network);
-    net->setPrecision(precision.precision);
-    const MemoryFormatChoice layout = chooseMemoryFormat(o.memory_format, precision.precision, cpu);
-    net->setMemoryFormat(layout.format);
-    auto policy = std::make_unique<NetworkHiderPolicy>(net, o.device, o.greedy);
-    try {
-      policy->setMemoryless(o.memoryless);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true for " + o.policy + ": " +
-                                  e.what());
-    }
-    policy_ = std::move(policy);
-    ROS_INFO("hider: policy %s (variant '%s', game %s, network %s, %ld training steps) on %s in %s, %s%s",
-             o.policy.c_str(), info.variant.c_str(), info.game.c_str(), networkName(info.network),
-             static_cast<long>(info.steps), o.device.str().c_str(), precision.reason.c_str(), layout.reason.c_str(),
-             o.memoryless ? ", memoryless (the GRU state zeroed at every step)" : "");
-    if (info.game != o.variant.game.name) {
-      ROS_WARN("hider: %s was trained on game %s and plays game %s here (an evaluation across games)", o.policy.c_str(),
-               info.game.c_str(), o.variant.game.name.c_str());
-    }
-  } else {
-    startTraining(o);
+  o.mode = mode == "random" ? HiderNodeOptions::Mode::kRandom
+           : evader         ? HiderNodeOptions::Mode::kScripted
+                            : HiderNodeOptions::Mode::kLearner;
+  l.role = "hider";
+  l.actions = kActions;
+  l.mode = mode == "train" ? LearnerMode::kTrain : LearnerMode::kPolicy;
+  l.policy = o.policy;
+  loadLearnerParams(pnh, d, l, o.mode == HiderNodeOptions::Mode::kLearner);
+  if (l.memoryless && o.mode != HiderNodeOptions::Mode::kLearner) {
+    throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true, but the hider " +
+                                (evader ? "plays " + o.policy : "is in random mode") +
+                                ": memoryless applies to a GRU policy only");
+  }
+  return o;
+}
+
+HiderNode::HiderNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
+  const HiderNodeOptions o = loadHiderNodeOptions(pnh);
+  image_height_ = o.learner.variant.game.camera.height;
+  image_width_ = o.learner.variant.game.camera.width;
+  switch (o.mode) {
+    case HiderNodeOptions::Mode::kRandom:
+      policy_ = std::make_unique<RandomHiderPolicy>();
+      ROS_INFO("hider: uniformly random policy");
+      break;
+    case HiderNodeOptions::Mode::kScripted:
+      policy_ = std::make_unique<ScriptedHiderPolicy>(*scriptedPolicy(o.policy), o.learner.variant);
+      ROS_INFO("hider: scripted evader %s (a baseline that reads the true state, not the image)", o.policy.c_str());
+      break;
+    case HiderNodeOptions::Mode::kLearner:
+      learner_ = std::make_unique<Learner>(o.learner);
+      break;
   }
   actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_game::kHiderActionsTopic, 2);
   observations_sub_ = nh_.subscribe(hideseek_game::kHiderObservationsTopic, 2, &HiderNode::onObservations, this,
                                     ros::TransportHints().tcpNoDelay());
-}
-
-void HiderNode::startTraining(const HiderNodeOptions& options) {
-  const CpuBf16Support cpu = detectCpuBf16();
-  const PrecisionChoice precision = choosePrecision(options.precision, options.device, cpu);
-  TrainingOptions o = options.training;
-  o.precision = precision.precision;
-  const MemoryFormatChoice layout = chooseMemoryFormat(options.memory_format, o.precision, cpu);
-  o.memory_format = layout.format;
-  // auto: a run resumed from a checkpoint keeps its network; a new run is feed-forward.
-  o.network = options.network.value_or(NetworkKind::kFeedForward);
-  const std::string resume_from = o.output_dir + "/checkpoint.pt";
-  if (!options.network && std::ifstream(resume_from).good()) o.network = readCheckpointInfo(resume_from).network;
-  // A resumed run restores its own generator state.
-  torch::manual_seed(static_cast<uint64_t>(options.seed));
-  if (options.rendezvous.world_size > 1) {
-    RendezvousOptions r = options.rendezvous;
-    r.fingerprint = trainingFingerprint(o, options.ppo, options.num_arenas, options.variant);
-    ROS_INFO("hider: rank %d of %d: joining the rendezvous at %s (waits up to %.0f s for the other ranks)", r.rank,
-             r.world_size, r.address.c_str(), r.timeout_s);
-    collective_ = joinRanks(r);
-    ROS_INFO("hider: rank %d of %d: every rank joined; gradients are averaged over Gloo", r.rank, r.world_size);
-  }
-  training_ = std::make_unique<TrainingRun>(o, options.ppo, options.num_arenas, options.device, collective_.get());
-  ROS_INFO("hider: training %s PPO, network %s, on %s in %s, %s; BLAS: %s", o.variant.c_str(), networkName(o.network),
-           options.device.str().c_str(), precision.reason.c_str(), layout.reason.c_str(), blasDescription().c_str());
-  if (training_->totalSteps() != o.total_steps) {
-    ROS_INFO(
-        "hider: %ld steps asked, training %ld: whole rollouts of %d arenas x %d steps, so that every sample "
-        "collected is trained on",
-        static_cast<long>(o.total_steps), static_cast<long>(training_->totalSteps()), options.num_arenas,
-        options.ppo.rollout_steps);
-  }
-  ROS_INFO("hider: %s at step %ld of %ld, into %s", training_->resumed() ? "resumed" : "started",
-           static_cast<long>(training_->steps()), static_cast<long>(training_->totalSteps()), o.output_dir.c_str());
-  if (training_->droppedLogRows() > 0) {
-    ROS_INFO("hider: dropped %d log rows of updates made after the checkpoint (lost with the stopped run)",
-             training_->droppedLogRows());
-  }
 }
 
 void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& msg) {
@@ -241,14 +100,6 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
     }
     return;
   }
-  // The learner's buffers are shaped for its arena count: another count would be read past, and
-  // lockstep would wait for ever on a batch ignored, so this configuration error stops the node.
-  if (training_ && n != static_cast<size_t>(training_->numArenas())) {
-    ROS_FATAL("hider: train mode learns from %d arenas (parameter %s), the world sends %zu: set the same num_arenas",
-              training_->numArenas(), ros::NodeHandle("~").resolveName("num_arenas").c_str(), n);
-    ros::shutdown();
-    return;
-  }
   // The world re-sent a batch: same step, same answer. A reset re-sends at the same sim time but
   // with new step ids or seeds, and must be answered afresh (the cached answer's step ids would
   // be rejected, and lockstep would wait for ever).
@@ -262,47 +113,10 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
   hideseek_msgs::ActionBatch out;
   out.header.stamp = msg->header.stamp;
   out.step = msg->step;
-  if (training_) {
-    std::optional<UpdateReport> report;
-    try {
-      out.actions = training_->step(msg->images.data(), msg->rewards, msg->done, &report);
-    } catch (const std::exception& e) {
-      // A rank that stopped (CollectiveError names it), or this rank's own failure, which the
-      // others are told of so that they stop at once, naming this rank.
-      if (collective_ && !dynamic_cast<const CollectiveError*>(&e)) collective_->abort(e.what());
-      ROS_FATAL("hider: training stopped: %s", e.what());
-      exit_code_ = 1;
-      ros::shutdown();
-      return;
-    }
-    if (report) {
-      const LoopTimes& loop = report->loop;
-      const double total = std::max(loop.total(), 1e-9);
-      ROS_INFO(
-          "train: %ld/%ld steps, %.0f steps/s, ETA %s, %ld episodes, length %.1f, return %.3f, entropy %.3f; "
-          "time: update %.0f %%, inference %.0f %%, waiting for the world %.0f %%, other %.0f %%",
-          static_cast<long>(report->steps), static_cast<long>(training_->totalSteps()), report->steps_per_s,
-          formatDuration(report->eta_s).c_str(), static_cast<long>(report->episodes), report->mean_length,
-          report->mean_return, report->ppo.entropy, 100 * loop.update_s / total, 100 * loop.inference_s / total,
-          100 * loop.wait_s / total, 100 * loop.other_s / total);
-    }
-    if (training_->finished()) {
-      try {
-        training_->saveCheckpoint();
-      } catch (const std::exception& e) {
-        ROS_FATAL("hider: training finished, but its final checkpoint was not written: %s", e.what());
-        exit_code_ = 1;
-        ros::shutdown();
-        return;
-      }
-      if (training_->rank() != 0) {
-        ROS_INFO("train: done, %ld steps (rank %d: rank 0 writes the checkpoint and the log)",
-                 static_cast<long>(training_->steps()), training_->rank());
-        ros::shutdown();
-        return;
-      }
-      ROS_INFO("train: done, %ld steps; checkpoint %s, log %s", static_cast<long>(training_->steps()),
-               training_->checkpointPath().c_str(), training_->logPath().c_str());
+  if (learner_) {
+    out.actions = learner_->act({n, msg->images.data(), &msg->rewards, &msg->done, &msg->step, &msg->seed});
+    // Training stopped, or finished with its final checkpoint written: the node's work is done.
+    if (out.actions.empty()) {
       ros::shutdown();
       return;
     }

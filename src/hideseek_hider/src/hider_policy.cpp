@@ -54,8 +54,8 @@ std::vector<uint8_t> ScriptedHiderPolicy::act(const std::vector<ArenaObservation
   return actions;
 }
 
-NetworkHiderPolicy::NetworkHiderPolicy(HiderNet net, torch::Device device, bool greedy)
-    : net_(std::move(net)), device_(device), greedy_(greedy) {
+NetworkHiderPolicy::NetworkHiderPolicy(HiderNet net, torch::Device device, bool greedy, uint32_t salt)
+    : net_(std::move(net)), device_(device), greedy_(greedy), salt_(salt) {
   net_->to(device_);
   net_->eval();
 }
@@ -91,18 +91,19 @@ std::vector<uint8_t> NetworkHiderPolicy::act(const std::vector<ArenaObservation>
   }
   const torch::Tensor probs = torch::softmax(logits, 1).to(torch::kCPU).contiguous();
   const float* p = probs.data_ptr<float>();
+  const int count = net_->actions();
   std::vector<uint8_t> actions(n);
   for (int64_t i = 0; i < n; ++i) {
-    const float* row = p + i * kActions;
+    const float* row = p + i * count;
     if (greedy_) {
-      actions[i] = static_cast<uint8_t>(std::max_element(row, row + kActions) - row);
+      actions[i] = static_cast<uint8_t>(std::max_element(row, row + count) - row);
       continue;
     }
     // Inverse-CDF sampling with a reproducible draw.
-    const double u = hashUniform(batch[i].seed, batch[i].step, hideseek_game::kSaltSampledPolicy);
+    const double u = hashUniform(batch[i].seed, batch[i].step, salt_);
     double cumulative = 0.0;
-    actions[i] = kActions - 1;
-    for (int a = 0; a < kActions; ++a) {
+    actions[i] = static_cast<uint8_t>(count - 1);
+    for (int a = 0; a < count; ++a) {
       cumulative += row[a];
       if (u < cumulative) {
         actions[i] = static_cast<uint8_t>(a);

@@ -38,8 +38,9 @@ HiderNet startingNet(const TrainingOptions& o, const std::string& resume_from) {
     }
   }
   // A resumed run must be the network it was: a GRU checkpoint is not resumed as feed-forward.
-  HiderNet net = !resume_from.empty() ? loadCheckpoint(resume_from, o.image_height, o.image_width, nullptr, o.network)
-                                      : HiderNet(o.image_height, o.image_width, o.network);
+  HiderNet net = !resume_from.empty()
+                     ? loadCheckpoint(resume_from, o.image_height, o.image_width, nullptr, o.network, o.role, o.actions)
+                     : HiderNet(o.image_height, o.image_width, o.network, o.actions);
   net->setPrecision(o.precision);
   net->setMemoryFormat(o.memory_format);
   return net;
@@ -326,6 +327,7 @@ void TrainingRun::saveCheckpoint() {
   CheckpointInfo info{trainer_.net()->architecture(), options_.image_height, options_.image_width, options_.variant,
                       steps()};
   info.game = options_.game;
+  info.role = options_.role;
   info.wall_s = start_wall_s_ + std::chrono::duration<double>(now - start_).count();
   info.episodes = episodes_;
   for (const auto& [length, ret] : episodes_seen_.recent()) {

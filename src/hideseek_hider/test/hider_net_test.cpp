@@ -135,6 +135,34 @@ TEST(Checkpoint, ASeekersCheckpointIsRefusedWhereAHidersIsAsked) {
   EXPECT_NE(r.find("is a hider's policy (role hider), not a seeker's"), std::string::npos) << r;
 }
 
+// Game v3's learning seeker has 7 actions (the two that turn while moving): its actor, its
+// architecture string and its checkpoint say so, and a loader asking for another count refuses it.
+TEST(Checkpoint, TheActionCountIsPartOfTheArchitecture) {
+  HiderNet seeker(84, 84, NetworkKind::kFeedForward, 7);
+  EXPECT_EQ(seeker->forward(randomImages(2, 84, 84)).logits.sizes(), (std::vector<int64_t>{2, 7}));
+  EXPECT_EQ(seeker->architecture(),
+            "hideseek_hider/v1: conv8x8s4x32-conv4x4s2x64-conv3x3s1x64-fc512 | actor fc512-7 | critic fc512-1 | "
+            "leaky_relu");
+  EXPECT_EQ(HiderNet(84, 84)->architecture(), kArchitecture);  // every hider's checkpoint still reads
+  const auto parts = parseArchitecture(architectureName(NetworkKind::kGru, 7));
+  ASSERT_TRUE(parts);
+  EXPECT_EQ(parts->network, NetworkKind::kGru);
+  EXPECT_EQ(parts->actions, 7);
+  CheckpointInfo info{seeker->architecture(), 84, 84, "basic", 10};
+  info.role = "seeker";
+  info.game = "v3";
+  const std::string path = tempPath("seeker7.pt");
+  saveCheckpoint(path, seeker, info);
+  CheckpointInfo loaded;
+  HiderNet back = loadCheckpoint(path, 84, 84, &loaded, std::nullopt, "seeker", 7);
+  EXPECT_EQ(loaded.actions, 7);
+  EXPECT_EQ(back->actions(), 7);
+  const std::string e = errorOf([&] { loadCheckpoint(path, 84, 84, nullptr, std::nullopt, "seeker", 5); });
+  EXPECT_NE(e.find("chooses among 7 actions, this game gives the seeker 5"), std::string::npos) << e;
+  EXPECT_NE(errorOf([] { HiderNet(84, 84, NetworkKind::kFeedForward, 1); }).find("1 actions (2 to 16)"),
+            std::string::npos);
+}
+
 TEST(Checkpoint, WrongImageSizeIsRefusedSayingWhy) {
   HiderNet net(64, 64);
   const std::string path = tempPath("small.pt");

@@ -5,10 +5,13 @@
 #include <stdexcept>
 
 #include "hideseek_game/game_selection.h"
+#include "hideseek_game/hash_uniform.h"
 #include "hideseek_game/msg_conversion.h"
+#include "hideseek_game/package_paths.h"
 #include "hideseek_game/params.h"
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/wall_throttle.h"
+#include "hideseek_hider/hider_defaults.h"
 
 namespace hideseek_seeker {
 
@@ -30,20 +33,76 @@ SeekerPerception toPerception(const hideseek_msgs::SeekerObservationBatch& batch
   return p;
 }
 
+SeekerNodeOptions loadSeekerNodeOptions(const ros::NodeHandle& pnh) {
+  using hideseek_game::readString;
+  SeekerNodeOptions o;
+  o.variant = hideseek_game::loadVariantParams(pnh);
+  const std::string policy = readString(pnh, "policy", "");
+  const std::string mode = hideseek_game::readChoice(pnh, "mode", policy.empty() ? "scripted" : "policy",
+                                                     {"scripted", "random", "policy", "train"});
+  o.mode = mode == "scripted" ? SeekerNodeOptions::Mode::kScripted
+           : mode == "random" ? SeekerNodeOptions::Mode::kRandom
+                              : SeekerNodeOptions::Mode::kLearner;
+  o.grid_resolution = hideseek_game::readDouble(pnh, "grid_resolution", 0.1, 0.02, 1.0);
+  if (o.mode != SeekerNodeOptions::Mode::kLearner) {
+    if (!policy.empty()) {
+      throw std::invalid_argument("parameter " + pnh.resolveName("policy") + " is '" + policy +
+                                  "', but the seeker is in " + mode + " mode: a checkpoint plays in mode policy");
+    }
+    return o;
+  }
+  hideseek_hider::LearnerOptions& l = o.learner;
+  // A learning seeker decides once a step, as the hider does (the world's learned_seeker).
+  l.variant = o.variant;
+  l.variant.game = hideseek_game::withLearnedSeeker(o.variant.game);
+  l.role = "seeker";
+  l.actions = hideseek_game::actionCount(l.variant.game, true);
+  l.mode = mode == "train" ? hideseek_hider::LearnerMode::kTrain : hideseek_hider::LearnerMode::kPolicy;
+  if (l.mode == hideseek_hider::LearnerMode::kPolicy) {
+    l.policy = hideseek_game::requireString(pnh, "policy", "a seeker's checkpoint, in policy mode");
+  }
+  const hideseek_hider::HiderDefaults d =
+      hideseek_hider::loadHiderDefaults(readString(pnh, "defaults", hideseek_game::configDirectory() + "/hider.yaml"));
+  const std::string network = hideseek_game::readChoice(pnh, "network", d.network, {"auto", "ff", "gru"});
+  if (network != "auto") l.network = hideseek_hider::parseNetwork(network, pnh.resolveName("network"));
+  hideseek_hider::loadLearnerParams(pnh, d, l);
+  return o;
+}
+
 SeekerNode::SeekerNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
-  const hideseek_game::VariantConfig v = hideseek_game::loadVariantParams(pnh);
-  const double grid_resolution = hideseek_game::readDouble(pnh, "grid_resolution", 0.1, 0.02, 1.0);
+  const SeekerNodeOptions o = loadSeekerNodeOptions(pnh);
+  mode_ = o.mode;
   // The same seeker the in-process calibration plays.
-  options_ = seekerOptionsFor(v, grid_resolution);
+  options_ = seekerOptionsFor(o.variant, o.grid_resolution);
+  actions_ = hideseek_game::actionCount(o.variant.game, true);
+  image_height_ = o.variant.game.camera.height;
+  image_width_ = o.variant.game.camera.width;
+  switch (mode_) {
+    case SeekerNodeOptions::Mode::kScripted:
+      ROS_INFO("seeker: %s policy, planning on a %.2f m grid", o.variant.seeker_policy.c_str(),
+               options_.grid_resolution);
+      break;
+    case SeekerNodeOptions::Mode::kRandom:
+      ROS_INFO("seeker: uniformly random among its %d actions", actions_);
+      break;
+    case SeekerNodeOptions::Mode::kLearner:
+      learner_ = std::make_unique<hideseek_hider::Learner>(o.learner);
+      ROS_INFO(
+          "seeker: learned, from its own %dx%d camera alone, %d actions, one decision a step (the world "
+          "must run with learned_seeker:=true)",
+          image_width_, image_height_, o.learner.actions);
+      break;
+  }
   actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_game::kSeekerActionsTopic, 2);
   observations_sub_ = nh_.subscribe(hideseek_game::kSeekerObservationsTopic, 2, &SeekerNode::onObservations, this,
                                     ros::TransportHints().tcpNoDelay());
-  ROS_INFO("seeker: %s policy, planning on a %.2f m grid", v.seeker_policy.c_str(), options_.grid_resolution);
 }
 
 void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::ConstPtr& msg) {
   const size_t n = msg->num_arenas;
-  const std::string problem = hideseek_game::checkSeekerObservationBatch(*msg, hideseek_game::kMaxArenas);
+  const bool learned = mode_ == SeekerNodeOptions::Mode::kLearner;
+  const std::string problem = hideseek_game::checkSeekerObservationBatch(
+      *msg, hideseek_game::kMaxArenas, learned ? image_height_ : 0, learned ? image_width_ : 0);
   if (!problem.empty()) {
     ++malformed_;
     hideseek_game::WallThrottle& throttle = malformed_throttle_;
@@ -54,14 +113,20 @@ void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::Con
     }
     return;
   }
+  hideseek_msgs::ActionBatch out;
+  out.header.stamp = msg->header.stamp;
+  out.step = msg->step;
+  if (mode_ != SeekerNodeOptions::Mode::kScripted) {
+    out.actions = learnedOrRandom(*msg);
+    if (out.actions.empty()) return;
+    actions_pub_.publish(out);
+    return;
+  }
   if (policies_.size() != n) {
     policies_.clear();
     for (size_t i = 0; i < n; ++i) policies_.emplace_back(options_);
     episodes_.assign(n, -1);
   }
-  hideseek_msgs::ActionBatch out;
-  out.header.stamp = msg->header.stamp;
-  out.step = msg->step;
   out.actions.resize(n);
   for (size_t i = 0; i < n; ++i) {
     if (episodes_[i] != msg->episode[i]) {
@@ -71,6 +136,30 @@ void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::Con
     out.actions[i] = static_cast<uint8_t>(policies_[i].act(toPerception(*msg, i)));
   }
   actions_pub_.publish(out);
+}
+
+std::vector<uint8_t> SeekerNode::learnedOrRandom(const hideseek_msgs::SeekerObservationBatch& msg) {
+  // The world re-sent a batch: same step, same answer (see HiderNode::onObservations).
+  if (msg.header.stamp == last_stamp_ && msg.step == last_answer_.step && msg.seed == last_seeds_ &&
+      !last_answer_.actions.empty()) {
+    return last_answer_.actions;
+  }
+  last_stamp_ = msg.header.stamp;
+  last_seeds_ = msg.seed;
+  last_answer_.step = msg.step;
+  const size_t n = msg.num_arenas;
+  if (learner_) {
+    last_answer_.actions = learner_->act({n, msg.images.data(), &msg.rewards, &msg.done, &msg.step, &msg.seed});
+    // Training stopped, or finished with its final checkpoint written: the node's work is done.
+    if (last_answer_.actions.empty()) ros::shutdown();
+    return last_answer_.actions;
+  }
+  last_answer_.actions.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    last_answer_.actions[i] =
+        hideseek_game::hashAction(msg.seed[i], msg.step[i], hideseek_game::kSaltRandomSeeker, actions_);
+  }
+  return last_answer_.actions;
 }
 
 }  // namespace hideseek_seeker

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   try {
     hideseek_seeker::SeekerNode node{nh, pnh};
     ros::spin();
+    return node.exitCode();
   } catch (const std::exception& e) {
     ROS_FATAL("seeker: %s", e.what());
     return 1;

@@ -398,19 +398,24 @@ void WorldNode::publishObservations() {
   obs.header.stamp = stamp;
   obs.header.frame_id = options_.frame_id;
   hider_obs_pub_.publish(obs);
-  publishSeekerObservations(obs.header, game_.done());
+  publishSeekerObservations(obs.header, game_.done(), game_.seekerRewards(), game_.outcomes(), game_.seekerImages());
 }
 
 void WorldNode::publishSeekerObservations() {
   std_msgs::Header header;
   header.stamp = simNow();
   header.frame_id = options_.frame_id;
-  publishSeekerObservations(header, std::vector<uint8_t>(options_.loop.num_arenas, 0));
+  // Inside a decision step: the scripted seeker's decision between two of the hider's, no reward.
+  const size_t n = static_cast<size_t>(options_.loop.num_arenas);
+  publishSeekerObservations(header, std::vector<uint8_t>(n, 0), std::vector<float>(n, 0.f), std::vector<uint8_t>(n, 0),
+                            {});
 }
 
-void WorldNode::publishSeekerObservations(const std_msgs::Header& header, const std::vector<uint8_t>& done) {
+void WorldNode::publishSeekerObservations(const std_msgs::Header& header, const std::vector<uint8_t>& done,
+                                          const std::vector<float>& rewards, const std::vector<uint8_t>& outcome,
+                                          const std::vector<uint8_t>& images) {
   hideseek_msgs::SeekerObservationBatch seen =
-      toSeekerObservationBatch(game_.world(), done, arena_maps_.update(game_.world()));
+      toSeekerObservationBatch(game_.world(), done, arena_maps_.update(game_.world()), rewards, outcome, images);
   seen.header = header;
   seeker_obs_pub_.publish(seen);
   game_.observationSent(ros::WallTime::now().toSec());
@@ -479,11 +484,16 @@ void WorldNode::publishArenaZero(bool force_visuals) {
     hider_camera_pub_.publish(image(game_.hiderImages().data(), info.header.frame_id), info);
   }
   if (seeker_camera_pub_.getNumSubscribers() > 0) {
-    game_.world().renderSeekerView(0, seeker_image_.data());
+    // A learning seeker's images are rendered already: arena 0's is the first.
+    const uint8_t* view = game_.seekerImages().data();
+    if (game_.seekerImages().empty()) {
+      game_.world().renderSeekerView(0, seeker_image_.data());
+      view = seeker_image_.data();
+    }
     sensor_msgs::CameraInfo info = camera_info_;
     info.header.stamp = stamp;
     info.header.frame_id = options_.frame("seeker/camera_optical_frame");
-    seeker_camera_pub_.publish(image(seeker_image_.data(), info.header.frame_id), info);
+    seeker_camera_pub_.publish(image(view, info.header.frame_id), info);
   }
 }
 

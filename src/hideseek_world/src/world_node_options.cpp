@@ -37,6 +37,10 @@ WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& nh) {
   o.step_listeners = readInt(nh, "step_listeners", 0, 0, 64);
   o.step_image_every = readInt(nh, "step_image_every", 10, 0, 1000000);
   o.max_decisions = readInt(nh, "max_decisions", 0, 0, kMaxDecisions);
+  // A learning seeker (the seeker node's policy or train mode): every arena's seeker camera is
+  // rendered after each decision, and the seeker decides once a step, as the hider does.
+  o.loop.render_seeker = readBool(nh, "learned_seeker", false);
+  if (o.loop.render_seeker) o.variant.game = withLearnedSeeker(o.variant.game);
   return o;
 }
 

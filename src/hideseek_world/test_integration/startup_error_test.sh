@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A node that cannot start says why, where roslaunch shows it: a missing checkpoint, a bad
 # precision or memory format, an unknown game or variant name, a misspelt variant field, a misspelt scripted evader and the memoryless ablation
-# asked of a hider without a GRU each stop the game with a FATAL line naming the problem.
+# asked of a hider without a GRU, a checkpoint of the other role, and a misspelt seeker mode each
+# stop the game with a FATAL line naming the problem.
 # usage: startup_error_test.sh XUNIT_OUTPUT
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -33,6 +34,17 @@ expect_fatal memoryless_random "is true, but the hider is in random mode: memory
   evaluate.launch policy:=random memoryless:=true episodes:=1 output_dir:="$dir/eval_random"
 expect_fatal unknown_evader "/hider/policy: 'scripted/hid' names no scripted evader" evaluate.launch \
   policy:=scripted/hid episodes:=1 output_dir:="$dir/eval_evader"
+# Each role refuses the other's checkpoint: a seeker given a hider's, a hider given a seeker's (one
+# PPO update of a learning seeker, through train.launch), and a seeker mode misspelt.
+expect_fatal seeker_given_hider "basic.pt is a hider's policy (role hider), not a seeker's" basic.launch \
+  seeker_policy:="$policies/basic.pt"
+timeout 120 roslaunch -p "$port" hideseek_world train.launch role:=seeker opponent:=random steps:=128 num_arenas:=2 \
+  output_dir:="$dir/seeker" > "$dir/seeker_train.log" 2>&1
+[ -f "$dir/seeker/checkpoint.pt" ] || failures+=("seeker_train: train.launch role:=seeker wrote no checkpoint")
+expect_fatal hider_given_seeker "checkpoint.pt is a seeker's policy (role seeker), not a hider's" basic.launch \
+  policy:="$dir/seeker/checkpoint.pt"
+expect_fatal bad_seeker_mode "/seeker/mode must be one of 'scripted', 'random', 'policy', 'train', got 'learn'" \
+  basic.launch seeker_mode:=learn
 write_xunit "$out" startup StartupErrorsAreShownByRoslaunch "${failures[@]}"
 printf 'failure: %s\n' "${failures[@]}"
 rm -rf "$dir"

@@ -22,7 +22,8 @@ struct Labels {
 enum class Outcome : uint8_t { kRunning = 0, kCaptured = 1, kSurvived = 2 };
 
 struct StepResult {
-  double reward = 0.0;
+  double reward = 0.0;         // the hider's (GameOptions::rewards)
+  double seeker_reward = 0.0;  // a learning seeker's (GameOptions::seeker_rewards)
   Outcome outcome = Outcome::kRunning;
   bool done() const { return outcome != Outcome::kRunning; }
 };

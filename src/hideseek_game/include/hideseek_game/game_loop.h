@@ -20,9 +20,12 @@ namespace hideseek_game {
 struct GameLoopOptions {
   ClockMode mode = ClockMode::kLockstep;
   int num_arenas = 1;
-  uint32_t seed = 0;                  // arena i's first episode has seed seed + i
-  uint32_t seed_stride = 0;           // an arena's next episode: its seed + this (0: num_arenas)
-  bool render = true;                 // render the hider views after each decision
+  uint32_t seed = 0;         // arena i's first episode has seed seed + i
+  uint32_t seed_stride = 0;  // an arena's next episode: its seed + this (0: num_arenas)
+  bool render = true;        // render the hider views after each decision
+  // A learning seeker plays: render every arena's seeker view after each decision too. Its game
+  // must be withLearnedSeeker's (the seeker decides once a step); the loop refuses another.
+  bool render_seeker = false;
   int render_threads = 2;             // llvmpipe rasteriser threads
   double stale_action_timeout = 0.5;  // s; realtime: a silent agent stands still after this
   double resend_period = 1.0;         // s; lockstep: an unanswered observation is re-sent after this
@@ -97,6 +100,10 @@ class GameLoop {
   const std::vector<uint8_t>& done() const { return done_; }
   const std::vector<uint8_t>& outcomes() const { return outcomes_; }
   const std::vector<uint8_t>& hiderImages() const { return images_; }  // numArenas() rgb8 images
+  // What a learning seeker observes after the last decision: its rewards (done and outcomes are the
+  // hider's) and, with render_seeker, its images (else empty).
+  const std::vector<float>& seekerRewards() const { return seeker_rewards_; }
+  const std::vector<uint8_t>& seekerImages() const { return seeker_images_; }
   const std::vector<Action>& lastHiderActions() const { return last_hider_; }
   const std::vector<Action>& lastSeekerActions() const { return last_seeker_; }
   // Decision steps taken (the world's clock).
@@ -110,8 +117,9 @@ class GameLoop {
   World world_;
   DecisionScheduler scheduler_;
   bool render_;
-  std::vector<uint8_t> images_;
-  std::vector<float> rewards_;
+  bool render_seeker_;
+  std::vector<uint8_t> images_, seeker_images_;
+  std::vector<float> rewards_, seeker_rewards_;
   std::vector<uint8_t> done_, outcomes_;
   std::vector<Action> last_hider_, last_seeker_;
   // The decision step being played: the hider's actions, the seeker's first decision (what the

@@ -51,6 +51,9 @@ struct CameraOptions {
   double verticalFov() const;
 };
 
+// One agent's reward per decision step: the hider's (`rewards`), or a learning seeker's
+// (`seeker_rewards`, the hider's mirrored: +1 on capture, -0.001 a step, the visibility terms
+// with their signs reversed).
 struct RewardOptions {
   double survive{};   // every step the hider is not captured
   double capture{};   // the step it is captured (replaces every other term)
@@ -83,10 +86,15 @@ struct GameOptions {
   double seeker_move_angle{};  // rad, turn-while-moving steering: the target's bearing within which it moves
   CameraOptions camera;
   RewardOptions rewards;
+  RewardOptions seeker_rewards;  // a learning seeker's (the seeker node's train mode); the scripted one has none
 
   double stepDuration() const { return physics_dt * action_repeat; }
   int seekerDecisionsPerStep() const { return action_repeat / seeker_decision_frames; }
 };
+
+// The game a learning seeker plays: it decides once a decision step, as the hider does (every
+// action_repeat frames), where the scripted seeker decides every seeker_decision_frames frames.
+GameOptions withLearnedSeeker(GameOptions game);
 
 // A variant file (config/variants/*.yaml): the game options plus what other nodes need.
 struct VariantConfig {

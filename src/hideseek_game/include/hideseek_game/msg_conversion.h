@@ -53,12 +53,18 @@ class ArenaMapCache {
 };
 
 // What the seeker gets: only what it perceives (seekerPerception: its own pose, and the hider's
-// position only while it sees the hider), with each arena's map.
+// position only while it sees the hider), with each arena's map; its rewards and the outcomes of
+// the step just played, and every arena's camera image where a learning seeker plays (else empty).
 hideseek_msgs::SeekerObservationBatch toSeekerObservationBatch(const World& world, const std::vector<uint8_t>& done,
-                                                               const std::vector<hideseek_msgs::ArenaMap>& maps);
+                                                               const std::vector<hideseek_msgs::ArenaMap>& maps,
+                                                               const std::vector<float>& rewards,
+                                                               const std::vector<uint8_t>& outcome,
+                                                               const std::vector<uint8_t>& images = {});
 
-// "" for a seeker batch whose arrays all hold one entry per arena (at most max_arenas), or what is wrong.
-std::string checkSeekerObservationBatch(const hideseek_msgs::SeekerObservationBatch& msg, size_t max_arenas);
+// "" for a seeker batch whose arrays all hold one entry per arena (at most max_arenas), or what is
+// wrong. With a height and width (a learning seeker's), it also needs every arena's image.
+std::string checkSeekerObservationBatch(const hideseek_msgs::SeekerObservationBatch& msg, size_t max_arenas,
+                                        int height = 0, int width = 0);
 
 // Arena 0's game state after a decision. When the decision ended an episode (`finished`), the
 // state is that episode's end, not the next episode's start.

@@ -67,6 +67,8 @@ class World {
 
   // Renders every arena's hider camera into out (numArenas() images, rgb8, rows top down).
   void renderHiderViews(uint8_t* out, RenderMode mode = RenderMode::kColor);
+  // Renders every arena's seeker camera into out (numArenas() images): a learning seeker's input.
+  void renderSeekerViews(uint8_t* out, RenderMode mode = RenderMode::kColor);
   // Renders one arena's seeker camera into out (one image).
   void renderSeekerView(int i, uint8_t* out, RenderMode mode = RenderMode::kColor);
   size_t imageBytes() const;

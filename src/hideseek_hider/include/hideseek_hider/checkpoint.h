@@ -30,6 +30,7 @@ struct CheckpointInfo {
   std::vector<int64_t> recent_lengths{};
   std::vector<double> recent_returns{};
   NetworkKind network = NetworkKind::kFeedForward;  // from the architecture
+  int actions = kActions;                           // from the architecture
   // The game it trained on (game.yaml's `game`); a checkpoint written before the field existed is
   // game v2's, the only game then trained.
   std::string game = "v2";
@@ -55,10 +56,10 @@ void loadTrainingState(const std::string& path, torch::optim::Optimizer& optimiz
 CheckpointInfo readCheckpointInfo(const std::string& path);
 // Builds the network a checkpoint describes (feed-forward or GRU) and loads its weights. Throws
 // std::runtime_error saying what does not match (the role asked for: every hider node and tool asks
-// for a hider's; architecture, the network asked for, image size, tensor shapes) or that the file
-// is truncated or corrupt; never returns a half-loaded network.
+// for a hider's; architecture, the network asked for, the action count, image size, tensor shapes)
+// or that the file is truncated or corrupt; never returns a half-loaded network.
 HiderNet loadCheckpoint(const std::string& path, int expected_height, int expected_width,
                         CheckpointInfo* info = nullptr, std::optional<NetworkKind> expected_network = std::nullopt,
-                        const std::string& expected_role = "hider");
+                        const std::string& expected_role = "hider", int expected_actions = kActions);
 
 }  // namespace hideseek_hider

@@ -5,6 +5,7 @@
 
 #include <torch/torch.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,7 @@ namespace hideseek_hider {
 // Named outputs: index-free reading of what the network computed.
 // forward() gives [B, ...]; forwardSequence() gives [T, B, ...].
 struct HiderOutput {
-  torch::Tensor logits;    // [B, 5]
+  torch::Tensor logits;    // [B, actions] (the hider's 5)
   torch::Tensor value;     // [B]
   torch::Tensor features;  // [B, 512] mid-level features, what the probes read
   torch::Tensor memory;    // [B, 512] the GRU's state after this step (network gru only)
@@ -24,7 +25,9 @@ struct HiderOutput {
 constexpr int kFeatures = 512;
 constexpr int kHidden = 512;  // GRU state size
 constexpr int kActions = 5;
-// Written into every checkpoint; a checkpoint of another architecture is refused.
+constexpr int kMaxActions = 16;  // the hider's; a learning seeker of game v3 has 7 (the two that turn while moving)
+// Written into every checkpoint; a checkpoint of another architecture is refused. These are the
+// five-action networks' names (every hider's); architectureName gives any action count's.
 constexpr char kArchitecture[] =
     "hideseek_hider/v1: conv8x8s4x32-conv4x4s2x64-conv3x3s1x64-fc512 | actor fc512-5 | critic fc512-1 | leaky_relu";
 constexpr char kArchitectureGru[] =
@@ -34,12 +37,23 @@ constexpr char kArchitectureGru[] =
 // Feed-forward (the paper's network) or recurrent (a GRU of kHidden units before the heads).
 enum class NetworkKind { kFeedForward, kGru };
 const char* networkName(NetworkKind kind);  // "ff", "gru"
+// The architecture string of a network with `actions` outputs: kArchitecture or kArchitectureGru
+// for 5, the same with "fc512-<actions>" in the actor otherwise.
+std::string architectureName(NetworkKind kind, int actions);
+// What an architecture string describes; nullopt for one this build does not run.
+struct ArchitectureParts {
+  NetworkKind network = NetworkKind::kFeedForward;
+  int actions = kActions;
+};
+std::optional<ArchitectureParts> parseArchitecture(const std::string& architecture);
 // "ff" or "gru"; throws std::invalid_argument naming `what` (a parameter or field) otherwise.
 NetworkKind parseNetwork(const std::string& name, const std::string& what);
 
 class HiderNetImpl : public torch::nn::Module {
  public:
-  HiderNetImpl(int image_height, int image_width, NetworkKind network = NetworkKind::kFeedForward);
+  // `actions`: the actor's outputs, the hider's 5 or a learning seeker's (2 to kMaxActions).
+  HiderNetImpl(int image_height, int image_width, NetworkKind network = NetworkKind::kFeedForward,
+               int actions = kActions);
 
   // images: [B, H, W, 3] uint8 (as the world sends them), scaled to [0, 1] here. Runs in the
   // network's precision; the outputs are always fp32. Feed-forward networks only: a GRU needs
@@ -58,7 +72,8 @@ class HiderNetImpl : public torch::nn::Module {
 
   NetworkKind network() const { return network_; }
   bool recurrent() const { return network_ == NetworkKind::kGru; }
-  const char* architecture() const { return recurrent() ? kArchitectureGru : kArchitecture; }
+  int actions() const { return actions_; }
+  std::string architecture() const { return architectureName(network_, actions_); }
 
   // bf16 autocasts every forward pass (and so its backward); the parameters stay fp32.
   void setPrecision(Precision precision) { precision_ = precision; }
@@ -87,6 +102,7 @@ class HiderNetImpl : public torch::nn::Module {
   int image_height_;
   int image_width_;
   NetworkKind network_;
+  int actions_;
   Precision precision_ = Precision::kFp32;
   MemoryFormat memory_format_ = MemoryFormat::kChannelsLast;
   torch::nn::GRUCell gru_{nullptr};

@@ -9,6 +9,7 @@
 
 #include "hideseek_game/arena.h"
 #include "hideseek_game/game_options.h"
+#include "hideseek_game/hash_uniform.h"
 #include "hideseek_hider/hider_net.h"
 #include "hideseek_hider/scripted_evader.h"
 
@@ -59,7 +60,9 @@ std::optional<EvaderKind> scriptedPolicy(const std::string& policy);
 // new seed at any step, after a reset, also starts afresh).
 class NetworkHiderPolicy : public HiderPolicy {
  public:
-  NetworkHiderPolicy(HiderNet net, torch::Device device, bool greedy);
+  // `salt`: the stream of the sampled actions (a learning seeker draws from its own).
+  NetworkHiderPolicy(HiderNet net, torch::Device device, bool greedy,
+                     uint32_t salt = hideseek_game::kSaltSampledPolicy);
   std::vector<uint8_t> act(const std::vector<ArenaObservation>& batch) override;
   // GRU only: each arena's state after the last act() ([N, 512]); undefined before it.
   const torch::Tensor& hidden() const { return hidden_; }
@@ -72,6 +75,7 @@ class NetworkHiderPolicy : public HiderPolicy {
   HiderNet net_;
   torch::Device device_;
   bool greedy_;
+  uint32_t salt_;
   bool memoryless_ = false;
   torch::Tensor hidden_;
   std::vector<uint32_t> seeds_;  // each arena's episode seed at the last act()

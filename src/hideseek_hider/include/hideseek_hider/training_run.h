@@ -1,5 +1,6 @@
 // A PPO training run fed one observation batch at a time: progress, CSV log, checkpoints,
-// resume. ROS-free; the hider node's train mode drives it.
+// resume. ROS-free; the train mode of the hider node and of the seeker node drives it (one trainer,
+// two roles: TrainingOptions::role).
 #pragma once
 
 #include <chrono>
@@ -27,6 +28,10 @@ struct TrainingOptions {
   Precision precision = Precision::kFp32;                    // of the network's passes; weights stay fp32
   MemoryFormat memory_format = MemoryFormat::kChannelsLast;  // of the encoder (chooseMemoryFormat)
   NetworkKind network = NetworkKind::kFeedForward;
+  // Whose policy it trains: "hider", or "seeker" (a learning seeker, from its own camera). Recorded
+  // in the checkpoint; a checkpoint of the other role is not resumed.
+  std::string role = "hider";
+  int actions = kActions;  // the actor's outputs: the hider's 5, or the seeker's in this game
 };
 
 // The run's length: `requested` steps rounded up to whole rollouts of `rollout` samples.

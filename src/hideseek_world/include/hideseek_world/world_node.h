@@ -89,7 +89,9 @@ class WorldNode {
   void publishObservations();
   // The seeker's observation alone: its later decisions inside a step.
   void publishSeekerObservations();
-  void publishSeekerObservations(const std_msgs::Header& header, const std::vector<uint8_t>& done);
+  void publishSeekerObservations(const std_msgs::Header& header, const std::vector<uint8_t>& done,
+                                 const std::vector<float>& rewards, const std::vector<uint8_t>& outcome,
+                                 const std::vector<uint8_t>& images);
   // Counts and warns about a decision an agent missed (realtime).
   void warnStale();
   void publishArenaZero(bool force_visuals);
