@@ -129,6 +129,7 @@ void Arena::reset(uint32_t seed) {
   step_ = 0;
   frame_ = 0;
   return_ = 0.0;
+  seeker_return_ = 0.0;
   captured_ = false;
   updateLabels();
 }
@@ -139,6 +140,7 @@ void Arena::startFrom(const AgentState& hider, const AgentState& seeker) {
   step_ = 0;
   frame_ = 0;
   return_ = 0.0;
+  seeker_return_ = 0.0;
   captured_ = false;
   updateLabels();
 }
@@ -173,6 +175,7 @@ std::optional<StepResult> Arena::advanceFrame(Action hider, Action seeker) {
     result.outcome = Outcome::kSurvived;
   }
   return_ += result.reward;
+  seeker_return_ += result.seeker_reward;
   return result;
 }
 

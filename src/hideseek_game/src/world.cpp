@@ -71,6 +71,7 @@ ArenaStep World::conclude(int i, const StepResult& result) {
   if (result.done()) {
     out.finished = EpisodeSummary{episodes_[i],   a.seed(),  a.stepCount(), a.episodeReturn(),
                                   result.outcome, a.hider(), a.seeker(),    a.labels()};
+    out.finished->seeker_return = a.seekerEpisodeReturn();
     resetArena(i, std::nullopt);
   }
   return out;

@@ -52,6 +52,9 @@ EvaluatorOptions loadEvaluatorOptions(const ros::NodeHandle& pnh) {
     o.policy += hideseek_game::readBool(pnh, "greedy", true) ? " (greedy" : " (sampled";
     o.policy += hideseek_game::readBool(pnh, "memoryless", false) ? ", memoryless)" : ")";
   }
+  // Another seeker than the variant's scripted one: the table says which.
+  const std::string seeker = hideseek_game::readString(pnh, "seeker", "");
+  if (!seeker.empty()) o.policy += " against the seeker " + seeker;
   return o;
 }
 

@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,10 +28,23 @@ py::array_t<T> toArray(const std::vector<T>& v) {
   return out;
 }
 
-py::array_t<uint8_t> observations(const VecGame& g) {
+py::array_t<uint8_t> images(const VecGame& g, const std::vector<uint8_t>& bytes) {
   py::array_t<uint8_t> out({g.numEnvs(), g.height(), g.width(), 3});
-  std::memcpy(out.mutable_data(), g.observations().data(), g.observations().size());
+  std::memcpy(out.mutable_data(), bytes.data(), bytes.size());
   return out;
+}
+
+py::array_t<uint8_t> observations(const VecGame& g) { return images(g, g.observations()); }
+
+py::array_t<uint8_t> seekerObservations(const VecGame& g) {
+  if (!g.seekerOutside()) throw std::invalid_argument("the scripted seeker renders no images: seeker_outside=True");
+  return images(g, g.seekerObservations());
+}
+
+std::vector<uint8_t> actionVector(const py::array_t<uint8_t, py::array::c_style | py::array::forcecast>& a,
+                                  const char* what) {
+  if (a.ndim() != 1) throw std::invalid_argument(std::string(what) + " must be one-dimensional, one per environment");
+  return std::vector<uint8_t>(a.data(), a.data() + a.size());
 }
 
 py::array_t<bool> flags(const std::vector<uint8_t>& v) {
@@ -76,7 +90,7 @@ py::dict finished(const VecGame& g) {
   const int n = g.numEnvs();
   py::array_t<bool> mask(n), s(n), h(n), o(n);
   py::array_t<int32_t> length(n);
-  py::array_t<double> ret(n), hider({n, 3}), seeker({n, 3});
+  py::array_t<double> ret(n), seeker_ret(n), hider({n, 3}), seeker({n, 3});
   py::array_t<uint8_t> outcome(n);
   py::array_t<int64_t> seed(n), episode(n);
   for (int i = 0; i < n; ++i) {
@@ -88,6 +102,7 @@ py::dict finished(const VecGame& g) {
     o.mutable_data()[i] = e.labels.obstacle_in_view;
     length.mutable_data()[i] = e.steps;
     ret.mutable_data()[i] = e.episode_return;
+    seeker_ret.mutable_data()[i] = e.seeker_return;
     outcome.mutable_data()[i] = static_cast<uint8_t>(e.outcome);
     const double hp[3] = {e.hider.position.x, e.hider.position.y, e.hider.yaw};
     const double sp[3] = {e.seeker.position.x, e.seeker.position.y, e.seeker.yaw};
@@ -102,6 +117,7 @@ py::dict finished(const VecGame& g) {
   d["_mask"] = mask;
   d["length"] = length;
   d["return"] = ret;
+  d["seeker_return"] = seeker_ret;
   d["outcome"] = outcome;
   d["S"] = s;
   d["H"] = h;
@@ -143,12 +159,14 @@ PYBIND11_MODULE(_core, m) {
 
   py::class_<VecGame>(m, "VecGame")
       .def(py::init([](const std::string& config_dir, const std::string& game, const std::string& variant, int num_envs,
-                       uint32_t seed, int render_threads) {
-             return new VecGame(hideseek_python::loadVariant(config_dir, game, variant), num_envs, seed,
-                                render_threads);
+                       uint32_t seed, int render_threads, bool seeker_outside) {
+             return new VecGame(hideseek_python::loadVariant(config_dir, game, variant), num_envs, seed, render_threads,
+                                seeker_outside);
            }),
            py::arg("config_dir"), py::arg("game"), py::arg("variant"), py::arg("num_envs"), py::arg("seed"),
-           py::arg("render_threads") = 2)
+           py::arg("render_threads") = 2, py::arg("seeker_outside") = false)
+      .def_property_readonly("seeker_outside", &VecGame::seekerOutside)
+      .def_property_readonly("seeker_actions", &VecGame::seekerActions)
       .def_property_readonly("num_envs", &VecGame::numEnvs)
       .def_property_readonly("height", &VecGame::height)
       .def_property_readonly("width", &VecGame::width)
@@ -174,19 +192,30 @@ PYBIND11_MODULE(_core, m) {
           py::arg("env"), py::arg("seed") = -1)
       .def(
           "step",
-          [](VecGame& g, py::array_t<uint8_t, py::array::c_style | py::array::forcecast> actions) {
-            if (actions.ndim() != 1)
-              throw std::invalid_argument("actions must be one-dimensional, one per environment");
-            std::vector<uint8_t> a(actions.data(), actions.data() + actions.size());
+          [](VecGame& g, py::array_t<uint8_t, py::array::c_style | py::array::forcecast> actions,
+             std::optional<py::array_t<uint8_t, py::array::c_style | py::array::forcecast>> seeker) {
+            const std::vector<uint8_t> a = actionVector(actions, "actions");
+            const std::vector<uint8_t> s = seeker ? actionVector(*seeker, "seeker actions") : std::vector<uint8_t>{};
             {
               py::gil_scoped_release release;
               std::lock_guard<std::mutex> lock(g.mutex());
-              g.step(a);
+              if (g.seekerOutside() || seeker) {
+                g.step(a, s);
+              } else {
+                g.step(a);
+              }
             }
           },
-          py::arg("actions"))
+          py::arg("actions"), py::arg("seeker_actions") = py::none(),
+          "one step: the hider's actions, and the seeker's where it plays from outside (seeker_outside)")
       .def("observations", locked(&observations), "uint8 [num_envs, height, width, 3], rgb, rows top down")
       .def("rewards", locked([](const VecGame& g) { return toArray(g.rewards()); }))
+      .def("seeker_observations", locked(&seekerObservations),
+           "seeker_outside: the seekers' camera images, uint8 [num_envs, height, width, 3]")
+      .def("seeker_rewards", locked([](const VecGame& g) { return toArray(g.seekerRewards()); }),
+           "the seeker's rewards (the game file's seeker_rewards)")
+      .def("random_seeker_actions", locked([](const VecGame& g) { return toArray(g.randomSeekerActions()); }),
+           "the uniformly random seeker's actions for the current state (seed and step)")
       .def("done", locked([](const VecGame& g) { return flags(g.done()); }))
       .def("outcomes", locked([](const VecGame& g) { return toArray(g.outcomes()); }),
            "0 running, 1 captured, 2 survived")

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "hideseek_game/game_selection.h"
+#include "hideseek_game/hash_uniform.h"
 #include "hideseek_game/map.h"
 
 namespace hideseek_python {
@@ -16,7 +17,7 @@ hg::VariantConfig loadVariant(const std::string& config_dir, const std::string& 
 
 namespace {
 
-hg::GameLoopOptions loopOptions(int num_envs, uint32_t seed, int render_threads) {
+hg::GameLoopOptions loopOptions(int num_envs, uint32_t seed, int render_threads, bool seeker_outside) {
   if (num_envs < 1 || num_envs > 64)
     throw std::invalid_argument("num_envs must be in [1, 64], got " + std::to_string(num_envs));
   if (render_threads < 1) throw std::invalid_argument("render_threads must be >= 1");
@@ -25,15 +26,23 @@ hg::GameLoopOptions loopOptions(int num_envs, uint32_t seed, int render_threads)
   o.seed = seed;
   o.render = true;
   o.render_threads = render_threads;
+  o.render_seeker = seeker_outside;
   return o;
+}
+
+// The game as played: a seeker from outside decides once a step, as a learning seeker does.
+hg::VariantConfig played(hg::VariantConfig v, bool seeker_outside) {
+  if (seeker_outside) v.game = hg::withLearnedSeeker(v.game);
+  return v;
 }
 
 }  // namespace
 
-VecGame::VecGame(const hg::VariantConfig& variant, int num_envs, uint32_t seed, int render_threads)
-    : variant_(variant),
-      game_(variant.game, std::make_shared<const hg::MapSpec>(hg::loadMapFile(variant.map_file)),
-            loopOptions(num_envs, seed, render_threads)),
+VecGame::VecGame(const hg::VariantConfig& variant, int num_envs, uint32_t seed, int render_threads, bool seeker_outside)
+    : variant_(played(variant, seeker_outside)),
+      seeker_outside_(seeker_outside),
+      game_(variant_.game, std::make_shared<const hg::MapSpec>(hg::loadMapFile(variant_.map_file)),
+            loopOptions(num_envs, seed, render_threads, seeker_outside)),
       finished_(num_envs),
       starts_(num_envs, 0),
       evaders_(std::size(hideseek_hider::kAllEvaders)) {
@@ -93,7 +102,27 @@ void VecGame::resetEnv(int env, int64_t seed) {
 }
 
 void VecGame::step(const std::vector<uint8_t>& actions) {
+  if (seeker_outside_) {
+    throw std::invalid_argument("this game's seeker plays from outside: step(hider actions, seeker actions)");
+  }
+  step(actions, {});
+}
+
+void VecGame::step(const std::vector<uint8_t>& actions, const std::vector<uint8_t>& seeker_actions) {
   const int n = numEnvs();
+  if (seeker_outside_ && seeker_actions.size() != static_cast<size_t>(n)) {
+    throw std::invalid_argument(std::to_string(seeker_actions.size()) + " seeker actions for " + std::to_string(n) +
+                                " environments");
+  }
+  if (!seeker_outside_ && !seeker_actions.empty()) {
+    throw std::invalid_argument("this game's seeker is the variant's scripted one: give the hider's actions alone");
+  }
+  for (int i = 0; seeker_outside_ && i < n; ++i) {
+    if (seeker_actions[i] >= seekerActions()) {
+      throw std::invalid_argument("seeker action " + std::to_string(seeker_actions[i]) + " of environment " +
+                                  std::to_string(i) + " is not in [0, " + std::to_string(seekerActions()) + ")");
+    }
+  }
   if (actions.size() != static_cast<size_t>(n)) {
     throw std::invalid_argument(std::to_string(actions.size()) + " actions for " + std::to_string(n) + " environments");
   }
@@ -106,11 +135,23 @@ void VecGame::step(const std::vector<uint8_t>& actions) {
     hider[i] = static_cast<hg::Action>(actions[i]);
   }
   untouched_ = false;
-  const hg::Decision d = game_.step(hider, [this](int i, const hg::SeekerPerception& p) { return seekers_[i].act(p); });
+  const hg::Decision d = game_.step(hider, [&](int i, const hg::SeekerPerception& p) {
+    return seeker_outside_ ? static_cast<hg::Action>(seeker_actions[i]) : seekers_[i].act(p);
+  });
   for (int i = 0; i < n; ++i) {
     finished_[i] = d.steps[i].finished;
     if (finished_[i]) episodeStarted(i);
   }
+}
+
+std::vector<uint8_t> VecGame::randomSeekerActions() const {
+  std::vector<uint8_t> a(numEnvs());
+  for (int i = 0; i < numEnvs(); ++i) {
+    const hg::Arena& arena = game_.world().arena(i);
+    a[i] =
+        hg::hashAction(arena.seed(), static_cast<uint32_t>(arena.stepCount()), hg::kSaltRandomSeeker, seekerActions());
+  }
+  return a;
 }
 
 ArenaInfo VecGame::info(int env) const {

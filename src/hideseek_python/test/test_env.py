@@ -320,3 +320,83 @@ def test_vector_wrappers_that_accept_same_step_autoreset(name):
 def test_vector_observation_wrappers_refuse_same_step_autoreset(name):
     with pytest.raises(ValueError, match="NEXT_STEP or DISABLED"):
         _wrap(name, hideseek.make_vec("basic", num_envs=2, seed=0))
+
+
+def test_the_seekers_side_sees_its_own_camera_and_earns_its_own_rewards():
+    """role="seeker": the seeker's images and rewards (+1 on capture, -0.001 a step), the hider
+    played by a script; its actions are the scripted seeker's in the game (7 in game v3)."""
+    seekers = hideseek.make_vec("basic", num_envs=2, seed=3, role="seeker", opponent="random")
+    hiders = hideseek.make_vec("basic", num_envs=2, seed=3)
+
+    def chase(infos):  # the test's seeker reads the true poses to turn towards the hider
+        d = infos["hider_pose"][:, :2] - infos["seeker_pose"][:, :2]
+        off = np.angle(np.exp(1j * (np.arctan2(d[:, 1], d[:, 0]) - infos["seeker_pose"][:, 2])))
+        return np.where(np.abs(off) < 0.3, 1, np.where(off > 0, 3, 4))
+
+    try:
+        assert seekers.single_action_space.n == 5 and seekers.opponent == "random"
+        obs, infos = seekers.reset(seed=3)
+        hider_obs, _ = hiders.reset(seed=3)
+        assert obs.shape == (2, 84, 84, 3) and obs.std() > 10
+        assert not np.array_equal(obs, hider_obs)  # the seeker's camera, not the hider's
+        assert list(infos["seed"]) == [3, 4]
+        captured = 0
+        for _ in range(600):
+            obs, rewards, terminations, truncations, infos = seekers.step(chase(infos))
+            for i in range(2):
+                if terminations[i]:
+                    captured += 1
+                    assert rewards[i] == pytest.approx(1.0)
+                    final = infos["final_info"]
+                    assert final["return"][i] == pytest.approx(1.0 - 0.001 * (final["length"][i] - 1))
+                    assert final["hider_return"][i] == pytest.approx(-1.0 + 0.001 * (final["length"][i] - 1))
+                elif not truncations[i]:
+                    assert rewards[i] == pytest.approx(-0.001)
+        assert captured > 0
+        with pytest.raises(ValueError, match="seeker action 5 of environment 1 is not in \\[0, 5\\)"):
+            seekers.step([0, 5])
+    finally:
+        seekers.close()
+        hiders.close()
+    v3 = hideseek.make_vec("basic", num_envs=1, seed=0, game="v3", role="seeker")
+    assert v3.single_action_space.n == 7 and v3.opponent == "random"
+    v3.reset(seed=0)
+    v3.step([6])  # forward while turning right: game v3's seeker has it
+    v3.close()
+
+
+def test_a_callable_plays_the_other_side_on_its_own_images():
+    """A policy as the opponent: it gets its side's images and the infos; the random seeker and
+    the hider's scripted seeker are the other choices, and a bad opponent is named."""
+    seen = []
+
+    def hider_policy(images, infos):
+        seen.append(images.shape)
+        return np.zeros(len(images), dtype=np.int64)  # stays
+
+    env = hideseek.make_vec("basic", num_envs=2, seed=0, role="seeker", opponent=hider_policy)
+    env.reset(seed=0)
+    start = env._game.infos()["hider_pose"].copy()
+    env.step([3, 4])
+    assert seen == [(2, 84, 84, 3)]
+    assert np.allclose(env._game.infos()["hider_pose"], start)  # the callable's "stay" was played
+    env.close()
+    hider = hideseek.make_vec("basic", num_envs=2, seed=0, opponent="random")  # the random seeker
+    hider.reset(seed=0)
+    expected = hider._game.random_seeker_actions()
+    assert len(expected) == 2 and hider._game.seeker_outside
+    hider.step([0, 0])
+    hider.close()
+    with pytest.raises(ValueError, match="opponent of the seeker must be None, a callable or one of random, "):
+        hideseek.make_vec("basic", num_envs=1, role="seeker", opponent="scripted")
+    with pytest.raises(ValueError, match="role must be 'hider' or 'seeker', got 'both'"):
+        hideseek.make_vec("basic", num_envs=1, role="both")
+
+
+@needs_gymnasium
+def test_gymnasium_check_env_passes_on_the_seekers_side():
+    from gymnasium.utils.env_checker import check_env
+
+    env = hideseek.make("basic", seed=0, role="seeker")
+    check_env(env, skip_render_check=True)
+    env.close()

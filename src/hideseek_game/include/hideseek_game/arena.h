@@ -63,6 +63,7 @@ class Arena {
   int stepCount() const { return step_; }
   uint32_t seed() const { return seed_; }
   double episodeReturn() const { return return_; }
+  double seekerEpisodeReturn() const { return seeker_return_; }  // a learning seeker's (seeker_rewards)
   // Changes whenever the layout does, so renderers and planners know when to rebuild.
   uint64_t layoutVersion() const { return layout_version_; }
   const GameOptions& options() const { return options_; }
@@ -85,6 +86,7 @@ class Arena {
   int frame_ = 0;  // physics frames done in the current decision step
   uint32_t seed_ = 0;
   double return_ = 0.0;
+  double seeker_return_ = 0.0;
   bool captured_ = false;
   uint64_t layout_version_ = 0;
 };

@@ -21,6 +21,7 @@ struct EpisodeSummary {
   AgentState hider;
   AgentState seeker;
   Labels labels;
+  double seeker_return = 0.0;  // a learning seeker's return (seeker_rewards)
 };
 
 struct ArenaStep {

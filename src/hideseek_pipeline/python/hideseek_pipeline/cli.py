@@ -3,6 +3,8 @@
   hideseek_pipeline train basic --seed 1   one run: trained, exported, recorded, evaluated
   hideseek_pipeline evaluate RUN WEIGHTS   a recorded run's evaluation (seeds 0-99) and trajectories
   hideseek_pipeline analyze RUN WEIGHTS    a recorded run's probes, t-SNE and behaviour
+  hideseek_pipeline evaluate-seeker SEEKER  a learned seeker's captures, beside the scripted seeker's
+  hideseek_pipeline selfplay OUT           hider-seeker self-play in generations; --crossplay: the table
   hideseek_pipeline test                   make test: every test, ending "N passed, M failed"; the sweep held
   hideseek_pipeline bench                  make bench: this machine's throughput, the sweep held meanwhile
   hideseek_pipeline report                 make reproduce: Table 2, the claims and the figures in docs/report
@@ -17,7 +19,7 @@ import os
 import subprocess
 import sys
 
-from hideseek_pipeline import analyze, control, evaluate, runner, sweep_config, tests, train
+from hideseek_pipeline import analyze, control, evaluate, runner, seeker, selfplay, sweep_config, tests, train
 from hideseek_pipeline.measure import MeasureError
 from hideseek_pipeline.queue import Sweep, SweepError
 from hideseek_pipeline.records import Records
@@ -64,6 +66,7 @@ def parser():
                         "checkout; the sweep passes a phase's pinned worktree)")
     _train_parser(sub, common)
     _evaluate_and_analyze_parsers(sub, common)
+    _seeker_parsers(sub, common)
     sub.add_parser("test", help="every test of the workspace (make test), with a running sweep held",
                    description=tests.__doc__)
     sub.add_parser("bench", help="this machine's throughput figures, with a running sweep held",
@@ -112,6 +115,38 @@ def _evaluate_and_analyze_parsers(sub, common):
     a.add_argument("--game", help="--baseline's game (default: config/games.yaml's)")
     a.add_argument("--episodes", type=int, default=100, help="rollouts (default 100)")
     a.add_argument("--first-seed", type=int, default=10000, help="the rollouts' first seed (default 10000)")
+
+
+def _seeker_parsers(sub, common):
+    e = sub.add_parser("evaluate-seeker", parents=[common], help="a learned seeker against hiders, beside the "
+                       "scripted seeker", description=seeker.__doc__)
+    e.add_argument("seeker", help="a seeker's checkpoint or exported policy")
+    e.add_argument("--variant", default="basic")
+    e.add_argument("--variant-config", help="a variant file of one's own (tests)")
+    e.add_argument("--game", help="default: config/games.yaml's")
+    e.add_argument("--hiders", nargs="+", default=["shipped"],
+                   help="the hiders to play against: shipped, random, scripted/EVADER or a hider's checkpoint "
+                   "(default: shipped)")
+    e.add_argument("--output", required=True, help="the folder of seeker_evaluation.md/.csv")
+    e.add_argument("--episodes", type=int, default=100)
+    e.add_argument("--first-seed", type=int, default=0)
+    e.add_argument("--port", type=int, default=11489)
+    p = sub.add_parser("selfplay", parents=[common], help="hider-seeker self-play: generations, then cross-play",
+                       description=selfplay.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("output", help="the self-play's folder (resumes what it holds)")
+    p.add_argument("--variant", default="basic")
+    p.add_argument("--variant-config", help="a variant file of one's own (tests)")
+    p.add_argument("--game", help="default: config/games.yaml's")
+    p.add_argument("--generations", type=int, default=4)
+    p.add_argument("--steps", type=int, default=250_000, help="steps per side and generation (default 250000)")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--num-arenas", type=int, help="default: train.launch's")
+    p.add_argument("--hider-threads", type=int, help="the learners' intra-op threads (default: train.launch's)")
+    p.add_argument("--precision", choices=["auto", "fp32", "bf16"], default="auto")
+    p.add_argument("--ppo-config", help="default: config/ppo.yaml (its annealing turned off)")
+    p.add_argument("--port", type=int, default=11620, help="ROS master ports: this, +1 and +2 (default 11620)")
+    p.add_argument("--crossplay", action="store_true", help="then the cross-play table of every generation")
+    p.add_argument("--episodes", type=int, default=100, help="cross-play: episodes per pair (default 100)")
 
 
 def bench_doc():
@@ -195,6 +230,19 @@ def run_command(args):
         train.train(ws, records, o)
     elif args.command == "evaluate":
         evaluate.evaluate(ws, records, args.run, args.weights, tuple(args.modes), args.port)
+    elif args.command == "evaluate-seeker":
+        seeker.evaluate_seeker(ws, args.variant, args.game, args.seeker, args.hiders, os.path.realpath(args.output),
+                               args.episodes, args.first_seed, args.port,
+                               variant_config=args.variant_config and os.path.realpath(args.variant_config))
+    elif args.command == "selfplay":
+        o = selfplay.SelfPlayOptions(
+            out=args.output, variant=args.variant, game=args.game, generations=args.generations, steps=args.steps,
+            seed=args.seed, num_arenas=args.num_arenas, hider_threads=args.hider_threads, precision=args.precision,
+            ppo_config=args.ppo_config and os.path.realpath(args.ppo_config),
+            variant_config=args.variant_config and os.path.realpath(args.variant_config), port=args.port)
+        selfplay.selfplay(ws, o)
+        if args.crossplay:
+            selfplay.crossplay(ws, o, args.episodes)
     elif args.baseline:
         if args.run or args.part != "all":
             raise ToolError("analyze: --baseline takes no RUN, WEIGHTS or --part")
@@ -244,6 +292,8 @@ def held(root, command, config=None):
 
 
 def main(argv=None):
+    # Started as a node (selfplay.launch), roslaunch appends its own arguments (__name:=, __log:=).
+    argv = [a for a in (sys.argv[1:] if argv is None else argv) if not (a.startswith("__") and ":=" in a)]
     args = parser().parse_args(argv)
     # No process the pipeline starts may leave __pycache__ in a pinned worktree (the trainers there
     # import the registry module): the tree would look modified and no further run would start.

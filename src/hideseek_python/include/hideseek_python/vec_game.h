@@ -41,7 +41,11 @@ struct ArenaInfo {
 class VecGame {
  public:
   // num_envs arenas; arena i's first episode has seed seed + i, its later ones seed + i + k num_envs.
-  VecGame(const hideseek_game::VariantConfig& variant, int num_envs, uint32_t seed, int render_threads = 2);
+  // seeker_outside: the seeker's actions come from outside (step's second argument: a learner, a
+  // policy or the random seeker), decided once a step on its own camera (seekerObservations), as
+  // the seeker node's policy and train modes play; else each arena's scripted seeker plays.
+  VecGame(const hideseek_game::VariantConfig& variant, int num_envs, uint32_t seed, int render_threads = 2,
+          bool seeker_outside = false);
 
   int numEnvs() const { return game_.numArenas(); }
   int height() const { return variant_.game.camera.height; }
@@ -63,6 +67,15 @@ class VecGame {
   // its next one within the step (the terminal frame is never rendered). Throws
   // std::invalid_argument, changing nothing, for a wrong count or an action out of range.
   void step(const std::vector<uint8_t>& actions);
+  // The same with the seeker's actions too (seeker_outside only; 0..seekerActions()-1).
+  void step(const std::vector<uint8_t>& actions, const std::vector<uint8_t>& seeker_actions);
+  bool seekerOutside() const { return seeker_outside_; }
+  int seekerActions() const { return hideseek_game::actionCount(variant_.game, true); }
+  // What the seeker observes (seeker_outside only): every arena's camera image and its rewards.
+  const std::vector<uint8_t>& seekerObservations() const { return game_.seekerImages(); }
+  const std::vector<float>& seekerRewards() const { return game_.seekerRewards(); }
+  // The uniformly random seeker's actions for the current state (the seeker node's random mode).
+  std::vector<uint8_t> randomSeekerActions() const;
 
   // After the last step or reset, per arena.
   const std::vector<uint8_t>& observations() const { return game_.hiderImages(); }  // rgb8, rows top down
@@ -89,6 +102,7 @@ class VecGame {
   void episodeStarted(int env);
 
   hideseek_game::VariantConfig variant_;
+  bool seeker_outside_;
   hideseek_game::GameLoop game_;
   std::vector<hideseek_seeker::SeekerPolicy> seekers_;
   std::vector<std::optional<hideseek_game::EpisodeSummary>> finished_;

@@ -12,6 +12,16 @@ infos["final_info"] (masked by infos["_final_info"]) holds the ended episode's l
 and terminal state (poses and labels). There is no infos["final_obs"]: no image of the terminal state
 exists. A capture is a termination; surviving max_steps is a truncation (a time limit the image does
 not show).
+
+Two players, one side at a time: role="hider" (the default) gives the hider's side, the seeker played
+by the variant's scripted seeker (opponent None or "scripted"), the random seeker ("random") or a
+callable; role="seeker" gives the seeker's side, from its own camera alone, with its rewards (the game
+file's seeker_rewards), the hider played by a scripted hider (opponent None or "random", "backpedal",
+"flee", "hide", "lap") or a callable. A callable opponent gets its own side's images (uint8 [num_envs,
+H, W, 3]) and the infos, and returns one action per environment: a trained policy, say. Wherever the
+seeker is not the scripted one, it decides once a step on its camera, as the seeker node's policy and
+train modes play (its actions: 5, or 7 in game v3). infos["final_info"]["return"] is the return of
+the side the environment plays.
 """
 
 import numpy as np
@@ -40,6 +50,8 @@ ACTIONS = ("stay", "forward", "backward", "turn_left", "turn_right")
 # that read the true state.
 SCRIPTED_HIDERS = ("random", "backpedal", "flee", "hide", "lap")
 OUTCOME_CAPTURED, OUTCOME_SURVIVED = 1, 2
+ROLES = ("hider", "seeker")
+SEEKER_OPPONENTS = ("scripted", "random")  # role hider: the seeker, besides a callable
 
 
 def _config_dir(config_dir):
@@ -76,17 +88,28 @@ def _seed_list(seed, num_envs):
     return seeds
 
 
-def _actions(actions, num_envs):
+def _actions(actions, num_envs, count=_core.num_actions, what="action"):
     a = np.asarray(actions)
     if a.shape != (num_envs,):
-        raise ValueError("actions must have shape (%d,), got %s" % (num_envs, a.shape))
+        raise ValueError("%ss must have shape (%d,), got %s" % (what, num_envs, a.shape))
     if not np.issubdtype(a.dtype, np.integer):
         if not np.all(np.equal(np.mod(a, 1), 0)):
-            raise ValueError("actions must be integers in [0, 5), got %s" % a)
-    if np.any(a < 0) or np.any(a >= _core.num_actions):
-        bad = int(np.flatnonzero((a < 0) | (a >= _core.num_actions))[0])
-        raise ValueError("action %s of environment %d is not in [0, 5)" % (a[bad], bad))
+            raise ValueError("%ss must be integers in [0, %d), got %s" % (what, count, a))
+    if np.any(a < 0) or np.any(a >= count):
+        bad = int(np.flatnonzero((a < 0) | (a >= count))[0])
+        raise ValueError("%s %s of environment %d is not in [0, %d)" % (what, a[bad], bad, count))
     return a.astype(np.uint8)
+
+
+def _check_opponent(role, opponent):
+    if role not in ROLES:
+        raise ValueError("role must be 'hider' or 'seeker', got %r" % (role,))
+    if opponent is None or callable(opponent):
+        return
+    allowed = SEEKER_OPPONENTS if role == "hider" else SCRIPTED_HIDERS
+    if opponent not in allowed:
+        raise ValueError("opponent of the %s must be None, a callable or one of %s, got %r"
+                         % (role, ", ".join(allowed), opponent))
 
 
 def _with_masks(d, mask):
@@ -106,7 +129,8 @@ class HideSeekVecEnv(_VectorBase):
     metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": ["rgb_array"], "render_fps": 5}
 
     def __init__(self, variant="basic", num_envs=16, seed=0, game=None, config_dir=None,
-                 render_threads=2, render_mode=None):
+                 render_threads=2, render_mode=None, role="hider", opponent=None):
+        _check_opponent(role, opponent)
         if render_mode not in (None, "rgb_array"):
             raise ValueError("render_mode must be None or 'rgb_array', got %r" % (render_mode,))
         if isinstance(num_envs, bool) or not isinstance(num_envs, (int, np.integer)):
@@ -116,15 +140,18 @@ class HideSeekVecEnv(_VectorBase):
             raise ValueError("seed + num_envs - 1 must be below 2^32")
         config_dir = _config_dir(config_dir)
         game = game or _core.default_game(config_dir)  # None: config/games.yaml's default
-        self._game = _core.VecGame(config_dir, game, variant, int(num_envs), seed, int(render_threads))
-        self.variant, self.game = variant, game
+        outside = role == "seeker" or opponent not in (None, "scripted")
+        self._game = _core.VecGame(config_dir, game, variant, int(num_envs), seed, int(render_threads), outside)
+        self.variant, self.game, self.role = variant, game, role
+        self.opponent = opponent if opponent is not None else ("scripted" if role == "hider" else "random")
         self.num_envs = self._game.num_envs
         self.render_mode = render_mode
         h, w = self._game.height, self._game.width
+        count = self._game.seeker_actions if role == "seeker" else _core.num_actions
         self.single_observation_space = _spaces.Box(0, 255, (h, w, 3), np.uint8)
-        self.single_action_space = _spaces.Discrete(_core.num_actions)
+        self.single_action_space = _spaces.Discrete(count)
         self.observation_space = _spaces.Box(0, 255, (self.num_envs, h, w, 3), np.uint8)
-        self.action_space = _spaces.MultiDiscrete(np.full(self.num_envs, _core.num_actions))
+        self.action_space = _spaces.MultiDiscrete(np.full(self.num_envs, count))
         self.closed = False
         self._everyone = np.ones(self.num_envs, dtype=bool)
 
@@ -137,20 +164,46 @@ class HideSeekVecEnv(_VectorBase):
         self._game.reset(seeds)  # first: it refuses a bad seed, changing nothing
         if HAVE_GYMNASIUM and seed is not None:
             super().reset(seed=seeds[0])  # seeds the vector env's own np_random, as Gymnasium's do
-        return self._game.observations(), self._infos()
+        return self._observations(), self._infos()
 
     def step(self, actions):
-        self._game.step(_actions(actions, self.num_envs))
+        n = self.num_envs
+        if self.role == "hider":
+            hider = _actions(actions, n)
+            seeker = self._opponent_actions() if self._game.seeker_outside else None
+        else:
+            seeker = _actions(actions, n, self._game.seeker_actions, "seeker action")
+            hider = self._opponent_actions()
+        self._game.step(hider, seeker)
         outcomes = self._game.outcomes()
         infos = self._infos()
         done = self._game.done()
         if done.any():
             final = self._game.finished()
             del final["_mask"]  # the same as done
+            if self.role == "seeker":
+                final["hider_return"], final["return"] = final["return"], final["seeker_return"]
+            del final["seeker_return"]
             infos["final_info"] = _with_masks(final, done)
             infos["_final_info"] = done
-        return (self._game.observations(), self._game.rewards().astype(np.float64),
-                outcomes == OUTCOME_CAPTURED, outcomes == OUTCOME_SURVIVED, infos)
+        rewards = self._game.seeker_rewards() if self.role == "seeker" else self._game.rewards()
+        return (self._observations(), rewards.astype(np.float64), outcomes == OUTCOME_CAPTURED,
+                outcomes == OUTCOME_SURVIVED, infos)
+
+    def _observations(self):
+        return self._game.seeker_observations() if self.role == "seeker" else self._game.observations()
+
+    def _opponent_actions(self):
+        """The other side's actions for the current state: a script's, or a callable's on its own images."""
+        n, o = self.num_envs, self.opponent
+        if self.role == "hider":
+            if o == "random":
+                return self._game.random_seeker_actions()
+            return _actions(o(self._game.seeker_observations(), self._infos()), n, self._game.seeker_actions,
+                            "opponent's action")
+        if isinstance(o, str):
+            return self._game.scripted_actions(o)
+        return _actions(o(self._game.observations(), self._infos()), n, _core.num_actions, "opponent's action")
 
     def scripted_actions(self, name):
         """A scripted hider's actions for every arena's current state: random (the paper's random
@@ -159,8 +212,9 @@ class HideSeekVecEnv(_VectorBase):
         return self._game.scripted_actions(name).astype(np.int64)
 
     def render(self):
-        """The hider images, a tuple of num_envs uint8 [H, W, 3] frames (render_mode 'rgb_array')."""
-        return tuple(self._game.observations()) if self.render_mode == "rgb_array" else None
+        """The images of the side played, a tuple of num_envs uint8 [H, W, 3] frames (render_mode
+        'rgb_array')."""
+        return tuple(self._observations()) if self.render_mode == "rgb_array" else None
 
     def close(self, **kwargs):
         """Frees the game (its renderer and images); the environment cannot be used after."""
@@ -171,7 +225,8 @@ class HideSeekVecEnv(_VectorBase):
         return _with_masks(self._game.infos(), self._everyone)
 
     def __repr__(self):
-        return "HideSeekVecEnv(%s, num_envs=%d, game=%s)" % (self.variant, self.num_envs, self.game)
+        return "HideSeekVecEnv(%s, num_envs=%d, game=%s%s)" % (
+            self.variant, self.num_envs, self.game, "" if self.role == "hider" else ", role=seeker")
 
 
 class HideSeekEnv(_EnvBase):
@@ -182,8 +237,8 @@ class HideSeekEnv(_EnvBase):
     metadata = {"render_modes": ["rgb_array"], "render_fps": 5}
 
     def __init__(self, variant="basic", seed=0, game=None, config_dir=None, render_threads=2,
-                 render_mode=None):
-        self._vec = HideSeekVecEnv(variant, 1, seed, game, config_dir, render_threads)
+                 render_mode=None, role="hider", opponent=None):
+        self._vec = HideSeekVecEnv(variant, 1, seed, game, config_dir, render_threads, role=role, opponent=opponent)
         if render_mode not in (None, "rgb_array"):
             raise ValueError("render_mode must be None or 'rgb_array', got %r" % (render_mode,))
         self.render_mode = render_mode
@@ -199,7 +254,7 @@ class HideSeekEnv(_EnvBase):
         if HAVE_GYMNASIUM:
             super().reset(seed=seed)
         self._fresh = True
-        return self._vec._game.observations()[0], self._info()
+        return self._vec._observations()[0], self._info()
 
     def step(self, action):
         obs, rewards, terminations, truncations, infos = self._vec.step([action])
@@ -213,7 +268,7 @@ class HideSeekEnv(_EnvBase):
         return int(self._vec.scripted_actions(name)[0])
 
     def render(self):
-        return self._vec._game.observations()[0] if self.render_mode == "rgb_array" else None
+        return self._vec._observations()[0] if self.render_mode == "rgb_array" else None
 
     def close(self):
         self._vec.close()
@@ -226,8 +281,9 @@ class HideSeekEnv(_EnvBase):
 
 def make_vec(variant="basic", num_envs=16, seed=0, **kwargs):
     """A batched environment of `variant` (config/variants/VARIANT.yaml) with num_envs arenas; keyword
-    arguments: game ('v2' or 'v1'), config_dir (default: the hideseek_game package's config/),
-    render_threads, render_mode."""
+    arguments: game ('v2', 'v1' or 'v3'), config_dir (default: the hideseek_game package's config/),
+    render_threads, render_mode, role ('hider' or 'seeker') and opponent (the other side: see the
+    module's docstring)."""
     return HideSeekVecEnv(variant, num_envs, seed, **kwargs)
 
 

@@ -1,0 +1,211 @@
+"""Hider-seeker self-play: the two learners alternate, generation after generation. In generation
+k the seeker trains `steps` more steps against a hider drawn from the hider pool (every hider
+generation before k, and the random hider), then the hider trains `steps` more against a seeker
+drawn from the seeker pool (every seeker generation up to k, and the random seeker): a pool, as
+fictitious self-play keeps one, so that the two do not chase each other in a cycle. Each side
+resumes its own run (OUT/<role>/checkpoint.pt) with a constant learning rate (OUT/ppo.yaml: the
+PPO file with its annealing off, so that no generation's schedule depends on how many follow).
+The opponent samples its actions, as it did in training (a draw that depends only on the episode
+seed and the step).
+
+Every generation is saved (OUT/generations/<role>_gNNN.pt, exported weights) and registered in
+OUT/generations.yaml like a run (role, variant, game, steps, wall time, its opponent, the commit).
+The draws depend only on the seed and the generation, so a stopped self-play resumes where it
+stopped: finished generations are kept, a generation cut off resumes from its checkpoint, and the
+same seeds replay the same generations (one learner thread).
+
+Each training is a train.launch of its own, on its own ROS master (port, port + 1), as the sweep
+runs its runs."""
+import os
+import random
+import shutil
+import subprocess
+from dataclasses import dataclass
+from typing import Optional
+
+import yaml
+
+from hideseek_pipeline import seeker as seeker_evaluation
+from hideseek_pipeline.workspace import ToolError
+
+ROLES = ("seeker", "hider")  # the order within a generation
+
+
+@dataclass
+class SelfPlayOptions:
+    out: str
+    variant: str = "basic"
+    game: Optional[str] = None
+    generations: int = 4
+    steps: int = 250_000      # per side and generation
+    seed: int = 0
+    num_arenas: Optional[int] = None
+    hider_threads: Optional[int] = None
+    precision: str = "auto"
+    ppo_config: Optional[str] = None  # default: the workspace's config/ppo.yaml, annealing off
+    variant_config: Optional[str] = None  # a variant file of one's own (tests)
+    port: int = 11620
+
+
+def draw(pool, seed, generation, role):
+    """The opponent of `role` in `generation`: uniform over its pool, a pure function of the
+    seed, the generation and the role."""
+    rng = random.Random("%d/%d/%s" % (seed, generation, role))
+    return pool[rng.randrange(len(pool))]
+
+
+def pools(generations, role, upto):
+    """What `role` may train against in generation `upto`: the random policy of the other side and
+    every saved generation of it before this point (the seeker trains first, so the hider of
+    generation k meets the seeker of k too)."""
+    other = "hider" if role == "seeker" else "seeker"
+    last = upto - 1 if role == "seeker" else upto
+    return ["random"] + [g["checkpoint"] for g in generations if g["role"] == other and g["generation"] <= last]
+
+
+def constant_rate_ppo(source, out):
+    with open(source) as f:
+        ppo = yaml.safe_load(f)
+    ppo["anneal_learning_rate"] = False
+    path = os.path.join(out, "ppo.yaml")
+    with open(path, "w") as f:
+        f.write("# %s with a constant learning rate: self-play's generations resume one run each\n" % source)
+        yaml.safe_dump(ppo, f, sort_keys=False)
+    return path
+
+
+def train_generation(ws, o, game, role, generation, opponent, ppo):
+    """`role` trains up to generation x steps (its run resumes), against `opponent`."""
+    run = os.path.join(o.out, role)
+    os.makedirs(run, exist_ok=True)
+    port = o.port + (0 if role == "seeker" else 1)
+    args = ["roslaunch", "-p", port, "hideseek_world", "train.launch", "role:=" + role, "variant:=" + o.variant,
+            "game:=" + game, "seed:=%d" % o.seed, "steps:=%d" % (generation * o.steps), "precision:=" + o.precision,
+            "output_dir:=" + run, "ppo_config:=" + ppo, "opponent_greedy:=false",
+            "opponent:=" + (opponent if opponent == "random" else os.path.join(o.out, opponent))]
+    for key, value in (("num_arenas", o.num_arenas), ("hider_threads", o.hider_threads),
+                       ("variant_config", o.variant_config)):
+        if value is not None:
+            args.append("%s:=%s" % (key, value))
+    log = os.path.join(run, "launch_g%03d.log" % generation)
+    ws.command(args, env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=log, check=False)
+    rows = open(os.path.join(run, "training_log.csv")).read().strip().splitlines()
+    last = rows[-1].split(",") if len(rows) > 1 else []
+    if not last or int(last[1]) < generation * o.steps:
+        raise ToolError("selfplay: the %s of generation %d stopped before its %d steps (see %s)"
+                        % (role, generation, generation * o.steps, log))
+    return int(last[1]), float(last[2])
+
+
+def save_generation(ws, o, game, role, generation, opponent, steps, wall_s):
+    name = "generations/%s_g%03d.pt" % (role, generation)
+    os.makedirs(os.path.join(o.out, "generations"), exist_ok=True)
+    ws.command([ws.tool("hideseek_hider", "export_policy"), os.path.join(o.out, role, "checkpoint.pt"),
+                os.path.join(o.out, name)])
+    commit = subprocess.run(["git", "describe", "--always", "--dirty", "--abbrev=12"], cwd=ws.root,
+                            capture_output=True, text=True).stdout.strip() or "unknown"
+    return {"role": role, "generation": generation, "checkpoint": name, "variant": o.variant, "game": game,
+            "training_seed": o.seed, "steps": steps, "wall_s": round(wall_s), "opponent": opponent, "commit": commit,
+            "log": "%s/training_log.csv" % role}
+
+
+def load_generations(out):
+    path = os.path.join(out, "generations.yaml")
+    if not os.path.isfile(path):
+        return []
+    with open(path) as f:
+        return (yaml.safe_load(f) or {}).get("generations", [])
+
+
+def write_generations(out, generations):
+    path = os.path.join(out, "generations.yaml")
+    with open(path + ".tmp", "w") as f:
+        f.write("# hideseek_pipeline selfplay: every saved generation, like a run of the registry\n")
+        yaml.safe_dump({"generations": generations}, f, sort_keys=False)
+    os.replace(path + ".tmp", path)
+
+
+def selfplay(ws, o, say=print):
+    """Trains the generations not yet saved; returns every generation's entry."""
+    os.makedirs(o.out, exist_ok=True)
+    o.out = os.path.realpath(o.out)
+    game = o.game or (ws.resolve(o.variant, "game") if not o.variant_config else ws.resolve("basic", "game"))
+    ppo = constant_rate_ppo(o.ppo_config or os.path.join(ws.root, "config", "ppo.yaml"), o.out)
+    generations = load_generations(o.out)
+    done = {(g["role"], g["generation"]) for g in generations}
+    for generation in range(1, o.generations + 1):
+        for role in ROLES:
+            if (role, generation) in done:
+                continue
+            opponent = draw(pools(generations, role, generation), o.seed, generation, role)
+            say("selfplay: generation %d: the %s trains to %d steps against %s" % (
+                generation, role, generation * o.steps, opponent))
+            steps, wall_s = train_generation(ws, o, game, role, generation, opponent, ppo)
+            generations.append(save_generation(ws, o, game, role, generation, opponent, steps, wall_s))
+            write_generations(o.out, generations)
+    return generations
+
+
+def copy_logs(o, dest):
+    """The two learners' training logs beside the cross-play table (the learning curves)."""
+    for role in ROLES:
+        log = os.path.join(o.out, role, "training_log.csv")
+        if os.path.isfile(log):
+            shutil.copyfile(log, os.path.join(dest, "%s_training_log.csv" % role))
+
+
+def crossplay(ws, o, episodes=100, first_seed=0, say=print):
+    """Every saved hider generation (and the random hider) against every saved seeker generation
+    (and the scripted and random seekers): capture rate and mean living steps, through
+    evaluate.launch (greedy, fp32). Written to OUT/crossplay/crossplay.csv, .md and .png, with the
+    two learners' training logs and their learning curves."""
+    generations = load_generations(o.out)
+    game = generations[0]["game"] if generations else (o.game or ws.resolve(o.variant, "game"))
+    hiders = ["random"] + [g["checkpoint"] for g in generations if g["role"] == "hider"]
+    seekers = ["scripted", "random"] + [g["checkpoint"] for g in generations if g["role"] == "seeker"]
+    dest = os.path.join(o.out, "crossplay")
+    rows = []
+    for hider in hiders:
+        for seeker in seekers:
+            where = os.path.join(dest, seeker_evaluation.label(hider), seeker_evaluation.label(seeker))
+            s = seeker_evaluation.play(ws, o.variant, game, _path(o, hider), _path(o, seeker), where, episodes,
+                                       first_seed, o.port + 2, variant_config=o.variant_config)
+            rows.append(dict(s, hider=seeker_evaluation.label(hider), seeker=seeker_evaluation.label(seeker)))
+            say("crossplay: %s against %s: %d of %d captured, %.1f living steps" % (
+                rows[-1]["seeker"], rows[-1]["hider"], s["captures"], s["episodes"], s["mean_living_steps"]))
+    title = "%s (game %s), seeds %d-%d, greedy" % (o.variant, game, first_seed, first_seed + episodes - 1)
+    write_crossplay(rows, dest, title)
+    ws.python("plot_crossplay.py", os.path.join(dest, "crossplay.csv"), os.path.join(dest, "crossplay.png"),
+              "cross-play: " + title)
+    copy_logs(o, dest)
+    curves = []
+    for role in ROLES:
+        curves += ["--run", role, os.path.join(dest, "%s_training_log.csv" % role)]
+    ws.python("plot_learning_curve.py", *curves, "--output", os.path.join(dest, "learning_curves.png"), "--title",
+              "self-play, %s (game %s): both learners, generations: %d" % (o.variant, game, len(generations) // 2))
+    say("crossplay: %s" % os.path.join(dest, "crossplay.md"))
+    return rows
+
+
+def _path(o, policy):
+    return policy if policy in ("random", "scripted") else os.path.join(o.out, policy)
+
+
+def write_crossplay(rows, dest, title):
+    keys = ["hider", "seeker", "episodes", "captures", "capture_rate", "mean_living_steps"]
+    with open(os.path.join(dest, "crossplay.csv"), "w") as f:
+        f.write(",".join(keys) + "\n")
+        for r in rows:
+            f.write("%s,%s,%d,%d,%.3f,%.1f\n" % tuple(r[k] for k in keys))
+    seekers = list(dict.fromkeys(r["seeker"] for r in rows))
+    hiders = list(dict.fromkeys(r["hider"] for r in rows))
+    cell = {(r["hider"], r["seeker"]): r for r in rows}
+    lines = ["# Cross-play: %s" % title, "",
+             "Each cell: the seeker's capture rate, and the hider's mean living steps, over the episodes.", "",
+             "| hider \\ seeker | " + " | ".join(seekers) + " |", "| --- |" + " --- |" * len(seekers)]
+    for h in hiders:
+        lines.append("| %s | " % h + " | ".join("%.0f %%, %.0f" % (100 * cell[h, s]["capture_rate"],
+                                                                   cell[h, s]["mean_living_steps"])
+                                                 for s in seekers) + " |")
+    with open(os.path.join(dest, "crossplay.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")

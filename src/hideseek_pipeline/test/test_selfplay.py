@@ -1,0 +1,76 @@
+"""Self-play and the seeker's evaluation, the parts that need no ROS: the opponents' pools and
+draws (a pure function of the seed, the generation and the role), resuming from generations.yaml,
+the capture summary of an evaluation, and the cross-play table."""
+import os
+import sys
+
+import pytest
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+sys.path.insert(0, os.path.join(ROOT, "src", "hideseek_pipeline", "python"))
+from hideseek_pipeline import seeker, selfplay  # noqa: E402
+
+
+def gen(role, k):
+    return {"role": role, "generation": k, "checkpoint": "generations/%s_g%03d.pt" % (role, k)}
+
+
+def test_each_side_draws_from_the_other_sides_past_generations_and_its_random_policy():
+    saved = [gen("seeker", 1), gen("hider", 1), gen("seeker", 2)]
+    # The seeker of generation 2 meets the hiders before it; the hider of 2 also the seeker of 2,
+    # which trained just before it.
+    assert selfplay.pools(saved, "seeker", 2) == ["random", "generations/hider_g001.pt"]
+    assert selfplay.pools(saved, "hider", 2) == ["random", "generations/seeker_g001.pt", "generations/seeker_g002.pt"]
+    assert selfplay.pools([], "seeker", 1) == ["random"]
+
+
+def test_the_draw_depends_only_on_the_seed_the_generation_and_the_role():
+    pool = ["random"] + ["generations/hider_g%03d.pt" % k for k in range(1, 9)]
+    first = [selfplay.draw(pool, 7, k, "seeker") for k in range(1, 40)]
+    assert first == [selfplay.draw(pool, 7, k, "seeker") for k in range(1, 40)]  # a resume draws the same
+    assert first != [selfplay.draw(pool, 8, k, "seeker") for k in range(1, 40)]  # another seed, other draws
+    assert set(first) == set(pool)  # uniform over the pool: every generation is met
+
+
+def test_generations_are_registered_and_read_back(tmp_path):
+    saved = [dict(gen("seeker", 1), steps=128, opponent="random"), dict(gen("hider", 1), steps=128,
+                                                                        opponent="generations/seeker_g001.pt")]
+    selfplay.write_generations(str(tmp_path), saved)
+    assert selfplay.load_generations(str(tmp_path)) == saved
+    assert selfplay.load_generations(str(tmp_path / "none")) == []
+
+
+def test_the_learning_rate_is_constant_in_self_play(tmp_path):
+    source = os.path.join(ROOT, "config", "ppo.yaml")
+    path = selfplay.constant_rate_ppo(source, str(tmp_path))
+    text = open(path).read()
+    assert "anneal_learning_rate: false" in text and "learning_rate: 0.0003" in text
+
+
+def test_a_capture_summary_counts_captures_and_their_times(tmp_path):
+    table = tmp_path / "episodes.csv"
+    table.write_text("seed,living_steps,outcome\n0,20,captured\n1,1000,survived\n2,40,captured\n3,1000,survived\n")
+    s = seeker.capture_summary(str(table))
+    assert s == {"episodes": 4, "captures": 2, "capture_rate": 0.5, "mean_time_to_capture": 30.0,
+                 "mean_living_steps": 515.0}
+    table.write_text("seed,living_steps,outcome\n")
+    with pytest.raises(seeker.ToolError, match="holds no episode"):
+        seeker.capture_summary(str(table))
+
+
+def test_the_crossplay_table_has_a_row_per_hider_and_a_column_per_seeker(tmp_path):
+    rows = [{"hider": h, "seeker": s, "episodes": 10, "captures": c, "capture_rate": c / 10, "mean_living_steps": m}
+            for (h, s, c, m) in [("random", "scripted", 9, 50.0), ("random", "seeker_g001", 3, 700.0),
+                                 ("hider_g001", "scripted", 5, 400.0), ("hider_g001", "seeker_g001", 1, 900.0)]]
+    selfplay.write_crossplay(rows, str(tmp_path), "test")
+    md = open(tmp_path / "crossplay.md").read().splitlines()
+    assert md[4] == "| hider \\ seeker | scripted | seeker_g001 |"
+    assert md[6] == "| random | 90 %, 50 | 30 %, 700 |"
+    assert md[7] == "| hider_g001 | 50 %, 400 | 10 %, 900 |"
+    assert open(tmp_path / "crossplay.csv").read().splitlines()[1] == "random,scripted,10,9,0.900,50.0"
+
+
+def test_policies_get_short_file_safe_labels():
+    assert seeker.label("scripted/flee") == "scripted_flee"
+    assert seeker.label("/runs/x/generations/seeker_g004.pt") == "seeker_g004"
+    assert seeker.label("shipped") == "shipped"
