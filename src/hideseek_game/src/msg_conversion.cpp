@@ -344,20 +344,27 @@ std::string firstWrongLength(size_t n, std::initializer_list<std::pair<const cha
   return "";
 }
 
+// "" for n RGB8 images of height x width in `images`, as the message says they are; else what is wrong.
+std::string imagesProblem(size_t n, uint32_t msg_height, uint32_t msg_width, size_t bytes, int height, int width,
+                          const char* who) {
+  if (msg_height != static_cast<uint32_t>(height) || msg_width != static_cast<uint32_t>(width)) {
+    return "images of " + std::to_string(msg_height) + "x" + std::to_string(msg_width) + ", the " + who + " sees " +
+           std::to_string(height) + "x" + std::to_string(width);
+  }
+  if (bytes != n * static_cast<size_t>(height) * width * 3) {
+    return std::to_string(bytes) + " image bytes for " + std::to_string(n) + " RGB8 images";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string checkObservationBatch(const hideseek_msgs::ObservationBatch& msg, int height, int width,
                                   size_t max_arenas) {
   const size_t n = msg.num_arenas;
   if (n == 0 || n > max_arenas) return "num_arenas " + std::to_string(n) + " (1 to " + std::to_string(max_arenas) + ")";
-  if (msg.height != static_cast<uint32_t>(height) || msg.width != static_cast<uint32_t>(width)) {
-    return "images of " + std::to_string(msg.height) + "x" + std::to_string(msg.width) + ", the hider sees " +
-           std::to_string(height) + "x" + std::to_string(width);
-  }
-  const size_t bytes = static_cast<size_t>(height) * width * 3;
-  if (msg.images.size() != n * bytes) {
-    return std::to_string(msg.images.size()) + " image bytes for " + std::to_string(n) + " RGB8 images";
-  }
+  const std::string images = imagesProblem(n, msg.height, msg.width, msg.images.size(), height, width, "hider");
+  if (!images.empty()) return images;
   return firstWrongLength(n, {{"step", msg.step.size()},
                               {"seed", msg.seed.size()},
                               {"rewards", msg.rewards.size()},
@@ -382,15 +389,7 @@ std::string checkSeekerObservationBatch(const hideseek_msgs::SeekerObservationBa
   if (msg.images.empty()) {
     return "no images: a learning seeker needs the world's seeker cameras (start the world with learned_seeker:=true)";
   }
-  if (msg.height != static_cast<uint32_t>(height) || msg.width != static_cast<uint32_t>(width)) {
-    return "images of " + std::to_string(msg.height) + "x" + std::to_string(msg.width) + ", the seeker sees " +
-           std::to_string(height) + "x" + std::to_string(width);
-  }
-  const size_t bytes = static_cast<size_t>(height) * width * 3;
-  if (msg.images.size() != n * bytes) {
-    return std::to_string(msg.images.size()) + " image bytes for " + std::to_string(n) + " RGB8 images";
-  }
-  return "";
+  return imagesProblem(n, msg.height, msg.width, msg.images.size(), height, width, "seeker");
 }
 
 }  // namespace hideseek_game

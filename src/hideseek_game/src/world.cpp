@@ -88,19 +88,18 @@ void World::syncScenes() {
   }
 }
 
-void World::renderHiderViews(uint8_t* out, RenderMode mode) {
-  if (!renderer_) throw std::logic_error("World: built without a renderer");
-  syncScenes();
-  views_.resize(arenas_.size());
-  for (int i = 0; i < numArenas(); ++i) views_[i] = {i, arenas_[i].hider(), arenas_[i].seeker(), false};
-  renderer_->render(views_, mode, out);
-}
+void World::renderHiderViews(uint8_t* out, RenderMode mode) { renderViews(false, out, mode); }
 
-void World::renderSeekerViews(uint8_t* out, RenderMode mode) {
+void World::renderSeekerViews(uint8_t* out, RenderMode mode) { renderViews(true, out, mode); }
+
+void World::renderViews(bool seeker, uint8_t* out, RenderMode mode) {
   if (!renderer_) throw std::logic_error("World: built without a renderer");
   syncScenes();
   views_.resize(arenas_.size());
-  for (int i = 0; i < numArenas(); ++i) views_[i] = {i, arenas_[i].seeker(), arenas_[i].hider(), true};
+  for (int i = 0; i < numArenas(); ++i) {
+    const Arena& a = arenas_[i];
+    views_[i] = {i, seeker ? a.seeker() : a.hider(), seeker ? a.hider() : a.seeker(), seeker};
+  }
   renderer_->render(views_, mode, out);
 }
 

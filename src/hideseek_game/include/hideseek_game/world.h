@@ -78,6 +78,8 @@ class World {
   void startEpisode(int i, uint32_t seed);
   ArenaStep conclude(int i, const StepResult& result);
   void syncScenes();
+  // Every arena's hider camera, or (`seeker`) seeker camera.
+  void renderViews(bool seeker, uint8_t* out, RenderMode mode);
 
   GameOptions options_;
   std::vector<Arena> arenas_;
