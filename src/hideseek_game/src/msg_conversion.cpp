@@ -387,7 +387,9 @@ std::string checkSeekerObservationBatch(const hideseek_msgs::SeekerObservationBa
                                                  {"outcome", msg.outcome.size()}});
   if (!wrong.empty() || height == 0) return wrong;
   if (msg.images.empty()) {
-    return "no images: a learning seeker needs the world's seeker cameras (start the world with learned_seeker:=true)";
+    return "no images: a learning seeker needs the world's seeker cameras (the world's ~learned_seeker, which the "
+           "launch "
+           "files set for seeker_mode:=random, policy or train)";
   }
   return imagesProblem(n, msg.height, msg.width, msg.images.size(), height, width, "seeker");
 }

@@ -71,7 +71,8 @@ TEST(CheckSeekerObservationBatch, ALearningSeekerNeedsItsImages) {
   EXPECT_EQ(checkSeekerObservationBatch(b, 64), "");
   EXPECT_EQ(
       checkSeekerObservationBatch(b, 64, 2, 2),
-      "no images: a learning seeker needs the world's seeker cameras (start the world with learned_seeker:=true)");
+      "no images: a learning seeker needs the world's seeker cameras (the world's ~learned_seeker, which the launch "
+      "files set for seeker_mode:=random, policy or train)");
   b.height = b.width = 2;
   b.images.assign(2 * 2 * 2 * 3, 7);
   EXPECT_EQ(checkSeekerObservationBatch(b, 64, 2, 2), "");

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     hideseek_hider::CheckpointInfo info = hideseek_hider::readCheckpointInfo(checkpoint);
     // Whichever role it is (a hider's or a seeker's), the policy keeps it.
     hideseek_hider::HiderNet net = hideseek_hider::loadCheckpoint(checkpoint, info.image_height, info.image_width,
-                                                                  nullptr, std::nullopt, info.role);
+                                                                  nullptr, std::nullopt, info.role, info.actions);
     // A shipped policy carries what it is, not the trainer's episode bookkeeping.
     info.recent_lengths.clear();
     info.recent_returns.clear();

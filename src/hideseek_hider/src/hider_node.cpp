@@ -42,6 +42,10 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
       mode = "random";
     }
   }
+  if (o.policy == "scripted" || o.policy == "scripted/") {
+    throw std::invalid_argument("parameter " + pnh.resolveName("policy") + " is '" + o.policy +
+                                "': name the evader, scripted/EVADER (backpedal, flee, hide, lap)");
+  }
   std::optional<EvaderKind> evader;
   try {
     if (mode == "policy") evader = scriptedPolicy(o.policy);
@@ -55,7 +59,8 @@ HiderNodeOptions loadHiderNodeOptions(const ros::NodeHandle& pnh) {
   l.actions = kActions;
   l.mode = mode == "train" ? LearnerMode::kTrain : LearnerMode::kPolicy;
   l.policy = o.policy;
-  loadLearnerParams(pnh, d, l, o.mode == HiderNodeOptions::Mode::kLearner);
+  // Read for the scripted evaders too (a policy mode): a bad device or greedy is refused in both.
+  loadLearnerParams(pnh, d, l, o.mode != HiderNodeOptions::Mode::kRandom);
   if (l.memoryless && o.mode != HiderNodeOptions::Mode::kLearner) {
     throw std::invalid_argument("parameter " + pnh.resolveName("memoryless") + " is true, but the hider " +
                                 (evader ? "plays " + o.policy : "is in random mode") +

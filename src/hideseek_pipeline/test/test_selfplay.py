@@ -32,6 +32,10 @@ def test_the_draw_depends_only_on_the_seed_the_generation_and_the_role():
     assert set(first) == set(pool)  # uniform over the pool: every generation is met
 
 
+def test_each_generation_trains_on_episodes_of_its_own():
+    assert [selfplay.world_seed(3, k) for k in (1, 2, 3)] == [3, 100003, 200003]
+
+
 def test_generations_are_registered_and_read_back(tmp_path):
     saved = [dict(gen("seeker", 1), steps=128, opponent="random"), dict(gen("hider", 1), steps=128,
                                                                         opponent="generations/seeker_g001.pt")]

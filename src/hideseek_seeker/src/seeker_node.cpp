@@ -9,6 +9,7 @@
 #include "hideseek_game/msg_conversion.h"
 #include "hideseek_game/package_paths.h"
 #include "hideseek_game/params.h"
+#include "hideseek_game/run_registry.h"
 #include "hideseek_game/topic_names.h"
 #include "hideseek_game/wall_throttle.h"
 #include "hideseek_hider/hider_defaults.h"
@@ -60,6 +61,11 @@ SeekerNodeOptions loadSeekerNodeOptions(const ros::NodeHandle& pnh) {
   l.mode = mode == "train" ? hideseek_hider::LearnerMode::kTrain : hideseek_hider::LearnerMode::kPolicy;
   if (l.mode == hideseek_hider::LearnerMode::kPolicy) {
     l.policy = hideseek_game::requireString(pnh, "policy", "a seeker's checkpoint, in policy mode");
+    if (l.policy == hideseek_game::kShippedPolicy || l.policy == "random" || l.policy.rfind("scripted", 0) == 0) {
+      throw std::invalid_argument("parameter " + pnh.resolveName("policy") + " is '" + l.policy +
+                                  "', a hider's policy: the seeker plays a seeker's checkpoint (or mode scripted or "
+                                  "random)");
+    }
   }
   const hideseek_hider::HiderDefaults d =
       hideseek_hider::loadHiderDefaults(readString(pnh, "defaults", hideseek_game::configDirectory() + "/hider.yaml"));
@@ -88,8 +94,8 @@ SeekerNode::SeekerNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
     case SeekerNodeOptions::Mode::kLearner:
       learner_ = std::make_unique<hideseek_hider::Learner>(o.learner);
       ROS_INFO(
-          "seeker: learned, from its own %dx%d camera alone, %d actions, one decision a step (the world "
-          "must run with learned_seeker:=true)",
+          "seeker: learned, from its own %dx%d camera alone, %d actions, one decision a step (the world's "
+          "~learned_seeker, set by the launch files for this mode)",
           image_width_, image_height_, o.learner.actions);
       break;
   }

@@ -2,11 +2,15 @@
 
 #include <exception>
 
+#include "hideseek_game/heap.h"
 #include "hideseek_game/master_watch.h"
 #include "hideseek_seeker/seeker_node.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "seeker");
+  // A learning seeker trains or infers batches of images, as the hider does (hideseek_game/heap.h).
+  if (!hideseek_game::keepFreedMemoryInHeap())
+    ROS_WARN("seeker: the allocator refused its settings; a learning seeker may train slower");
   // The node handles outlive the try block: an error thrown while the node starts is logged
   // while roscpp still runs, so roslaunch shows it instead of only "process has died".
   ros::NodeHandle nh, pnh("~");

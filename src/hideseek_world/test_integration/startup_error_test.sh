@@ -43,6 +43,10 @@ timeout 120 roslaunch -p "$port" hideseek_world train.launch role:=seeker oppone
 [ -f "$dir/seeker/checkpoint.pt" ] || failures+=("seeker_train: train.launch role:=seeker wrote no checkpoint")
 expect_fatal hider_given_seeker "checkpoint.pt is a seeker's policy (role seeker), not a hider's" basic.launch \
   policy:="$dir/seeker/checkpoint.pt"
+expect_fatal seeker_given_a_hider_name "/seeker/policy is 'shipped', a hider's policy: the seeker plays a seeker's checkpoint" \
+  train.launch role:=hider opponent:=shipped steps:=128 num_arenas:=2 output_dir:="$dir/hider_vs_shipped"
+expect_fatal hider_given_scripted "/hider/policy is 'scripted': name the evader, scripted/EVADER" \
+  train.launch role:=seeker opponent:=scripted steps:=128 num_arenas:=2 output_dir:="$dir/seeker_vs_scripted"
 expect_fatal bad_seeker_mode "/seeker/mode must be one of 'scripted', 'random', 'policy', 'train', got 'learn'" \
   basic.launch seeker_mode:=learn
 write_xunit "$out" startup StartupErrorsAreShownByRoslaunch "${failures[@]}"

@@ -23,9 +23,9 @@ struct HiderOutput {
 };
 
 constexpr int kFeatures = 512;
-constexpr int kHidden = 512;  // GRU state size
-constexpr int kActions = 5;
-constexpr int kMaxActions = 16;  // the hider's; a learning seeker of game v3 has 7 (the two that turn while moving)
+constexpr int kHidden = 512;     // GRU state size
+constexpr int kActions = 5;      // the hider's; a learning seeker of game v3 has 7 (the two that turn while moving)
+constexpr int kMaxActions = 16;  // the most actions a network's actor may have (either role)
 // Written into every checkpoint; a checkpoint of another architecture is refused. These are the
 // five-action networks' names (every hider's); architectureName gives any action count's.
 constexpr char kArchitecture[] =

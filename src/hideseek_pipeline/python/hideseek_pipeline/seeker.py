@@ -58,6 +58,8 @@ def evaluate_seeker(ws, variant, game, seeker, hiders, out, episodes=100, first_
     """The learned `seeker` and the scripted seeker against every hider of `hiders`."""
     game = game or ws.resolve("basic" if variant_config else variant, "game")
     rows = []
+    # The launch files take a relative path from the workspace's root, where the tools run: absolute here.
+    hiders = [h if h in ("random", "shipped") or h.startswith("scripted/") else os.path.realpath(h) for h in hiders]
     for hider in hiders:
         for who, policy in (("learned", os.path.realpath(seeker)), (SCRIPTED, SCRIPTED)):
             start = time.time()

@@ -12,7 +12,8 @@ Every generation is saved (OUT/generations/<role>_gNNN.pt, exported weights) and
 OUT/generations.yaml like a run (role, variant, game, steps, wall time, its opponent, the commit).
 The draws depend only on the seed and the generation, so a stopped self-play resumes where it
 stopped: finished generations are kept, a generation cut off resumes from its checkpoint, and the
-same seeds replay the same generations (one learner thread).
+same seeds replay the same generations (one learner thread). Each generation's training plays
+episodes of its own (seeds SEED + 100000 (k - 1) on), not the same openings again.
 
 Each training is a train.launch of its own, on its own ROS master (port, port + 1), as the sweep
 runs its runs."""
@@ -29,6 +30,7 @@ from hideseek_pipeline import seeker as seeker_evaluation
 from hideseek_pipeline.workspace import ToolError
 
 ROLES = ("seeker", "hider")  # the order within a generation
+GENERATION_SEEDS = 100_000  # episode seeds a generation's training may use before the next one's start
 
 
 @dataclass
@@ -45,6 +47,12 @@ class SelfPlayOptions:
     ppo_config: Optional[str] = None  # default: the workspace's config/ppo.yaml, annealing off
     variant_config: Optional[str] = None  # a variant file of one's own (tests)
     port: int = 11620
+
+
+def world_seed(seed, generation):
+    """The episode seeds of a generation's training start here: each generation plays new episodes
+    (a resumed run restores its own random generator; the seed moves only the world's episodes)."""
+    return seed + GENERATION_SEEDS * (generation - 1)
 
 
 def draw(pool, seed, generation, role):
@@ -80,7 +88,8 @@ def train_generation(ws, o, game, role, generation, opponent, ppo):
     os.makedirs(run, exist_ok=True)
     port = o.port + (0 if role == "seeker" else 1)
     args = ["roslaunch", "-p", port, "hideseek_world", "train.launch", "role:=" + role, "variant:=" + o.variant,
-            "game:=" + game, "seed:=%d" % o.seed, "steps:=%d" % (generation * o.steps), "precision:=" + o.precision,
+            "game:=" + game, "seed:=%d" % world_seed(o.seed, generation), "steps:=%d" % (generation * o.steps),
+            "precision:=" + o.precision,
             "output_dir:=" + run, "ppo_config:=" + ppo, "opponent_greedy:=false",
             "opponent:=" + (opponent if opponent == "random" else os.path.join(o.out, opponent))]
     for key, value in (("num_arenas", o.num_arenas), ("hider_threads", o.hider_threads),
@@ -89,7 +98,8 @@ def train_generation(ws, o, game, role, generation, opponent, ppo):
             args.append("%s:=%s" % (key, value))
     log = os.path.join(run, "launch_g%03d.log" % generation)
     ws.command(args, env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=log, check=False)
-    rows = open(os.path.join(run, "training_log.csv")).read().strip().splitlines()
+    table = os.path.join(run, "training_log.csv")
+    rows = open(table).read().strip().splitlines() if os.path.isfile(table) else []
     last = rows[-1].split(",") if len(rows) > 1 else []
     if not last or int(last[1]) < generation * o.steps:
         raise ToolError("selfplay: the %s of generation %d stopped before its %d steps (see %s)"
