@@ -37,10 +37,17 @@ WorldNodeOptions loadWorldNodeOptions(const ros::NodeHandle& nh) {
   o.step_listeners = readInt(nh, "step_listeners", 0, 0, 64);
   o.step_image_every = readInt(nh, "step_image_every", 10, 0, 1000000);
   o.max_decisions = readInt(nh, "max_decisions", 0, 0, kMaxDecisions);
-  // A learning seeker (the seeker node's policy or train mode): every arena's seeker camera is
-  // rendered after each decision, and the seeker decides once a step, as the hider does.
-  o.loop.render_seeker = readBool(nh, "learned_seeker", false);
-  if (o.loop.render_seeker) o.variant.game = withLearnedSeeker(o.variant.game);
+  // A seeker that decides once a step, as the hider does (the seeker node's random, policy and
+  // train modes); with seeker_images (policy and train: a network's input) every arena's seeker
+  // camera is rendered after each decision. The random seeker needs no image, so none is rendered.
+  const bool learned = readBool(nh, "learned_seeker", false);
+  if (learned) o.variant.game = withLearnedSeeker(o.variant.game);
+  o.loop.render_seeker = readBool(nh, "seeker_images", learned);
+  if (o.loop.render_seeker && !learned) {
+    throw std::runtime_error("parameter " + nh.resolveName("seeker_images") + " is true, but " +
+                             nh.resolveName("learned_seeker") +
+                             " is false: the seeker's images are a learning seeker's");
+  }
   return o;
 }
 

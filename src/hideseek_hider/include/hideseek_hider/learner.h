@@ -74,8 +74,6 @@ class Learner {
   // The actions for a batch. In train mode, empty once training stopped (an error: exitCode() is
   // then 1) or finished (its final checkpoint written): the node then shuts down.
   std::vector<uint8_t> act(const LearnerBatch& batch);
-  // Train mode: the arena count its buffers are shaped for (0 in policy mode).
-  int trainingArenas() const { return training_ ? training_->numArenas() : 0; }
   int exitCode() const { return exit_code_; }
 
  private:
