@@ -381,12 +381,19 @@ def test_a_callable_plays_the_other_side_on_its_own_images():
     assert seen == [(2, 84, 84, 3)]
     assert np.allclose(env._game.infos()["hider_pose"], start)  # the callable's "stay" was played
     env.close()
-    hider = hideseek.make_vec("basic", num_envs=2, seed=0, opponent="random")  # the random seeker
-    hider.reset(seed=0)
-    expected = hider._game.random_seeker_actions()
-    assert len(expected) == 2 and hider._game.seeker_outside
-    hider.step([0, 0])
-    hider.close()
+    # The random seeker: its draws depend on seed and step alone, so two games replay it alike,
+    # and it is not the scripted seeker.
+    poses = []
+    for opponent in ("random", "random", None):
+        hider = hideseek.make_vec("basic", num_envs=2, seed=0, opponent=opponent)
+        hider.reset(seed=0)
+        assert hider._game.seeker_outside == (opponent == "random")
+        for _ in range(20):
+            hider.step([0, 0])
+        poses.append(hider._game.infos()["seeker_pose"].copy())
+        hider.close()
+    assert np.array_equal(poses[0], poses[1])
+    assert not np.allclose(poses[0], poses[2])
     with pytest.raises(ValueError, match="opponent of the seeker must be None, a callable or one of random, "):
         hideseek.make_vec("basic", num_envs=1, role="seeker", opponent="scripted")
     with pytest.raises(ValueError, match="role must be 'hider' or 'seeker', got 'both'"):
