@@ -105,16 +105,11 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
     }
     return;
   }
-  // The world re-sent a batch: same step, same answer. A reset re-sends at the same sim time but
-  // with new step ids or seeds, and must be answered afresh (the cached answer's step ids would
-  // be rejected, and lockstep would wait for ever).
-  if (msg->header.stamp == last_stamp_ && msg->step == last_answer_.step && msg->seed == last_seeds_ &&
-      !last_answer_.actions.empty()) {
-    actions_pub_.publish(last_answer_);
+  // The world re-sent a batch: same step, same answer.
+  if (const hideseek_msgs::ActionBatch* again = reply_.find(msg->header.stamp, msg->step, msg->seed)) {
+    actions_pub_.publish(*again);
     return;
   }
-  last_stamp_ = msg->header.stamp;
-  last_seeds_ = msg->seed;
   hideseek_msgs::ActionBatch out;
   out.header.stamp = msg->header.stamp;
   out.step = msg->step;
@@ -137,7 +132,7 @@ void HiderNode::onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& 
     }
     out.actions = policy_->act(batch);
   }
-  last_answer_ = out;
+  reply_.keep(msg->header.stamp, msg->seed, out);
   actions_pub_.publish(out);
 }
 

@@ -145,27 +145,26 @@ void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::Con
 }
 
 std::vector<uint8_t> SeekerNode::learnedOrRandom(const hideseek_msgs::SeekerObservationBatch& msg) {
-  // The world re-sent a batch: same step, same answer (see HiderNode::onObservations).
-  if (msg.header.stamp == last_stamp_ && msg.step == last_answer_.step && msg.seed == last_seeds_ &&
-      !last_answer_.actions.empty()) {
-    return last_answer_.actions;
+  // The world re-sent a batch: same step, same answer.
+  if (const hideseek_msgs::ActionBatch* again = reply_.find(msg.header.stamp, msg.step, msg.seed)) {
+    return again->actions;
   }
-  last_stamp_ = msg.header.stamp;
-  last_seeds_ = msg.seed;
-  last_answer_.step = msg.step;
+  hideseek_msgs::ActionBatch answer;
+  answer.step = msg.step;
   const size_t n = msg.num_arenas;
   if (learner_) {
-    last_answer_.actions = learner_->act({n, msg.images.data(), &msg.rewards, &msg.done, &msg.step, &msg.seed});
+    answer.actions = learner_->act({n, msg.images.data(), &msg.rewards, &msg.done, &msg.step, &msg.seed});
     // Training stopped, or finished with its final checkpoint written: the node's work is done.
-    if (last_answer_.actions.empty()) ros::shutdown();
-    return last_answer_.actions;
+    if (answer.actions.empty()) ros::shutdown();
+  } else {
+    answer.actions.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      answer.actions[i] =
+          hideseek_game::hashAction(msg.seed[i], msg.step[i], hideseek_game::kSaltRandomSeeker, actions_);
+    }
   }
-  last_answer_.actions.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    last_answer_.actions[i] =
-        hideseek_game::hashAction(msg.seed[i], msg.step[i], hideseek_game::kSaltRandomSeeker, actions_);
-  }
-  return last_answer_.actions;
+  reply_.keep(msg.header.stamp, msg.seed, answer);
+  return answer.actions;
 }
 
 }  // namespace hideseek_seeker

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hideseek_game/game_options.h"
+#include "hideseek_game/reply_cache.h"
 #include "hideseek_game/wall_throttle.h"
 #include "hideseek_hider/hider_policy.h"
 #include "hideseek_hider/learner.h"
@@ -42,9 +43,7 @@ class HiderNode {
   ros::NodeHandle nh_;
   std::unique_ptr<HiderPolicy> policy_;  // random mode and the scripted evaders
   std::unique_ptr<Learner> learner_;     // policy and train modes
-  ros::Time last_stamp_;                 // a batch the world re-sent gets the same answer again
-  hideseek_msgs::ActionBatch last_answer_;
-  std::vector<uint32_t> last_seeds_;  // seeds of the batch last_answer_ answers
+  hideseek_game::ReplyCache reply_;      // a batch the world re-sent gets the same answer again
   int image_height_ = 0;
   int image_width_ = 0;
   ros::Publisher actions_pub_;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_game/reply_cache.h"
 #include "hideseek_game/wall_throttle.h"
 #include "hideseek_hider/learner.h"
 #include "hideseek_seeker/seeker_policy.h"
@@ -51,9 +52,7 @@ class SeekerNode {
   std::unique_ptr<hideseek_hider::Learner> learner_;
   // A batch the world re-sent gets the same answer again (random and learned modes): a training
   // run must not take one step twice.
-  ros::Time last_stamp_;
-  hideseek_msgs::ActionBatch last_answer_;
-  std::vector<uint32_t> last_seeds_;
+  hideseek_game::ReplyCache reply_;
   SeekerOptions options_;
   std::vector<SeekerPolicy> policies_;
   std::vector<int64_t> episodes_;  // episode each policy was reset for, -1 before the first
