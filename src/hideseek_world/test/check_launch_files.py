@@ -3,7 +3,9 @@
 substitutions) and checks that each node's package and executable exist, that every
 argument a user can set carries a doc= (roslaunch --ros-args lists it), and that the `policy`
 argument of a variant's launch file defaults to `shipped` (the policy policies/policies.yaml ships
-for the variant, else the random hider).
+for the variant, else the random hider). The training parameters (output_dir, ppo_config, ...)
+reach the agent that trains and no other: an agent that plays a policy shows none in rosparam.
+train.launch is loaded a second time with role:=seeker, evaluate.launch with seeker_mode:=random.
 Writes an xunit result. hideseek_world's package.xml declares the packages its launch files start
 (catkin_lint checks that); this checks that each named executable exists.
 
@@ -50,17 +52,40 @@ def variant_problems(path, config):
     return problems
 
 
-def check(path):
+# What an agent's node reads in train mode only (hideseek_hider::loadLearnerParams).
+TRAINING_PARAMS = ("output_dir", "ppo_config", "num_arenas", "seed", "world_size", "rank", "rendezvous",
+                   "rendezvous_timeout", "rendezvous_interface")
+# Other launch files loaded a second time, with these arguments.
+EXTRA_LOADS = {"train.launch": [["role:=seeker"]], "evaluate.launch": [["seeker_mode:=random"]]}
+
+
+def training_problems(config):
+    """An agent node (hider, seeker) gets the training parameters if and only if its mode is train."""
+    problems = []
+    for key, mode in sorted(config.params.items()):
+        agent = key[:-len("/mode")]
+        if not key.endswith("/mode") or agent.rsplit("/", 1)[-1] not in ("hider", "seeker"):
+            continue
+        given = [p for p in TRAINING_PARAMS if agent + "/" + p in config.params]
+        if mode.value == "train" and "output_dir" not in given:
+            problems.append("%s trains, but has no %s/output_dir" % (agent, agent))
+        elif mode.value != "train" and given:
+            problems.append("%s is in %s mode, but gets the training parameters %s" % (agent, mode.value, ", ".join(given)))
+    return problems
+
+
+def check(path, argv=None):
     problems = ["argument '%s' has no doc=" % name for name in undocumented_arguments(path)]
     if path.endswith(".launch.xml"):
         return problems  # an include: its required arguments come from the files that load it
     config = roslaunch.config.ROSLaunchConfig()
     loader = roslaunch.xmlloader.XmlLoader()
     try:
-        loader.load(path, config, verbose=False)
+        loader.load(path, config, argv=argv or [], verbose=False)
     except Exception as e:  # roslaunch raises several unrelated exception types
         return ["does not load: %s" % e]
     problems += variant_problems(path, config)
+    problems += training_problems(config)
     for node in config.nodes + config.tests:
         try:
             if not find_node(node.package, node.type):
@@ -75,9 +100,11 @@ def main():
     files = sorted(glob.glob(os.path.join(launch_dir, "*.launch")) + glob.glob(os.path.join(launch_dir, "*.launch.xml")))
     cases = []
     failures = 0
-    for path in files:
-        problems = check(path)
-        name = os.path.basename(path)
+    loads = [(path, None) for path in files]
+    loads += [(path, argv) for path in files for argv in EXTRA_LOADS.get(os.path.basename(path), [])]
+    for path, argv in loads:
+        problems = check(path, argv)
+        name = os.path.basename(path) + ("" if argv is None else " " + " ".join(argv))
         if problems:
             failures += 1
             print("%s:\n  %s" % (name, "\n  ".join(problems)))
