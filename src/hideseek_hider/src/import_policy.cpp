@@ -53,8 +53,12 @@ int main(int argc, char** argv) {
       .add("height", 1)
       .add("width", 1);
   int exit_code = 0;
-  if (!hideseek_game::parseCommandLine(argc, argv, line, &exit_code)) return exit_code;
+  const auto given_options = hideseek_game::parseCommandLine(argc, argv, line, &exit_code);
+  if (!given_options) return exit_code;
   try {
+    // One of the two alone would import a network for a shape the policy was not trained on.
+    if (given_options->at("height").defaulted() != given_options->at("width").defaulted())
+      throw std::invalid_argument("HEIGHT and WIDTH go together: give both, or neither for 84 x 84");
     const std::string& variant = variant_name;
     if (variant.empty() || variant.find_first_of("/ ") != std::string::npos)
       throw std::invalid_argument("VARIANT '" + variant + "' is not a variant name (config/variants/NAME.yaml)");

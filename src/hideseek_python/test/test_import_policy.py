@@ -103,3 +103,12 @@ def test_a_network_of_another_shape_is_refused_naming_the_parameter(tmp_path):
     r = subprocess.run([_tool("hideseek_hider", "import_policy"), str(tmp_path / "junk.pt"), str(tmp_path / "out.pt"),
                         "basic"], capture_output=True, text=True)
     assert r.returncode == 1 and "not a TorchScript file" in r.stderr
+
+
+def test_a_height_without_a_width_is_refused(tmp_path):
+    script = tmp_path / "agent.pt"
+    torch.jit.script(_example().Agent()).save(str(script))
+    r = subprocess.run([_tool("hideseek_hider", "import_policy"), str(script), str(tmp_path / "out.pt"), "basic", "0",
+                        "64"], capture_output=True, text=True)
+    assert r.returncode == 1 and "HEIGHT and WIDTH go together" in r.stderr
+    assert not (tmp_path / "out.pt").exists()
