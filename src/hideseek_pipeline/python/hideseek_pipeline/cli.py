@@ -10,6 +10,7 @@
   hideseek_pipeline report                 make reproduce: Table 2, the claims and the figures in docs/report
   hideseek_pipeline sweep status           the sweep's phases and every run's state
   hideseek_pipeline sweep start            the queue in the background (make sweep)
+  hideseek_pipeline sweep hours            machine-hours per phase, from the registry
   hideseek_pipeline sweep hold CMD ...     CMD with the queue paused, resumed after
 
 Each subcommand answers --help.
@@ -32,6 +33,8 @@ SWEEP_COMMANDS = {
     "build": "create and build each phase's worktree at its commit, and nothing else",
     "status": "every phase, and every run in queue order: done (its evaluations, whether it is analysed and "
               "whether its weights are here), training, partial (a checkpoint) or missing",
+    "hours": "machine time per phase (a Markdown table): the recorded runs' training time as run-hours, and as "
+             "machine-hours (run-hours / the runs the phase trains at once); retrains apart",
     "analyze": "the per-run analysis of every done run that lacks it and whose weights are here",
     "ship": "ship every variant's median sweep run into policies/, where its weights are here",
     "retrain": "train again, after every other run, done runs whose weights are lost (RUN ...), each as "
@@ -213,6 +216,7 @@ def sweep_command(args):
     if c == "retrain":
         return control.retrain(sweep, args.runs)
     return {"start": runner.start, "analyze": runner.analyze_all, "ship": runner.ship_all, "status": control.status,
+            "hours": control.hours,
             "pause": control.pause, "resume": control.resume, "stop": control.stop}[c](sweep)
 
 

@@ -1,4 +1,4 @@
-"""Reporting on and steering the sweep's queue: status, retrain, pause, resume, stop, hold."""
+"""Reporting on and steering the sweep's queue: status, hours, retrain, pause, resume, stop, hold."""
 import os
 import signal
 import subprocess
@@ -47,6 +47,42 @@ def _status_line(sweep, run, training):
         return "%-34s partial   checkpoint in %s (resumes at the next start)" % (
             name, os.path.join(sweep.runs_dir, name))
     return "%-34s missing" % name
+
+
+def hours(sweep):
+    """Machine time per phase, from the registry (a Markdown table): each recorded run's training
+    time, the time the sweep held it paused left out, summed as run-hours. A phase trains `jobs` runs
+    at once, which share the machine, so its machine-hours are its run-hours / jobs. Retrains
+    (<run>_retrain) are counted apart, as if trained `jobs` at once too; evaluations and analyses are
+    not counted."""
+    entries = sweep.records.entries()
+    out = ["| phase | game | runs recorded | run-hours | jobs | machine-hours | machine minutes per run "
+           "| retrains: runs, machine-hours |", "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+    total = 0.0
+    for phase in sweep.config.phases:
+        runs = [r for r in sweep.config.runs() if r.phase is phase]
+        done = [r.name for r in runs if sweep.records.is_done(r)]
+        first_s = sum(_wall_s(entries.get(n)) for n in done)
+        retrains = [n + RETRAIN_SUFFIX for n in (r.name for r in runs) if (n + RETRAIN_SUFFIX) in entries]
+        retrain_s = sum(_wall_s(entries[n]) for n in retrains)
+        machine_h = first_s / 3600.0 / phase.jobs
+        total += machine_h + retrain_s / 3600.0 / phase.jobs
+        out.append("| %s | %s | %d of %d | %.1f | %d | %.1f | %s | %s |" % (
+            phase.name, phase.game, len(done), len(runs), first_s / 3600.0, phase.jobs, machine_h,
+            "%.0f" % (machine_h * 60 / len(done)) if done else "-",
+            "%d, %.1f" % (len(retrains), retrain_s / 3600.0 / phase.jobs) if retrains else "-"))
+    out.append("")
+    out.append("In all: %.1f machine-hours of training recorded (evaluations and analyses not counted)." % total)
+    print("\n".join(out))
+    return 0
+
+
+def _wall_s(entry):
+    """A registry entry's training seconds (wall_s: the paused time already left out); 0 without one."""
+    try:
+        return float((entry or {}).get("wall_s") or 0)
+    except (TypeError, ValueError):
+        return 0.0
 
 
 def retrain(sweep, names):
