@@ -108,7 +108,7 @@ def test_hours_sums_each_phase_s_recorded_training_time_per_machine(tmp_path):
     })
     registry = rec / "policies" / "policies.yaml"
     entries = yaml.safe_load(registry.read_text())
-    for name, wall in (("basic_seed0", 3600), ("slowerhider_seed0", 5400), ("basic_seed0_retrain", 1800),
+    for name, wall in (("basic_seed0", 3600), ("slowerhider_seed0", 5760), ("basic_seed0_retrain", 2160),
                        ("basic_v3_gru_8m_seed0", 7200), ("basic_seed1", 99999)):
         entries[name]["wall_s"] = wall
     registry.write_text(yaml.safe_dump(entries, sort_keys=False))
@@ -116,11 +116,11 @@ def test_hours_sums_each_phase_s_recorded_training_time_per_machine(tmp_path):
     assert r.returncode == 0, r.stderr
     table = {line.split("|")[1].strip(): [c.strip() for c in line.split("|")[2:-1]]
              for line in r.stdout.splitlines() if line.startswith("| first") or line.startswith("| later")}
-    # first: two of four runs, 2.5 run-hours, two at once: 1.25 machine-hours, 38 min a run; a retrain of 0.5 h
-    assert table["first"] == ["v2", "2 of 4", "2.5", "2", "1.2", "38", "1, 0.2"]
+    # first: two of four runs, 2.6 run-hours, two at once: 1.3 machine-hours, 39 min a run; a retrain of 0.6 h
+    assert table["first"] == ["v2", "2 of 4", "2.6", "2", "1.3", "39", "1, 0.3"]
     # later: one run alone (jobs 1): its run-hours are machine-hours
     assert table["later"] == ["v3", "1 of 1", "2.0", "1", "2.0", "120", "-"]
-    assert "In all: 3.5 machine-hours" in r.stdout
+    assert "In all: 3.6 machine-hours" in r.stdout
 
 
 def test_phases_run_in_order_each_seed_major_and_names_tell_the_runs_apart(tmp_path):

@@ -4,8 +4,10 @@ substitutions) and checks that each node's package and executable exist, that ev
 argument a user can set carries a doc= (roslaunch --ros-args lists it), and that the `policy`
 argument of a variant's launch file defaults to `shipped` (the policy policies/policies.yaml ships
 for the variant, else the random hider). The training parameters (output_dir, ppo_config, ...)
-reach the agent that trains and no other: an agent that plays a policy shows none in rosparam.
-train.launch is loaded a second time with role:=seeker, evaluate.launch with seeker_mode:=random.
+reach the agent that trains and no other: an agent that plays a policy, at random or by script
+shows none in rosparam. train.launch is loaded again with role:=seeker and with a seeker's checkpoint
+as the opponent (both given steps and checkpoint_interval), evaluate.launch with
+seeker_mode:=random.
 Writes an xunit result. hideseek_world's package.xml declares the packages its launch files start
 (catkin_lint checks that); this checks that each named executable exists.
 
@@ -53,10 +55,12 @@ def variant_problems(path, config):
 
 
 # What an agent's node reads in train mode only (hideseek_hider::loadLearnerParams).
-TRAINING_PARAMS = ("output_dir", "ppo_config", "num_arenas", "seed", "world_size", "rank", "rendezvous",
-                   "rendezvous_timeout", "rendezvous_interface")
+TRAINING_PARAMS = ("output_dir", "ppo_config", "num_arenas", "seed", "total_steps", "checkpoint_interval",
+                   "world_size", "rank", "rendezvous", "rendezvous_timeout", "rendezvous_interface")
 # Other launch files loaded a second time, with these arguments.
-EXTRA_LOADS = {"train.launch": [["role:=seeker"]], "evaluate.launch": [["seeker_mode:=random"]]}
+TRAINING_ARGS = ["steps:=128", "checkpoint_interval:=60"]
+EXTRA_LOADS = {"train.launch": [["role:=seeker"] + TRAINING_ARGS, ["opponent:=/tmp/seeker.pt"] + TRAINING_ARGS],
+               "evaluate.launch": [["seeker_mode:=random"]]}
 
 
 def training_problems(config):

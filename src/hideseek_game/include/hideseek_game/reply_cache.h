@@ -23,7 +23,7 @@ class ReplyCache {
     return &answer_;
   }
   // Keeps `answer` as the answer to the batch stamped `stamp` with these seeds (its step ids are
-  // answer.step). An empty answer (training ended) keeps nothing.
+  // answer.step). An empty answer (training ended) is kept but never replayed.
   void keep(const ros::Time& stamp, const std::vector<uint32_t>& seed, const hideseek_msgs::ActionBatch& answer) {
     stamp_ = stamp;
     seeds_ = seed;

@@ -33,7 +33,7 @@ SWEEP_COMMANDS = {
     "build": "create and build each phase's worktree at its commit, and nothing else",
     "status": "every phase, and every run in queue order: done (its evaluations, whether it is analysed and "
               "whether its weights are here), training, partial (a checkpoint) or missing",
-    "hours": "machine time per phase (a Markdown table): the recorded runs' training time as run-hours, and as "
+    "hours": "machine time per phase (a Markdown table): the done runs' training time as run-hours, and as "
              "machine-hours (run-hours / the runs the phase trains at once); retrains apart",
     "analyze": "the per-run analysis of every done run that lacks it and whose weights are here",
     "ship": "ship every variant's median sweep run into policies/, where its weights are here",

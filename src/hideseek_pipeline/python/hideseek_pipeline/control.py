@@ -50,20 +50,22 @@ def _status_line(sweep, run, training):
 
 
 def hours(sweep):
-    """Machine time per phase, from the registry (a Markdown table): each recorded run's training
-    time, the time the sweep held it paused left out, summed as run-hours. A phase trains `jobs` runs
+    """Machine time per phase, from the registry (a Markdown table): the training time of each done
+    run (recorded with all its steps and evaluated), the time the sweep held it paused left out,
+    summed as run-hours. A phase trains `jobs` runs
     at once, which share the machine, so its machine-hours are its run-hours / jobs. Retrains
     (<run>_retrain) are counted apart, as if trained `jobs` at once too; evaluations and analyses are
     not counted."""
     entries = sweep.records.entries()
-    out = ["| phase | game | runs recorded | run-hours | jobs | machine-hours | machine minutes per run "
+    out = ["| phase | game | runs done | run-hours | jobs | machine-hours | machine minutes per run "
            "| retrains: runs, machine-hours |", "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     total = 0.0
     for phase in sweep.config.phases:
         runs = [r for r in sweep.config.runs() if r.phase is phase]
         done = [r.name for r in runs if sweep.records.is_done(r)]
         first_s = sum(_wall_s(entries.get(n)) for n in done)
-        retrains = [n + RETRAIN_SUFFIX for n in (r.name for r in runs) if (n + RETRAIN_SUFFIX) in entries]
+        retrains = [r.name + RETRAIN_SUFFIX for r in runs
+                    if sweep.records.recorded_steps(r.name + RETRAIN_SUFFIX) >= phase.steps]
         retrain_s = sum(_wall_s(entries[n]) for n in retrains)
         machine_h = first_s / 3600.0 / phase.jobs
         total += machine_h + retrain_s / 3600.0 / phase.jobs
