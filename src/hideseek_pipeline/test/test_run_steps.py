@@ -99,3 +99,38 @@ def test_analyze_plays_the_run_s_game_in_chunks_and_refuses_a_memoryless_feed_fo
     assert steps and steps[0].split()[2] == str(rec / "docs" / "runs" / "basic_v3_seed0" / "analysis")
     r = pipeline(w, rec, calls, "analyze", "basic_v3_seed0", str(weights), "--part", "memoryless")
     assert r.returncode == 1 and "the memoryless ablation is a GRU's" in r.stderr
+
+
+def test_a_seeker_s_run_trains_against_the_shipped_hider_and_is_evaluated_as_a_seeker(ws, tmp_path):
+    w, rec, calls = ws
+    r = pipeline(w, rec, calls, "train", "basic", "--role", "seeker", "--steps", "4096", "--runs-dir",
+                 str(tmp_path / "runs"))
+    # no hider of basic ships in the records: refused before anything trains
+    assert r.returncode == 1 and "no hider of basic on game v2 ships" in r.stderr
+    assert not calls.exists() or "train.launch" not in calls.read_text()
+    (rec / "policies" / "basic.pt").write_text("hider weights")
+    (rec / "policies" / "policies.yaml").write_text(
+        "basic_seed2: {variant: basic, network: ff, game: v2, training_seed: 2, steps: 2048, weights: basic.pt}\n")
+    r = pipeline(w, rec, calls, "train", "basic", "--role", "seeker", "--steps", "4096", "--runs-dir",
+                 str(tmp_path / "runs"), "--port", "12345")
+    assert r.returncode == 0, r.stdout + r.stderr
+    e = entries(rec)["basic_seeker_seed0"]
+    assert (e["role"], e["variant"], e["game"], e["steps"]) == ("seeker", "basic", "v2", 4096)
+    assert e["command"].startswith("hideseek_pipeline train basic --seed 0 --steps 4096 --network ff "
+                                   "--name basic_seeker_seed0 --role seeker")
+    launched = [line for line in calls.read_text().splitlines() if line.startswith("roslaunch")]
+    # the shipped hider as the records ship it (a pinned worktree's registry may ship another)
+    assert "role:=seeker" in launched[0] and "opponent:=%s" % (rec / "policies" / "basic.pt") in launched[0]
+    # then the learned and the scripted seeker against that hider and the four evaders, no hider evaluation
+    evaluations = launched[1:]
+    assert len(evaluations) == 10 and all("evaluate.launch" in line for line in evaluations)
+    assert "seeker_policy:=%s" % (tmp_path / "runs" / "basic_seeker_seed0" / "policy.pt") in evaluations[0]
+    assert "seeker_mode:=scripted" in evaluations[1]
+    table = (rec / "docs" / "runs" / "basic_seeker_seed0" / "seeker_evaluation.csv").read_text().splitlines()
+    assert [row.split(",")[:2] for row in table[1:3]] == [["basic", "learned"], ["basic", "scripted"]]
+    assert [row.split(",")[0] for row in table[3::2]] == ["scripted/backpedal", "scripted/flee", "scripted/hide",
+                                                          "scripted/lap"]
+    assert str(tmp_path) not in (rec / "docs" / "runs" / "basic_seeker_seed0" / "seeker_evaluation.md").read_text()
+    assert not (rec / "docs" / "runs" / "basic_seeker_seed0" / "evaluation.csv").exists()
+    r = pipeline(w, rec, calls, "train", "basic", "--role", "seeker", "--ship", "--runs-dir", str(tmp_path / "runs"))
+    assert r.returncode == 1 and "a seeker's run is not shipped" in r.stderr

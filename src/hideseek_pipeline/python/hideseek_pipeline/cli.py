@@ -87,7 +87,7 @@ def _train_parser(sub, common):
     t.add_argument("--steps", type=int, default=2_000_000, help="environment steps (default 2000000)")
     t.add_argument("--runs-dir", default="~/hideseek_runs", help="where <run>/ holds weights and checkpoints")
     t.add_argument("--network", choices=["ff", "gru"], default="ff")
-    t.add_argument("--name", help="the run's name (default <variant>[_gru]_seed<S>)")
+    t.add_argument("--name", help="the run's name (default <variant>[_seeker][_gru]_seed<S>)")
     t.add_argument("--game", help="default: config/games.yaml's")
     t.add_argument("--precision", choices=["auto", "fp32", "bf16"], default="auto")
     t.add_argument("--num-arenas", type=int, help="default: train.launch's")
@@ -97,7 +97,12 @@ def _train_parser(sub, common):
     t.add_argument("--eval-port", type=int, help="the evaluation's master port (default: the run's + 1000)")
     t.add_argument("--eval-modes", nargs="+", choices=list(evaluate.MODES), default=["greedy"])
     t.add_argument("--paused-file", help="a file holding the seconds the run was held paused (the sweep's)")
-    t.add_argument("--ship", action="store_true", help="ship the run as its variant's policy")
+    t.add_argument("--ship", action="store_true", help="ship the run as its variant's policy (a hider's run)")
+    t.add_argument("--role", choices=list(train.ROLES), default="hider",
+                   help="who learns: hider (the default) or seeker (against --opponent; evaluated as a seeker)")
+    t.add_argument("--opponent", help="the fixed other side. Role seeker: shipped (the records' shipped hider of the "
+                   "variant and game; the default), random, scripted/EVADER or a hider's checkpoint. Role hider: "
+                   "scripted (the default), random or a seeker's checkpoint")
 
 
 def _evaluate_and_analyze_parsers(sub, common):
@@ -230,7 +235,7 @@ def run_command(args):
             name=args.name, game=args.game, precision=args.precision, num_arenas=args.num_arenas,
             ppo_config=args.ppo_config and os.path.realpath(args.ppo_config), hider_threads=args.hider_threads,
             port=args.port, eval_port=args.eval_port, eval_modes=tuple(args.eval_modes),
-            paused_file=args.paused_file, ship=args.ship)
+            paused_file=args.paused_file, ship=args.ship, role=args.role, opponent=args.opponent)
         train.train(ws, records, o)
     elif args.command == "evaluate":
         evaluate.evaluate(ws, records, args.run, args.weights, tuple(args.modes), args.port)

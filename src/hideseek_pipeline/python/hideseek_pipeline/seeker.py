@@ -65,7 +65,8 @@ def evaluate_seeker(ws, variant, game, seeker, hiders, out, episodes=100, first_
             start = time.time()
             s = play(ws, variant, game, hider, policy, os.path.join(out, label(hider), who), episodes, first_seed,
                      port, variant_config=variant_config)
-            rows.append(dict(s, hider=hider, seeker=who))
+            # A checkpoint by its file's name: no path of this machine in the table.
+            rows.append(dict(s, hider=label(hider) if os.path.isabs(hider) else hider, seeker=who))
             say("evaluate-seeker: %s seeker against %s: %d of %d captured, mean time to capture %.1f steps (%d s)"
                 % (who, hider, s["captures"], s["episodes"], s["mean_time_to_capture"], time.time() - start))
     write_table(rows, out, "%s (variant %s, game %s), seeds %d-%d, greedy" % (

@@ -1,7 +1,13 @@
 """One run: trained through train.launch (resuming when <runs>/<run> holds a checkpoint), its
 weights exported to <runs>/<run>/policy.pt (outside the repository), its training log and learning
 curve copied to docs/runs/<run>/, an entry in the run registry (variant, network, game, training
-seed, steps, wall time, precision and the commit it trained with), then its evaluation."""
+seed, steps, wall time, precision and the commit it trained with), then its evaluation.
+
+A seeker's run (--role seeker) trains the seeker against a fixed hider (--opponent: the variant's
+shipped hider of the game, as the records' registry ships it, by default), is recorded with its
+role, and is evaluated as a seeker: its capture rate and mean time to capture against that hider
+and the scripted evaders, beside the scripted seeker's against the same hiders (seeds 0-99,
+docs/runs/<run>/seeker_evaluation.md)."""
 import os
 import re
 import shutil
@@ -9,8 +15,13 @@ import subprocess
 from dataclasses import dataclass
 from typing import Optional
 
+from hideseek_pipeline import seeker as seeker_evaluation
 from hideseek_pipeline.evaluate import evaluate
 from hideseek_pipeline.workspace import ToolError
+
+ROLES = ("hider", "seeker")
+# The hiders a seeker's run is evaluated against besides its opponent: the scripted evaders.
+EVADERS = ("scripted/backpedal", "scripted/flee", "scripted/hide", "scripted/lap")
 
 
 @dataclass
@@ -31,11 +42,14 @@ class TrainOptions:
     eval_modes: tuple = ("greedy",)
     paused_file: Optional[str] = None  # the seconds the sweep held the run paused, left out of wall_s
     ship: bool = False
+    role: str = "hider"               # who learns: hider or seeker
+    opponent: Optional[str] = None    # the fixed other side (None: train.launch's; a seeker's: the shipped hider)
 
     def run_name(self):
         if self.name:
             return self.name
-        return self.variant + ("" if self.network == "ff" else "_" + self.network) + "_seed%d" % self.seed
+        return (self.variant + ("_seeker" if self.role == "seeker" else "") +
+                ("" if self.network == "ff" else "_" + self.network) + "_seed%d" % self.seed)
 
 
 def _commit(ws):
@@ -53,7 +67,8 @@ def command_line(o, name, root):
     """What reproduces the run, from the checkout `root`: the options that are not the defaults."""
     parts = ["hideseek_pipeline", "train", o.variant, "--seed", str(o.seed), "--steps", str(o.steps),
              "--network", o.network, "--name", name]
-    for flag, value in (("--game", o.game), ("--precision", None if o.precision == "auto" else o.precision),
+    for flag, value in (("--role", None if o.role == "hider" else o.role), ("--opponent", o.opponent),
+                        ("--game", o.game), ("--precision", None if o.precision == "auto" else o.precision),
                         ("--num-arenas", o.num_arenas), ("--hider-threads", o.hider_threads),
                         ("--ppo-config", o.ppo_config and os.path.relpath(o.ppo_config, root))):
         if value is not None:
@@ -71,7 +86,12 @@ def train(ws, records, o, say=print):
         raise ToolError("train: no variant '%s' in config/variants" % o.variant)
     if o.ppo_config and not os.path.isfile(o.ppo_config):
         raise ToolError("train: --ppo-config: no file %s" % o.ppo_config)
+    if o.role not in ROLES:
+        raise ToolError("train: --role: '%s' is not one of %s" % (o.role, ", ".join(ROLES)))
+    if o.ship and o.role != "hider":
+        raise ToolError("train: --ship ships a hider's run as its variant's policy; a seeker's run is not shipped")
     game = o.game or ws.resolve(o.variant, "game")
+    opponent = _opponent(records, o, game)
     # A run keeps its game: a name recorded under another game is not trained (or resumed) under this one.
     recorded = (records.entry(name) or {}).get("game")
     if recorded and recorded != game:
@@ -79,7 +99,7 @@ def train(ws, records, o, say=print):
                         "name the run otherwise" % (name, recorded, game))
     run = os.path.join(os.path.realpath(os.path.expanduser(o.runs_dir)), name)
     os.makedirs(run, exist_ok=True)
-    port = o.port or 11700 + o.seed + (50 if o.network == "gru" else 0)
+    port = o.port or 11700 + o.seed + (50 if o.network == "gru" else 0) + (25 if o.role == "seeker" else 0)
     commit, commit_file = _commit(ws), os.path.join(run, "commit")
     lines = open(commit_file).read().splitlines() if os.path.isfile(commit_file) else []
     if not lines:
@@ -89,13 +109,15 @@ def train(ws, records, o, say=print):
         say("train: %s started at commit %s, resumes at %s" % (name, lines[0], commit))
     args = ["roslaunch", "-p", port, "hideseek_world", "train.launch", "variant:=" + o.variant, "game:=" + game,
             "seed:=%d" % o.seed, "steps:=%d" % o.steps, "network:=" + o.network, "precision:=" + o.precision,
-            "output_dir:=" + run]
+            "output_dir:=" + run] + (["role:=" + o.role] if o.role != "hider" else []) + \
+        (["opponent:=" + opponent] if opponent else [])
     for key, value in (("num_arenas", o.num_arenas), ("hider_threads", o.hider_threads),
                        ("ppo_config", o.ppo_config and os.path.realpath(o.ppo_config))):
         if value is not None:
             args.append("%s:=%s" % (key, value))
-    say("train: %s (variant %s, network %s, game %s, training seed %d), %d steps, into %s (log: %s/launch.log)"
-        % (name, o.variant, o.network, game, o.seed, o.steps, run, run))
+    say("train: %s (%svariant %s, network %s, game %s, training seed %d), %d steps, into %s (log: %s/launch.log)"
+        % (name, "a seeker against %s, " % opponent if o.role == "seeker" else "", o.variant, o.network, game, o.seed,
+           o.steps, run, run))
     launch_log = os.path.join(run, "launch.log")
     ws.command(args, env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=launch_log, check=False)
     # roslaunch exits 0 even when the hider dies: record only a run that trained all its steps.
@@ -111,14 +133,39 @@ def train(ws, records, o, say=print):
     os.makedirs(docs, exist_ok=True)
     shutil.copyfile(log_csv, os.path.join(docs, "training_log.csv"))
     ws.python("plot_learning_curve.py", os.path.join(docs, "training_log.csv"), os.path.join(docs, "learning_curve.png"),
-              "%s, network %s, game %s, training seed %d, %d steps" % (o.variant, o.network, game, o.seed, trained))
+              "%s%s, network %s, game %s, training seed %d, %d steps" % (
+                  o.variant, ", the seeker" if o.role == "seeker" else "", o.network, game, o.seed, trained))
     record(records, name, o, game, trained, row, run, launch_log, ws.root)
     say("train: %s recorded in %s; weights in %s" % (name, records.registry_path, os.path.join(run, "policy.pt")))
+    if o.role == "seeker":
+        seeker_evaluation.evaluate_seeker(ws, o.variant, game, os.path.join(run, "policy.pt"),
+                                          [opponent or "shipped"] + [e for e in EVADERS if e != opponent], docs,
+                                          port=o.eval_port or port + 1000, say=say)
+        return name
     evaluate(ws, records, name, os.path.join(run, "policy.pt"), o.eval_modes, o.eval_port or port + 1000, say)
     if o.ship:
         records.registry.ship(name, os.path.join(run, "policy.pt"), records.registry_path)
         say("train: %s shipped as the %s policy" % (name, o.variant))
     return name
+
+
+def _opponent(records, o, game):
+    """What train.launch's `opponent` gets: for a seeker, the hider it trains against, with `shipped`
+    (the default) taken from the records' registry, so that a run trained in a pinned worktree meets
+    the hider shipped now; a checkpoint as an absolute path. None: train.launch's default."""
+    opponent = o.opponent or ("shipped" if o.role == "seeker" else None)
+    if opponent == "shipped" and o.role == "seeker":
+        name, weights = records.registry.shipped(o.variant, "ff", game, records.registry_path)
+        if not weights or not os.path.isfile(weights):
+            raise ToolError("train: no hider of %s on game %s ships in %s (or its weights are missing): name the "
+                            "seeker's --opponent (random, scripted/EVADER or a hider's checkpoint)"
+                            % (o.variant, game, records.registry_path))
+        return weights
+    if opponent and opponent not in ("random", "scripted", "shipped") and not opponent.startswith("scripted/"):
+        if not os.path.isfile(opponent):
+            raise ToolError("train: --opponent: no file %s" % opponent)
+        return os.path.realpath(opponent)
+    return opponent
 
 
 def record(records, name, o, game, trained, row, run, launch_log, root):
@@ -136,4 +183,5 @@ def record(records, name, o, game, trained, row, run, launch_log, root):
         "variant": o.variant, "network": o.network, "game": game, "training_seed": o.seed, "steps": trained,
         "wall_s": int(float(row[2])) - paused, "paused_s": paused or None, "precision": precision, "commit": commits,
         "log": "docs/runs/%s/training_log.csv" % name, "curve": "docs/runs/%s/learning_curve.png" % name,
-        "command": command_line(o, name, root)}, records.registry_path)
+        "command": command_line(o, name, root), "role": None if o.role == "hider" else o.role},
+        records.registry_path)
