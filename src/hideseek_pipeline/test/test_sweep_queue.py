@@ -470,3 +470,58 @@ def test_a_pin_without_the_shell_trainer_trains_through_hideseek_pipeline_train_
     assert e["command"].startswith("hideseek_pipeline train basic --seed 0 --steps 2000000")
     assert e["note"].startswith("sweep run (config/sweep.yaml), phase first, pinned at ")
     assert e["weights"] == "basic.pt" and (rec / "docs" / "runs" / "basic_seed0" / "analysis" / "behaviour.csv").exists()
+
+
+SEEKER_PHASE = """
+precision: bf16
+jobs: 1
+hider_threads: 2
+steps: 2000000
+network: ff
+port: 12100
+phases:
+  - {name: demo, commit: "0123456789ab", game: v2, role: seeker, variants: [basic], seeds: [0]}
+"""
+
+
+def test_a_seeker_s_phase_trains_seekers_against_the_shipped_hider_evaluates_them_as_seekers_and_ships_nothing(
+        tmp_path):
+    repo = stand_in_workspace(tmp_path / "repo")
+    rec = make_records(tmp_path, {})
+    (rec / "policies" / "basic.pt").write_text("hider weights")
+    (rec / "policies" / "policies.yaml").write_text(
+        "basic_seed2: {variant: basic, network: ff, game: v2, training_seed: 2, steps: 2048, weights: basic.pt}\n")
+    fake_analysis(rec)
+    calls = tmp_path / "calls.txt"
+    code, env, r = queue_in(tmp_path, repo, rec, SEEKER_PHASE, calls)
+    assert r.returncode == 0, r.stdout + r.stderr
+    launched = [line for line in calls.read_text().splitlines() if line.startswith("roslaunch")]
+    assert "train.launch" in launched[0] and "role:=seeker" in launched[0]
+    assert "opponent:=%s" % (rec / "policies" / "basic.pt") in launched[0]
+    assert all("evaluate.launch" in line for line in launched[1:]) and len(launched) == 11
+    e = yaml.safe_load((rec / "policies" / "policies.yaml").read_text())["basic_seeker_seed0"]
+    assert e["role"] == "seeker" and e["note"].startswith("sweep run (config/sweep.yaml), phase demo, pinned at ")
+    assert "weights" not in e and not (rec / "docs" / "runs" / "basic_seeker_seed0" / "analysis").exists()
+    assert "basic_seeker_seed0: done: captures basic: learned 1.000, scripted 1.000" in r.stdout
+    status = sweep(tmp_path, rec, "status", config=config_file(tmp_path, SEEKER_PHASE.replace("bf16", "fp32")),
+                   SWEEP_DIR=str(tmp_path / "sweep"))
+    assert rows(status.stdout) == [["basic_seeker_seed0", "done"]]
+    # done means done: a second start trains nothing
+    r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0 and calls.read_text().count("train.launch") == 1
+
+
+def test_a_seeker_s_phase_is_named_apart_and_ships_nothing():
+    config = sweep_config.load(_write(SEEKER_PHASE), ["basic"], ["basic"], "v2")
+    assert [r.name for r in config.runs()] == ["basic_seeker_seed0"]
+    assert config.phases[0].ship is False and config.phases[0].role == "seeker"
+    config = sweep_config.load(_write(SEEKER_PHASE.replace("game: v2", "game: v3, opponent: scripted/flee")),
+                               ["basic"], ["basic"], "v2")
+    assert [r.name for r in config.runs()] == ["basic_seeker_v3_seed0"] and config.phases[0].opponent == "scripted/flee"
+    for change, message in (("role: seeker", "role: seeker, ship: true"), "a seeker's phase ships nothing"), \
+            (("role: seeker", "role: referee"), "role: 'referee' is not one of hider, seeker"):
+        try:
+            sweep_config.load(_write(SEEKER_PHASE.replace(*change)), ["basic"], ["basic"], "v2")
+            assert False, change
+        except sweep_config.ConfigError as e:
+            assert message in str(e)

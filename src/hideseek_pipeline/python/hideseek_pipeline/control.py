@@ -37,6 +37,8 @@ def _status_line(sweep, run, training):
         return "%-34s training  %s steps of %d, %s s%s" % (name, last[1] if len(last) > 2 else "?", run.phase.steps,
                                                            last[2] if len(last) > 2 else "?",
                                                            " (retraining)" if run.retrain else "")
+    if rec.is_done(run) and run.phase.role != "hider":
+        return "%-34s done      %s (capture rate, seeds 0-99)" % (name, rec.seeker_evaluation(name))
     if rec.is_done(run):
         return "%-34s done      greedy %s, sampled %s (living steps, success); %s; %s" % (
             name, rec.evaluation(name), rec.evaluation(name, "sampled"),

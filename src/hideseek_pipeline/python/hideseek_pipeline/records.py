@@ -53,7 +53,11 @@ class Records:
         return int(e.get("steps", 0))
 
     def is_done(self, run):
-        """Recorded as a sweep run with all its steps, both evaluations and its trajectories."""
+        """Recorded as a sweep run with all its steps, both evaluations and its trajectories (a
+        seeker's run: its seeker evaluation)."""
+        if run.phase.role != "hider":
+            return (self.recorded_steps(run.name) >= run.phase.steps
+                    and _nonempty(self.docs(run.name, "seeker_evaluation.csv")))
         return (self.recorded_steps(run.name) >= run.phase.steps and _nonempty(self.docs(run.name, "evaluation.csv"))
                 and _nonempty(self.docs(run.name, "sampled", "evaluation.csv"))
                 and _nonempty(self.docs(run.name, "trajectories.png")))
@@ -66,6 +70,14 @@ class Records:
 
     def has_memoryless(self, name):
         return _nonempty(self.docs(name, "analysis", "memoryless", "behaviour.csv"))
+
+    def seeker_evaluation(self, name):
+        """A seeker's run: its capture rate and the scripted seeker's against its opponent (the
+        table's first hider)."""
+        with open(self.docs(name, "seeker_evaluation.csv")) as f:
+            rows = [line.split(",") for line in f.read().strip().splitlines()[1:]]
+        rate = {r[1]: r[4] for r in rows if r[0] == rows[0][0]}
+        return "captures %s: learned %s, scripted %s" % (rows[0][0], rate.get("learned", "?"), rate.get("scripted", "?"))
 
     def evaluation(self, name, sub=""):
         """'living/success' of the evaluation's last row."""

@@ -65,6 +65,10 @@ def job(sweep, run, slot):
         run.name, phase.name, slot, port, phase.hider_threads, log))
     paused = os.path.join(sweep.runs_dir, run.name, "paused_s")
     script = os.path.join(tree, "scripts", "train_variant.sh")
+    if os.path.isfile(script) and phase.role != "hider":
+        say("%s: phase %s trains a %s, which the shell trainer of its pin %s cannot: pin a later commit"
+            % (run.name, phase.name, phase.role, sweep.commit(phase)[:12]))
+        return 3
     if os.path.isfile(script):
         # A pin from before this command: its own shell trainer.
         env = dict(os.environ, RECORD_ROOT=sweep.records.root, PRECISION=phase.precision,
@@ -89,6 +93,10 @@ def job(sweep, run, slot):
                str(phase.hider_threads), "--port", str(port), "--eval-port", str(port + 1), "--eval-modes",
                "greedy", "sampled", "--paused-file", paused, "--workspace", tree, "--record-root",
                sweep.records.root]
+        if phase.role != "hider":
+            cmd += ["--role", phase.role]
+        if phase.opponent:
+            cmd += ["--opponent", phase.opponent]
     with open(log, "w") as f:
         rc = subprocess.run(cmd, env=env, stdout=f, stderr=subprocess.STDOUT).returncode
     if rc != 0:
@@ -102,6 +110,9 @@ def job(sweep, run, slot):
     if run.retrain:
         fields.update(draw="retrain", retrain_of=run.name[:-len(RETRAIN_SUFFIX)])
     sweep.records.registry.record(run.name, fields, sweep.records.registry_path)
+    if phase.role != "hider":
+        say("%s: done: %s" % (run.name, sweep.records.seeker_evaluation(run.name)))
+        return 0  # a seeker's run: no hider analysis, nothing shipped
     analyze(sweep, run.name)
     ship(sweep, run.variant, phase)
     say("%s: done: greedy %s, sampled %s (living steps/success)" % (
@@ -268,7 +279,7 @@ def analyze_all(sweep):
     sweep.make_dirs()
     n = 0
     for run in sweep.all_runs():
-        if not sweep.records.is_done(run):
+        if not sweep.records.is_done(run) or run.phase.role != "hider":
             continue
         if not sweep.records.analysed(run.name):
             n += analyze(sweep, run.name)
@@ -285,6 +296,8 @@ def analyze_all(sweep):
 
 def ship_all(sweep):
     for phase in sweep.config.phases:
+        if not phase.ship:
+            continue
         for variant in phase.variants:
             ship(sweep, variant, phase)
     return 0

@@ -6,6 +6,10 @@ of every variant, then seed 1, ...), so that it can be cut off anywhere. A key a
 every phase's default; a phase may set any of them. Environment variables SWEEP_<KEY>
 (SWEEP_SEEDS="0 1 2", SWEEP_VARIANTS="basic slowerhider", SWEEP_JOBS=2, ...) override a key in every
 phase; SWEEP_PHASES="a b" keeps only the phases named.
+
+A phase's `role` is who learns: hider (the default) or seeker. A seeker's phase trains seekers
+against `opponent` (default: each variant's hider shipped on the phase's game), evaluates each as a
+seeker and ships nothing; its runs are named <variant>_seeker[_<game>]..._seed<S>.
 """
 import os
 from dataclasses import dataclass, field
@@ -14,9 +18,11 @@ from typing import List
 import yaml
 
 TWO_MILLION = 2_000_000
-PHASE_KEYS = ("commit", "game", "variants", "seeds", "network", "steps", "precision", "jobs", "hider_threads", "ship")
+PHASE_KEYS = ("commit", "game", "variants", "seeds", "network", "steps", "precision", "jobs", "hider_threads", "ship",
+              "role", "opponent")
 TOP_KEYS = PHASE_KEYS + ("port", "phases")
 NETWORKS = ("ff", "gru")
+ROLES = ("hider", "seeker")
 
 
 class ConfigError(Exception):
@@ -36,6 +42,8 @@ class Phase:
     jobs: int
     hider_threads: int
     ship: bool = True  # ship each variant's median run of this phase as the variant's policy
+    role: str = "hider"  # who learns: hider or seeker
+    opponent: str = ""   # the fixed other side ('': the default, a seeker's: the shipped hider)
 
 
 @dataclass
@@ -71,11 +79,13 @@ def budget_label(steps):
     return str(steps)
 
 
-def run_name(variant, seed, game, network, steps):
+def run_name(variant, seed, game, network, steps, role="hider"):
     """The run's name: what tells it apart. v2's feed-forward 2M runs keep their names
-    (basic_seed0, basic_gru_seed1); another game, network or budget adds itself:
-    basic_v3_seed0, basic_v3_gru_seed0, basic_v3_8m_seed0."""
+    (basic_seed0, basic_gru_seed1); a seeker, another game, network or budget adds itself:
+    basic_v3_seed0, basic_v3_gru_seed0, basic_v3_8m_seed0, basic_seeker_v3_seed0."""
     parts = [variant]
+    if role != "hider":
+        parts.append(role)
     if game != "v2":
         parts.append(game)
     if network != "ff":
@@ -86,7 +96,7 @@ def run_name(variant, seed, game, network, steps):
 
 
 def phase_runs(phase):
-    return [Run(run_name(v, s, phase.game, phase.network, phase.steps), v, s, phase)
+    return [Run(run_name(v, s, phase.game, phase.network, phase.steps, phase.role), v, s, phase)
             for s in phase.seeds for v in phase.variants]
 
 
@@ -180,12 +190,18 @@ def _phase(m, where, known_variants, paper_order, default_game):
     commit = str(m["commit"])
     if not commit or commit == "PIN":
         raise ConfigError("%s: commit is not set (pin a commit of main)" % where)
+    role = str(m.get("role") or "hider")
+    if role not in ROLES:
+        raise ConfigError("%s: role: '%s' is not one of %s" % (where, role, ", ".join(ROLES)))
+    ship = _flag(m.get("ship", role == "hider"), "ship", where)
+    if ship and role != "hider":
+        raise ConfigError("%s: ship: a seeker's phase ships nothing (set ship: false)" % where)
     return Phase(name=str(m["name"]), commit=commit, game=str(m.get("game") or default_game), variants=variants,
                  seeds=[_whole(s, "seeds", where) for s in _words(m["seeds"])], network=network,
                  steps=_whole(m["steps"], "steps", where, 1), precision=str(m["precision"]),
                  jobs=_whole(m["jobs"], "jobs", where, 1),
-                 hider_threads=_whole(m["hider_threads"], "hider_threads", where, 1), ship=_flag(m.get("ship", True),
-                                                                                                "ship", where))
+                 hider_threads=_whole(m["hider_threads"], "hider_threads", where, 1), ship=ship, role=role,
+                 opponent=str(m.get("opponent") or ""))
 
 
 def _flag(value, key, where):
