@@ -134,3 +134,20 @@ def test_a_seeker_s_run_trains_against_the_shipped_hider_and_is_evaluated_as_a_s
     assert not (rec / "docs" / "runs" / "basic_seeker_seed0" / "evaluation.csv").exists()
     r = pipeline(w, rec, calls, "train", "basic", "--role", "seeker", "--ship", "--runs-dir", str(tmp_path / "runs"))
     assert r.returncode == 1 and "a seeker's run is not shipped" in r.stderr
+
+
+def test_a_trainer_writes_the_records_with_the_records_own_registry_reader(ws, tmp_path):
+    """A trainer pinned at an older commit records into today's registry, whose entries may carry
+    fields its own reader does not know: it reads and writes them with the records' reader."""
+    w, rec, calls = ws
+    module = rec / "src" / "hideseek_analysis" / "python" / "hideseek_analysis"
+    module.mkdir(parents=True)
+    today = open(os.path.join(ROOT, "src", "hideseek_analysis", "python", "hideseek_analysis", "registry.py")).read()
+    assert '"role")' in today
+    (module / "registry.py").write_text(today.replace('"role")', '"role", "field_of_tomorrow")'))
+    subprocess.run(["cp", "-r", os.path.join(ROOT, "config"), str(rec / "config")], check=True)  # its variants
+    (rec / "policies" / "policies.yaml").write_text(
+        "basic_seed9: {variant: basic, network: ff, game: v2, training_seed: 9, steps: 2048, field_of_tomorrow: 1}\n")
+    r = pipeline(w, rec, calls, "train", "basic", "--steps", "4096", "--runs-dir", str(tmp_path / "runs"))
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert entries(rec)["basic_seed9"]["field_of_tomorrow"] == 1 and entries(rec)["basic_seed0"]["steps"] == 4096

@@ -1,6 +1,7 @@
 """The run registry (policies/policies.yaml) and run folders (docs/runs/<run>/) of the checkout that
 receives the sweep's records. The registry's reader and writer are hideseek_analysis's registry
-module, found in that checkout."""
+module, found in that checkout: a trainer pinned at an older commit writes today's registry with
+today's reader, which knows every field the registry holds now."""
 import importlib.util
 import os
 
@@ -19,12 +20,14 @@ def load_registry_module(root):
 class Records:
     def __init__(self, root, code_root):
         """`root`: the checkout that receives the records (its registry says which runs are done);
-        `code_root`: the checkout whose registry module and variants are read."""
+        `code_root`: the checkout whose registry module and variants are read where `root` has
+        none (a bare folder of records)."""
         self.root = root
         self.registry_path = os.path.join(root, "policies", "policies.yaml")
         if not os.path.isfile(self.registry_path):
             raise FileNotFoundError("SWEEP_RECORD_ROOT: no policies/policies.yaml in %s" % root)
-        self.registry = load_registry_module(code_root)
+        own = os.path.isfile(os.path.join(root, "src", "hideseek_analysis", "python", "hideseek_analysis", "registry.py"))
+        self.registry = load_registry_module(root if own else code_root)
         # The note the queue records on each run it trained: the registry's, which Table 2, the
         # claims and the median to ship look for, and where the run's phases are listed.
         self.note = self.registry.SWEEP_NOTE + " (config/sweep.yaml)"
