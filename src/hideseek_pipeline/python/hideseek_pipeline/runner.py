@@ -296,8 +296,6 @@ def analyze_all(sweep):
 
 def ship_all(sweep):
     for phase in sweep.config.phases:
-        if not phase.ship:
-            continue
         for variant in phase.variants:
             ship(sweep, variant, phase)
     return 0

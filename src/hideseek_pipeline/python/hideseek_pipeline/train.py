@@ -139,7 +139,7 @@ def train(ws, records, o, say=print):
     say("train: %s recorded in %s; weights in %s" % (name, records.registry_path, os.path.join(run, "policy.pt")))
     if o.role == "seeker":
         seeker_evaluation.evaluate_seeker(ws, o.variant, game, os.path.join(run, "policy.pt"),
-                                          [opponent or "shipped"] + [e for e in EVADERS if e != opponent], docs,
+                                          [opponent] + [e for e in EVADERS if e != opponent], docs,
                                           port=o.eval_port or port + 1000, say=say)
         return name
     evaluate(ws, records, name, os.path.join(run, "policy.pt"), o.eval_modes, o.eval_port or port + 1000, say)
