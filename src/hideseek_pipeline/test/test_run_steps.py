@@ -136,6 +136,22 @@ def test_a_seeker_s_run_trains_against_the_shipped_hider_and_is_evaluated_as_a_s
     assert r.returncode == 1 and "a seeker's run is not shipped" in r.stderr
 
 
+def test_an_opponent_that_is_not_the_role_s_is_refused_before_anything_trains(ws, tmp_path):
+    w, rec, calls = ws
+    for args, said in ((["--role", "seeker", "--opponent", "scripted/hyde"],
+                        "a seeker's opponent is one of shipped, random, scripted/backpedal"),
+                       (["--role", "seeker", "--opponent", "scripted"], "a seeker's opponent is one of"),
+                       (["--opponent", "shipped"], "a hider's opponent is one of random, scripted, or a checkpoint"),
+                       (["--opponent", str(tmp_path / "gone.pt")], "--opponent: no file %s" % (tmp_path / "gone.pt"))):
+        r = pipeline(w, rec, calls, "train", "basic", "--steps", "4096", "--runs-dir", str(tmp_path / "runs"), *args)
+        assert r.returncode == 1 and said in r.stderr, (args, r.stderr)
+    assert not calls.exists() or "train.launch" not in calls.read_text()
+    r = pipeline(w, rec, calls, "train", "basic", "--role", "seeker", "--opponent", "scripted/hide", "--steps", "4096",
+                 "--runs-dir", str(tmp_path / "runs"), "--port", "12345")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "opponent:=scripted/hide" in [line for line in calls.read_text().splitlines() if "train.launch" in line][0]
+
+
 def test_a_trainer_writes_the_records_with_the_records_own_registry_reader(ws, tmp_path):
     """A trainer pinned at an older commit records into today's registry, whose entries may carry
     fields its own reader does not know: it reads and writes them with the records' reader."""

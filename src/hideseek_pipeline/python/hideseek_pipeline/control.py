@@ -68,13 +68,13 @@ def hours(sweep):
         first_s = sum(_wall_s(entries.get(n)) for n in done)
         retrains = [r.name + RETRAIN_SUFFIX for r in runs
                     if sweep.records.recorded_steps(r.name + RETRAIN_SUFFIX) >= phase.steps]
-        retrain_s = sum(_wall_s(entries[n]) for n in retrains)
         machine_h = first_s / 3600.0 / phase.jobs
-        total += machine_h + retrain_s / 3600.0 / phase.jobs
+        retrain_h = sum(_wall_s(entries[n]) for n in retrains) / 3600.0 / phase.jobs
+        total += machine_h + retrain_h
         out.append("| %s | %s | %d of %d | %.1f | %d | %.1f | %s | %s |" % (
             phase.name, phase.game, len(done), len(runs), first_s / 3600.0, phase.jobs, machine_h,
             "%.0f" % (machine_h * 60 / len(done)) if done else "-",
-            "%d, %.1f" % (len(retrains), retrain_s / 3600.0 / phase.jobs) if retrains else "-"))
+            "%d, %.1f" % (len(retrains), retrain_h) if retrains else "-"))
     out.append("")
     out.append("In all: %.1f machine-hours of training recorded (evaluations and analyses not counted)." % total)
     print("\n".join(out))

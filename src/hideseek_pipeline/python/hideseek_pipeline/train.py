@@ -161,11 +161,17 @@ def _opponent(records, o, game):
                             "seeker's --opponent (random, scripted/EVADER or a hider's checkpoint)"
                             % (o.variant, game, records.registry_path))
         return weights
-    if opponent and opponent not in ("random", "scripted", "shipped") and not opponent.startswith("scripted/"):
-        if not os.path.isfile(opponent):
-            raise ToolError("train: --opponent: no file %s" % opponent)
+    if not opponent:
+        return None
+    named = ("random",) + (EVADERS if o.role == "seeker" else ("scripted",))
+    if opponent in named:
+        return opponent
+    if os.path.isfile(opponent):
         return os.path.realpath(opponent)
-    return opponent
+    if opponent.endswith(".pt"):
+        raise ToolError("train: --opponent: no file %s" % opponent)
+    raise ToolError("train: --opponent %s: a %s's opponent is one of %s, or a checkpoint (.pt)"
+                    % (opponent, o.role, ", ".join(("shipped",) + named if o.role == "seeker" else named)))
 
 
 def record(records, name, o, game, trained, row, run, launch_log, root):
