@@ -505,6 +505,10 @@ def test_the_claims_on_both_games_sit_side_by_side_with_the_budget_check_last(tm
         e["game"] = "v3" if "_v3" in name else "v2"
     (rec / "policies" / "policies.yaml").write_text(yaml.safe_dump(entries, sort_keys=False))
     shutil.copytree(os.path.join(ROOT, "config"), rec / "config")
+    # a seeker's steps are no hider's budget: the budget check stays basic's 8M
+    with open(rec / "config" / "sweep.yaml", "a") as f:
+        f.write("  - {name: long_seeker, commit: 'x', game: v3, role: seeker, variants: [basic], seeds: [0], "
+                "steps: 16000000}\n")
     for f in ("calibration_table.csv", "calibration_table_v3.csv"):
         shutil.copy(os.path.join(ROOT, "docs", f), rec / "docs" / f)
     out = tmp_path / "report"

@@ -61,7 +61,7 @@ def stand_in_workspace(w):
         path.chmod(0o755)
     scripts = w / "src" / "hideseek_analysis" / "scripts"
     scripts.mkdir(parents=True, exist_ok=True)
-    for name in ("plot_learning_curve.py", "plot_trajectories.py", "behaviour.py", "probes.py", "table2.py",
+    for name in ("plot_learning_curve.py", "plot_trajectories.py", "plot_crossplay.py", "behaviour.py", "probes.py", "table2.py",
                  "claims.py", "seed_figures.py", "reproduce_report.py"):
         (scripts / name).write_text(FAKE_SCRIPT)
     return w

@@ -511,6 +511,62 @@ def test_a_seeker_s_phase_trains_seekers_against_the_shipped_hider_evaluates_the
     assert r.returncode == 0 and calls.read_text().count("train.launch") == 1
 
 
+SELFPLAY_PHASE = SEEKER_PHASE.replace("role: seeker", "role: selfplay, generations: 2")
+
+
+def test_a_self_play_phase_trains_both_sides_in_turn_then_records_its_cross_play_and_its_hiders(tmp_path):
+    repo = stand_in_workspace(tmp_path / "repo")
+    (repo / "config").mkdir()
+    (repo / "config" / "ppo.yaml").write_text("learning_rate: 0.0003\nanneal_learning_rate: true\n")
+    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000000, [400, 500], [300]),
+                                  "basic_seed1": ("basic", 1, 2000000, [100, 200], [300])})
+    fake_analysis(rec)
+    calls = tmp_path / "calls.txt"
+    code, env, r = queue_in(tmp_path, repo, rec, SELFPLAY_PHASE, calls)
+    assert r.returncode == 0, r.stdout + r.stderr
+    launched = [line for line in calls.read_text().splitlines() if line.startswith("roslaunch")]
+    trained = [line for line in launched if "train.launch" in line]
+    # seeker, hider, seeker, hider: 1M steps a side and generation, 2M in all
+    assert [re.search("role:=(\\w+)", t).group(1) for t in trained] == ["seeker", "hider"] * 2
+    assert [re.search("steps:=(\\d+)", t).group(1) for t in trained] == ["1000000", "1000000", "2000000", "2000000"]
+    # the cross-play: 3 hiders (random, g001, g002) x 4 seekers (scripted, random, g001, g002); then the
+    # first and last hider against the scripted seeker
+    evaluations = [line for line in launched if "evaluate.launch" in line]
+    assert len(evaluations) == 12 + 2 and "hider_g002.pt" in evaluations[-1] and "seeker_mode" not in evaluations[-1]
+    docs = rec / "docs" / "runs" / "basic_selfplay_seed0"
+    for f in ("crossplay.csv", "crossplay.md", "crossplay.png", "learning_curves.png", "hider_training_log.csv",
+              "seeker_training_log.csv", "generations.yaml", "hider_g001/evaluation.csv",
+              "hider_g002/trajectories.png", "hider_g002/analysis/behaviour.csv"):
+        assert (docs / f).is_file(), f
+    assert not (docs / "hider_g001" / "analysis").exists()
+    summary = (docs / "selfplay.md").read_text()
+    assert "| basic_seed0 | against the scripted seeker only | 450.0 |" in summary
+    assert "lives 321.0 steps against the scripted seeker: within their range of the 2 hiders" in summary
+    assert str(tmp_path) not in summary
+    # nothing entered the registry, nothing shipped
+    assert set(yaml.safe_load((rec / "policies" / "policies.yaml").read_text())) == {"basic_seed0", "basic_seed1"}
+    status = sweep(tmp_path, rec, "status", config=config_file(tmp_path, SELFPLAY_PHASE.replace("bf16", "fp32")),
+                   SWEEP_DIR=str(tmp_path / "sweep"))
+    assert rows(status.stdout) == [["basic_selfplay_seed0", "done"]]
+    # done means done: a second start trains and plays nothing
+    r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0 and calls.read_text().count("train.launch") == 4
+
+
+def test_a_self_play_phase_is_named_apart_and_refuses_what_it_cannot_do():
+    config = sweep_config.load(_write(SELFPLAY_PHASE.replace("game: v2", "game: v3")), ["basic"], ["basic"], "v2")
+    assert [r.name for r in config.runs()] == ["basic_selfplay_v3_seed0"]
+    assert (config.phases[0].ship, config.phases[0].generations) == (False, 2)
+    for change, message in (("generations: 2", "generations: 3"), "2000000 is not a whole number of generations (3)"), \
+            (("role: selfplay", "role: selfplay, ship: true"), "a self-play phase ships nothing"), \
+            (("role: selfplay", "role: selfplay, network: gru"), "a self-play phase trains feed-forward learners"):
+        try:
+            sweep_config.load(_write(SELFPLAY_PHASE.replace(*change)), ["basic"], ["basic"], "v2")
+            assert False, change
+        except sweep_config.ConfigError as e:
+            assert message in str(e)
+
+
 def test_a_seeker_s_phase_is_named_apart_and_ships_nothing():
     config = sweep_config.load(_write(SEEKER_PHASE), ["basic"], ["basic"], "v2")
     assert [r.name for r in config.runs()] == ["basic_seeker_seed0"]

@@ -81,13 +81,14 @@ class Config:
         return games
 
     def longer_budget(self, game):
-        """The longest budget config/sweep.yaml trains on `game` where it exceeds the sweep's own
-        (the paper's 8M on v3), or None."""
+        """The longest budget config/sweep.yaml trains hiders for on `game` where it exceeds the
+        sweep's own (the paper's 8M on v3), or None (a seeker's or a self-play's steps are not a
+        hider's budget)."""
         sweep = _load(self.root, "sweep.yaml")
         default_game = sweep.get("game") or registry.default_game(os.path.join(self.root, "config", "games.yaml"))
         base = int(sweep.get("steps", 2000000))
         budgets = [int(p.get("steps", base)) for p in sweep.get("phases") or []
-                   if str(p.get("game", default_game)) == game]
+                   if str(p.get("game", default_game)) == game and p.get("role", "hider") == "hider"]
         return max(budgets) if budgets and max(budgets) > base else None
 
     def gru_variants(self, game="v2"):

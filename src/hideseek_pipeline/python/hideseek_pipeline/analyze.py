@@ -29,18 +29,20 @@ def rollouts(ws, game, variant, policy, first, episodes, memory, steps_csv, tmp)
             out.writelines(lines if at == 0 else lines[1:])
 
 
-def analyze_run(ws, records, name, policy, part="all", episodes=100, first=10000, say=print):
-    """A recorded run, on its own game as the registry records it; `part` one of PARTS."""
+def analyze_run(ws, records, name, policy, part="all", episodes=100, first=10000, say=print, entry=None, out=None):
+    """A recorded run, on its own game as the registry records it; `part` one of PARTS. A policy
+    that is not a run of the registry (a self-play generation) gives its `entry` (variant, network,
+    game) and the folder `out` of its analysis instead."""
     if part not in PARTS:
         raise ToolError("analyze: part '%s' is not one of %s" % (part, ", ".join(PARTS)))
-    entry = records.entry(name)
+    entry = entry or records.entry(name)
     if not entry:
         raise ToolError("analyze: no run %s in %s" % (name, records.registry_path))
     variant, network, game = entry["variant"], entry.get("network", "ff"), entry["game"]
     if part == "memoryless" and network != "gru":
         raise ToolError("analyze: the memoryless ablation is a GRU's; %s is a %s run" % (name, network))
     policy = os.path.realpath(policy)
-    out = records.docs(name, "analysis")
+    out = out or records.docs(name, "analysis")
     os.makedirs(out, exist_ok=True)
     tmp = tempfile.mkdtemp(prefix="hideseek_analyze_")
     try:

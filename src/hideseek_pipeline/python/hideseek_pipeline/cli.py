@@ -4,7 +4,8 @@
   hideseek_pipeline evaluate RUN WEIGHTS   a recorded run's evaluation (seeds 0-99) and trajectories
   hideseek_pipeline analyze RUN WEIGHTS    a recorded run's probes, t-SNE and behaviour
   hideseek_pipeline evaluate-seeker SEEKER  a learned seeker's captures, beside the scripted seeker's
-  hideseek_pipeline selfplay OUT           hider-seeker self-play in generations; --crossplay: the table
+  hideseek_pipeline selfplay OUT           hider-seeker self-play in generations; --crossplay: the table;
+                                           --record RUN: the table and the records (docs/runs/RUN/)
   hideseek_pipeline test                   make test: every test, ending "N passed, M failed"; the sweep held
   hideseek_pipeline bench                  make bench: this machine's throughput, the sweep held meanwhile
   hideseek_pipeline report                 make reproduce: Table 2, the claims and the figures in docs/report
@@ -155,6 +156,9 @@ def _seeker_parsers(sub, common):
     p.add_argument("--port", type=int, default=11620, help="ROS master ports: this, +1 and +2 (default 11620)")
     p.add_argument("--crossplay", action="store_true", help="then the cross-play table of every generation")
     p.add_argument("--episodes", type=int, default=100, help="cross-play: episodes per pair (default 100)")
+    p.add_argument("--record", metavar="RUN",
+                   help="then the cross-play (keeping the pairs played to the end before) and the records: "
+                   "docs/runs/RUN/ of --record-root (the sweep's self-play phase)")
 
 
 def bench_doc():
@@ -250,8 +254,10 @@ def run_command(args):
             ppo_config=args.ppo_config and os.path.realpath(args.ppo_config),
             variant_config=args.variant_config and os.path.realpath(args.variant_config), port=args.port)
         selfplay.selfplay(ws, o)
-        if args.crossplay:
+        if args.crossplay or args.record:
             selfplay.crossplay(ws, o, args.episodes)
+        if args.record:
+            selfplay.record(ws, records, o, args.record, args.episodes)
     elif args.baseline:
         if args.run or args.part != "all":
             raise ToolError("analyze: --baseline takes no RUN, WEIGHTS or --part")

@@ -5,6 +5,8 @@ import subprocess
 import sys
 import time
 
+import yaml
+
 from hideseek_pipeline import processes as proc
 from hideseek_pipeline.queue import RETRAIN_SUFFIX, SweepError, last_line, read_lines, remove_file
 
@@ -32,11 +34,18 @@ def status(sweep):
 
 def _status_line(sweep, run, training):
     name, rec = run.name, sweep.records
+    if training and run.phase.role == "selfplay":
+        saved = len(_generations(os.path.join(sweep.runs_dir, name, "generations.yaml")))
+        return "%-34s training  %d of %d generations saved (both sides), then its cross-play" % (
+            name, saved // 2, run.phase.generations)
     if training:
         last = last_line(os.path.join(sweep.runs_dir, name, "training_log.csv")).split(",")
         return "%-34s training  %s steps of %d, %s s%s" % (name, last[1] if len(last) > 2 else "?", run.phase.steps,
                                                            last[2] if len(last) > 2 else "?",
                                                            " (retraining)" if run.retrain else "")
+    if rec.is_done(run) and run.phase.role == "selfplay":
+        return "%-34s done      %d generations, cross-play and records in %s" % (
+            name, run.phase.generations, rec.docs(name))
     if rec.is_done(run) and run.phase.role != "hider":
         return "%-34s done      %s (capture rate, seeds 0-99)" % (name, rec.seeker_evaluation(name))
     if rec.is_done(run):
@@ -45,6 +54,10 @@ def _status_line(sweep, run, training):
             "analysed" if rec.analysed(name) else "NOT analysed",
             "weights in %s" % os.path.dirname(sweep.weights(name)) if sweep.has_weights(name)
             else "weights not on this machine")
+    saved = _generations(os.path.join(sweep.runs_dir, name, "generations.yaml"))
+    if run.phase.role == "selfplay" and saved:
+        return "%-34s partial   %d of %d generations saved in %s (resumes at the next start)" % (
+            name, len(saved) // 2, run.phase.generations, os.path.join(sweep.runs_dir, name))
     if os.path.isfile(os.path.join(sweep.runs_dir, name, "checkpoint.pt")):
         return "%-34s partial   checkpoint in %s (resumes at the next start)" % (
             name, os.path.join(sweep.runs_dir, name))
@@ -54,8 +67,8 @@ def _status_line(sweep, run, training):
 def hours(sweep):
     """Machine time per phase, from the registry (a Markdown table): the training time of each done
     run (recorded with all its steps and evaluated), the time the sweep held it paused left out,
-    summed as run-hours. A phase trains `jobs` runs
-    at once, which share the machine, so its machine-hours are its run-hours / jobs. Retrains
+    summed as run-hours (a self-play's: its generations' in all). A phase trains `jobs` runs at once,
+    which share the machine, so its machine-hours are its run-hours / jobs. Retrains
     (<run>_retrain) are counted apart, as if trained `jobs` at once too; evaluations and analyses are
     not counted."""
     entries = sweep.records.entries()
@@ -64,8 +77,8 @@ def hours(sweep):
     total = 0.0
     for phase in sweep.config.phases:
         runs = [r for r in sweep.config.runs() if r.phase is phase]
-        done = [r.name for r in runs if sweep.records.is_done(r)]
-        first_s = sum(_wall_s(entries.get(n)) for n in done)
+        done = [r for r in runs if sweep.records.is_done(r)]
+        first_s = sum(_run_s(sweep, r, entries) for r in done)
         retrains = [r.name + RETRAIN_SUFFIX for r in runs
                     if sweep.records.recorded_steps(r.name + RETRAIN_SUFFIX) >= phase.steps]
         machine_h = first_s / 3600.0 / phase.jobs
@@ -79,6 +92,23 @@ def hours(sweep):
     out.append("In all: %.1f machine-hours of training recorded (evaluations and analyses not counted)." % total)
     print("\n".join(out))
     return 0
+
+
+def _run_s(sweep, run, entries):
+    """A done run's training seconds: its registry entry's, or a self-play's generations' in all."""
+    if run.phase.role == "selfplay":
+        return sum(float(g.get("wall_s") or 0)
+                   for g in _generations(sweep.records.docs(run.name, "generations.yaml")))
+    return _wall_s(entries.get(run.name))
+
+
+def _generations(path):
+    """The generations a self-play's generations.yaml lists ([] without one)."""
+    try:
+        with open(path) as f:
+            return (yaml.safe_load(f) or {}).get("generations") or []
+    except (OSError, yaml.YAMLError):
+        return []
 
 
 def _wall_s(entry):
@@ -97,6 +127,9 @@ def retrain(sweep, names):
     for name in names:
         if name not in by_name:
             raise SweepError("retrain: '%s' is not a run of the queue (sweep status lists them)" % name)
+        if by_name[name].phase.role != "hider":
+            raise SweepError("retrain: '%s' is a %s phase's run, which ships no weights to recover"
+                             % (name, by_name[name].phase.role))
         if not sweep.records.is_done(by_name[name]):
             raise SweepError("retrain: '%s' is not done: the queue trains it anyway" % name)
         if sweep.has_weights(name):

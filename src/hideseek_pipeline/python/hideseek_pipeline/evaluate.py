@@ -10,17 +10,18 @@ from hideseek_pipeline.workspace import ToolError
 MODES = ("greedy", "sampled")
 
 
-def evaluate(ws, records, name, weights, modes=("greedy",), port=11479, say=print):
+def evaluate(ws, records, name, weights, modes=("greedy",), port=11479, say=print, entry=None, docs=None):
     """`ws`: the Workspace whose launch files and tools run; `records`: the Records of the checkout
-    that names the run and receives its files."""
+    that names the run and receives its files. A policy that is not a run of the registry (a
+    self-play generation) gives its `entry` (variant, game) and its folder `docs` instead."""
     for mode in modes:
         if mode not in MODES:
             raise ToolError("evaluate: mode '%s' is not greedy or sampled" % mode)
-    entry = records.entry(name)
+    entry = entry or records.entry(name)
     if not entry:
         raise ToolError("evaluate: no run %s in %s" % (name, records.registry_path))
     weights = os.path.realpath(weights)
-    docs = records.docs(name)
+    docs = docs or records.docs(name)
     os.makedirs(docs, exist_ok=True)
     # A failed attempt must not leave an older evaluation behind that passes for this one.
     for old in (os.path.join(docs, "evaluation.csv"), os.path.join(docs, "sampled", "evaluation.csv")):
@@ -31,7 +32,7 @@ def evaluate(ws, records, name, weights, modes=("greedy",), port=11479, say=prin
         os.makedirs(out, exist_ok=True)
         mode_port = port + (1 if mode == "sampled" else 0)
         start = time.time()
-        log = "/tmp/hideseek_evaluate_%s_%s.log" % (name, mode)
+        log = "/tmp/hideseek_evaluate_%s_%s.log" % (name.replace("/", "_"), mode)
         # roslaunch exits 0 even when a required node dies: the evaluator's files are the verdict.
         ws.command(["roslaunch", "-p", mode_port, "hideseek_world", "evaluate.launch", "variant:=" + entry["variant"],
                     "game:=" + entry["game"], "policy:=" + weights, "greedy:=%s" % str(mode == "greedy").lower(),
@@ -49,14 +50,13 @@ def evaluate(ws, records, name, weights, modes=("greedy",), port=11479, say=prin
         last = text.strip().splitlines()[-1].split(",")
         say("evaluate: %s (%s): %s %s (living steps, success; %d s)" % (name, mode, last[3], last[4],
                                                                          time.time() - start))
-    trajectories(ws, records, name, entry, weights, say)
+    trajectories(ws, name, entry, weights, os.path.join(docs, "trajectories.png"), say)
 
 
-def trajectories(ws, records, name, entry, weights, say=print):
+def trajectories(ws, name, entry, weights, png, say=print):
     variant, game = entry["variant"], entry["game"]
-    steps = "/tmp/hideseek_traj_%s.csv" % name
+    steps = "/tmp/hideseek_traj_%s.csv" % name.replace("/", "_")
     ws.command([ws.tool("hideseek_play", "play_episodes"), "--game", game, variant, weights, 0, 6, steps, "greedy"])
-    png = records.docs(name, "trajectories.png")
     ws.python("plot_trajectories.py", steps, ws.resolve(variant, "map_file", game), png,
               "%s (%s, game %s), greedy, seeds 0-5" % (name, variant, game))
     say("evaluate: %s: %s" % (name, png))

@@ -57,7 +57,10 @@ class Records:
 
     def is_done(self, run):
         """Recorded as a sweep run with all its steps, both evaluations and its trajectories (a
-        seeker's run: its seeker evaluation)."""
+        seeker's run: its seeker evaluation; a self-play: its selfplay.md, which its record writes
+        last)."""
+        if run.phase.role == "selfplay":
+            return _nonempty(self.docs(run.name, "selfplay.md"))
         if run.phase.role != "hider":
             return (self.recorded_steps(run.name) >= run.phase.steps
                     and _nonempty(self.docs(run.name, "seeker_evaluation.csv")))

@@ -69,6 +69,12 @@ def job(sweep, run, slot):
         say("%s: phase %s trains a %s, which the shell trainer of its pin %s cannot: pin a later commit"
             % (run.name, phase.name, phase.role, sweep.commit(phase)[:12]))
         return 3
+    if phase.role == "selfplay":
+        if os.path.isfile(script):
+            say("%s: phase %s plays self-play, which the shell trainer of its pin %s cannot: pin a later commit"
+                % (run.name, phase.name, sweep.commit(phase)[:12]))
+            return 3
+        return _selfplay_job(sweep, run, port, tree, log)
     if os.path.isfile(script):
         # A pin from before this command: its own shell trainer.
         env = dict(os.environ, RECORD_ROOT=sweep.records.root, PRECISION=phase.precision,
@@ -78,15 +84,7 @@ def job(sweep, run, slot):
             env["GAME"] = phase.game
         cmd = [script, run.variant, str(run.seed), str(phase.steps), sweep.runs_dir, phase.network, run.name]
     else:
-        # hideseek_pipeline train with the pinned tree as its workspace (its launch files and tools),
-        # and the tree's own copy of the command where it has one: edits to the checkout never
-        # change what trains and records.
-        pinned = os.path.join(tree, "src", "hideseek_pipeline", "python")
-        code = pinned if os.path.isdir(pinned) else package_path()
-        env = dict(os.environ, PYTHONPATH=code + os.pathsep + os.environ.get("PYTHONPATH", ""),
-                   HIDESEEK_ROOT=tree if os.path.isdir(pinned) else os.environ.get("HIDESEEK_ROOT", ""))
-        if not env["HIDESEEK_ROOT"]:
-            del env["HIDESEEK_ROOT"]
+        env = _pinned_env(tree)
         cmd = [sys.executable, "-m", "hideseek_pipeline", "train", run.variant, "--seed", str(run.seed),
                "--steps", str(phase.steps), "--runs-dir", sweep.runs_dir, "--network", phase.network,
                "--name", run.name, "--game", phase.game, "--precision", phase.precision, "--hider-threads",
@@ -97,8 +95,7 @@ def job(sweep, run, slot):
             cmd += ["--role", phase.role]
         if phase.opponent:
             cmd += ["--opponent", phase.opponent]
-    with open(log, "w") as f:
-        rc = subprocess.run(cmd, env=env, stdout=f, stderr=subprocess.STDOUT).returncode
+    rc = _logged(cmd, env, log, "w")
     if rc != 0:
         say("%s: failed (exit %d); see %s" % (run.name, rc, log))
         return rc
@@ -117,6 +114,48 @@ def job(sweep, run, slot):
     ship(sweep, run.variant, phase)
     say("%s: done: greedy %s, sampled %s (living steps/success)" % (
         run.name, sweep.records.evaluation(run.name), sweep.records.evaluation(run.name, "sampled")))
+    return 0
+
+
+def _pinned_env(tree):
+    """hideseek_pipeline with the pinned tree as its workspace (its launch files and tools), and the
+    tree's own copy of the command where it has one: edits to the checkout never change what trains
+    and records."""
+    pinned = os.path.join(tree, "src", "hideseek_pipeline", "python")
+    code = pinned if os.path.isdir(pinned) else package_path()
+    env = dict(os.environ, PYTHONPATH=code + os.pathsep + os.environ.get("PYTHONPATH", ""),
+               HIDESEEK_ROOT=tree if os.path.isdir(pinned) else os.environ.get("HIDESEEK_ROOT", ""))
+    if not env["HIDESEEK_ROOT"]:
+        del env["HIDESEEK_ROOT"]
+    return env
+
+
+def _logged(cmd, env, log, mode="a"):
+    """Runs `cmd` into `log`; its exit status (a signal's as negative)."""
+    with open(log, mode) as f:
+        return subprocess.run(cmd, env=env, stdout=f, stderr=subprocess.STDOUT).returncode
+
+
+def _selfplay_job(sweep, run, port, tree, log):
+    """A self-play phase's run: its generations trained at the pin (resuming what <runs>/<run>
+    holds), then its cross-play and records with this checkout's code and the records' checkout as
+    the workspace, as a run's analysis is (they train nothing)."""
+    phase, out = run.phase, os.path.join(sweep.runs_dir, run.name)
+    common = ["selfplay", out, "--variant", run.variant, "--game", phase.game, "--generations", str(phase.generations),
+              "--steps", str(phase.steps // phase.generations), "--seed", str(run.seed), "--precision",
+              phase.precision, "--hider-threads", str(phase.hider_threads), "--port", str(port), "--record-root",
+              sweep.records.root]
+    train = [sys.executable, "-m", "hideseek_pipeline"] + common + ["--workspace", tree]
+    if _logged(train, _pinned_env(tree), log, "w"):
+        say("%s: its self-play stopped; see %s (it resumes from its saved generations)" % (run.name, log))
+        return 1
+    record = [sys.executable, "-m", "hideseek_pipeline"] + common + ["--workspace", sweep.records.root, "--record",
+                                                                     run.name]
+    env = dict(os.environ, PYTHONPATH=package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    if _logged(record, env, log):
+        say("%s: its cross-play or records failed; see %s (the next start plays the pairs left)" % (run.name, log))
+        return 1
+    say("%s: done: %s" % (run.name, sweep.records.docs(run.name, "selfplay.md")))
     return 0
 
 

@@ -140,13 +140,14 @@ def selfplay(ws, o, say=print):
     os.makedirs(o.out, exist_ok=True)
     o.out = os.path.realpath(o.out)
     game = o.game or (ws.resolve(o.variant, "game") if not o.variant_config else ws.resolve("basic", "game"))
-    ppo = constant_rate_ppo(o.ppo_config or os.path.join(ws.root, "config", "ppo.yaml"), o.out)
     generations = load_generations(o.out)
     done = {(g["role"], g["generation"]) for g in generations}
+    ppo = None  # written once a generation is left to train
     for generation in range(1, o.generations + 1):
         for role in ROLES:
             if (role, generation) in done:
                 continue
+            ppo = ppo or constant_rate_ppo(o.ppo_config or os.path.join(ws.root, "config", "ppo.yaml"), o.out)
             opponent = draw(pools(generations, role, generation), o.seed, generation, role)
             say("selfplay: generation %d: the %s trains to %d steps against %s" % (
                 generation, role, generation * o.steps, opponent))
@@ -178,8 +179,10 @@ def crossplay(ws, o, episodes=100, first_seed=0, say=print):
     for hider in hiders:
         for seeker in seekers:
             where = os.path.join(dest, seeker_evaluation.label(hider), seeker_evaluation.label(seeker))
-            s = seeker_evaluation.play(ws, o.variant, game, _path(o, hider), _path(o, seeker), where, episodes,
-                                       first_seed, o.port + 2, variant_config=o.variant_config)
+            s = _played(os.path.join(where, "episodes.csv"), episodes)  # a resumed cross-play keeps its cells
+            if s is None:
+                s = seeker_evaluation.play(ws, o.variant, game, _path(o, hider), _path(o, seeker), where, episodes,
+                                           first_seed, o.port + 2, variant_config=o.variant_config)
             rows.append(dict(s, hider=seeker_evaluation.label(hider), seeker=seeker_evaluation.label(seeker)))
             say("crossplay: %s against %s: %d of %d captured, %.1f living steps" % (
                 rows[-1]["seeker"], rows[-1]["hider"], s["captures"], s["episodes"], s["mean_living_steps"]))
@@ -195,6 +198,15 @@ def crossplay(ws, o, episodes=100, first_seed=0, say=print):
               "self-play, %s (game %s): both learners, generations: %d" % (o.variant, game, len(generations) // 2))
     say("crossplay: %s" % os.path.join(dest, "crossplay.md"))
     return rows
+
+
+def _played(table, episodes):
+    """The capture summary of a cell played to the end before, or None."""
+    try:
+        s = seeker_evaluation.capture_summary(table)
+    except (OSError, ToolError, KeyError):
+        return None
+    return s if s["episodes"] == episodes else None
 
 
 def _path(o, policy):
@@ -219,3 +231,101 @@ def write_crossplay(rows, dest, title):
                                                  for s in seekers) + " |")
     with open(os.path.join(dest, "crossplay.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
+
+
+# ---- the records of a self-play (the sweep's self-play phase) ------------------------------------
+
+RECORDED = ("crossplay.csv", "crossplay.md", "crossplay.png", "learning_curves.png", "hider_training_log.csv",
+            "seeker_training_log.csv")
+
+
+def record(ws, records, o, name, episodes=100, say=print):
+    """A finished self-play into the records' docs/runs/<name>/: its generations (generations.yaml,
+    no weights), the cross-play table and figure, both learning curves, and its first and last
+    hider against the scripted seeker (seeds 0-99, greedy, with trajectories; the last one also
+    analysed as a run is: probes, states, t-SNE), then selfplay.md, which sets the last hider beside
+    the variant's hiders trained only against the scripted seeker. selfplay.md comes last: it is
+    what marks the self-play recorded."""
+    from hideseek_pipeline.analyze import analyze_run
+    from hideseek_pipeline.evaluate import evaluate
+    generations = load_generations(o.out)
+    hiders = [g for g in generations if g["role"] == "hider"]
+    if not hiders:
+        raise ToolError("selfplay: %s holds no hider generation to record" % o.out)
+    dest = records.docs(name)
+    os.makedirs(dest, exist_ok=True)
+    for f in RECORDED:
+        shutil.copyfile(os.path.join(o.out, "crossplay", f), os.path.join(dest, f))
+    shutil.copyfile(os.path.join(o.out, "generations.yaml"), os.path.join(dest, "generations.yaml"))
+    game = generations[0]["game"]
+    entry = {"variant": o.variant, "network": "ff", "game": game}
+    against_scripted = {}
+    for g in (hiders[0], hiders[-1]) if len(hiders) > 1 else hiders[:1]:
+        label = seeker_evaluation.label(g["checkpoint"])
+        folder = os.path.join(dest, label)
+        weights = os.path.join(o.out, g["checkpoint"])
+        evaluate(ws, records, "%s/%s" % (name, label), weights, ("greedy",), o.port + 2, say, entry=entry,
+                 docs=folder)
+        against_scripted[label] = _living_steps(os.path.join(folder, "evaluation.csv"))
+        if g is hiders[-1]:
+            analyze_run(ws, records, "%s_%s" % (name, label), weights, say=say, entry=entry,
+                        out=os.path.join(folder, "analysis"))
+    text = summary(name, o, game, generations, against_scripted, _scripted_only(records, o.variant, game), episodes)
+    with open(os.path.join(dest, "selfplay.md"), "w") as f:
+        f.write(text)
+    say("selfplay: recorded into %s" % dest)
+
+
+def _living_steps(evaluation_csv):
+    with open(evaluation_csv) as f:
+        return float(f.read().strip().splitlines()[-1].split(",")[3])
+
+
+def _scripted_only(records, variant, game):
+    """The variant's hiders of this game trained only against the scripted seeker: the sweep's
+    first draws of 2M steps, feed-forward, and their greedy living steps on seeds 0-99."""
+    out = {}
+    reg = records.registry
+    for run, e in sorted(records.entries().items()):
+        if ((e["variant"], e.get("network", "ff"), e["game"], reg.role(e), reg.draw(e)) != (variant, "ff", game,
+                                                                                             "hider", "first")
+                or int(e.get("steps", 0)) != 2_000_000 or not str(e.get("note", "")).startswith(records.note)):
+            continue
+        table = records.docs(run, "evaluation.csv")
+        if os.path.isfile(table):
+            out[run] = _living_steps(table)
+    return out
+
+
+def summary(name, o, game, generations, against_scripted, scripted_only, episodes):
+    lines = ["# Self-play: %s (variant %s, game %s, seed %d)" % (name, o.variant, game, o.seed), "",
+             "The seeker and the hider trained in turn, each against a draw from a pool of the other side's past "
+             "generations and its random policy, %d steps a side and generation. Cross-play: every saved hider "
+             "against every saved seeker, seeds 0-%d, greedy ([crossplay.md](crossplay.md), "
+             "[crossplay.png](crossplay.png)); both learning curves: [learning_curves.png](learning_curves.png)."
+             % (o.steps, episodes - 1), "",
+             "| generation | role | steps | trained against | wall time (min) |", "| --- | --- | --- | --- | --- |"]
+    for g in generations:
+        lines.append("| %d | %s | %d | %s | %.0f |" % (g["generation"], g["role"], g["steps"],
+                                                       seeker_evaluation.label(g["opponent"]), g["wall_s"] / 60.0))
+    lines += ["", "## Against the scripted seeker", "",
+              "Each hider generation named here, against the variant's scripted seeker on seeds 0-99, greedy "
+              "(its folder: evaluation.md, trajectories.png; the last one's analysis/), beside the hiders of this "
+              "variant and game trained only against the scripted seeker (the sweep's first draws, 2M steps).", "",
+              "| hider | trained | mean living steps, seeds 0-99 |", "| --- | --- | --- |"]
+    for label, living in against_scripted.items():
+        lines.append("| [%s](%s/evaluation.md) | self-play | %.1f |" % (label, label, living))
+    for run, living in scripted_only.items():
+        lines.append("| %s | against the scripted seeker only | %.1f |" % (run, living))
+    if scripted_only and against_scripted:
+        last = list(against_scripted.values())[-1]
+        lo, hi = min(scripted_only.values()), max(scripted_only.values())
+        verdict = ("longer than every one" if last > hi else "shorter than every one" if last < lo
+                   else "within their range")
+        lines += ["", "The last self-play hider lives %.1f steps against the scripted seeker: %s of the %d hiders "
+                  "trained only against it (%.1f to %.1f). One self-play seed: no interval." % (
+                      last, verdict, len(scripted_only), lo, hi)]
+    elif not scripted_only:
+        lines += ["", "No hider of %s trained only against the scripted seeker on game %s is recorded yet: the "
+                  "comparison waits for the sweep's first draws." % (o.variant, game)]
+    return "\n".join(lines) + "\n"

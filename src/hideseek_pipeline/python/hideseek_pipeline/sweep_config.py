@@ -9,7 +9,10 @@ phase; SWEEP_PHASES="a b" keeps only the phases named.
 
 A phase's `role` is who learns: hider (the default) or seeker. A seeker's phase trains seekers
 against `opponent` (default: each variant's hider shipped on the phase's game), evaluates each as a
-seeker and ships nothing; its runs are named <variant>_seeker[_<game>]..._seed<S>.
+seeker and ships nothing; its runs are named <variant>_seeker[_<game>]..._seed<S>. A self-play
+phase (role: selfplay) trains both sides in `generations` generations, `steps` per side in all, then
+plays their cross-play and records it (hideseek_pipeline selfplay --record); it ships nothing, and
+its runs are named <variant>_selfplay[_<game>]_seed<S>.
 """
 import os
 from dataclasses import dataclass, field
@@ -19,10 +22,10 @@ import yaml
 
 TWO_MILLION = 2_000_000
 PHASE_KEYS = ("commit", "game", "variants", "seeds", "network", "steps", "precision", "jobs", "hider_threads", "ship",
-              "role", "opponent")
+              "role", "opponent", "generations")
 TOP_KEYS = PHASE_KEYS + ("port", "phases")
 NETWORKS = ("ff", "gru")
-ROLES = ("hider", "seeker")
+ROLES = ("hider", "seeker", "selfplay")
 
 
 class ConfigError(Exception):
@@ -44,6 +47,7 @@ class Phase:
     ship: bool = True  # ship each variant's median run of this phase as the variant's policy
     role: str = "hider"  # who learns: hider or seeker
     opponent: str = ""   # the fixed other side ('': the default, a seeker's: the shipped hider)
+    generations: int = 4  # self-play: generations of each side (steps / generations each)
 
 
 @dataclass
@@ -82,7 +86,7 @@ def budget_label(steps):
 def run_name(variant, seed, game, network, steps, role="hider"):
     """The run's name: what tells it apart. v2's feed-forward 2M runs keep their names
     (basic_seed0, basic_gru_seed1); a seeker, another game, network or budget adds itself:
-    basic_v3_seed0, basic_v3_gru_seed0, basic_v3_8m_seed0, basic_seeker_v3_seed0."""
+    basic_v3_seed0, basic_v3_gru_seed0, basic_v3_8m_seed0, basic_seeker_v3_seed0, basic_selfplay_v3_seed0."""
     parts = [variant]
     if role != "hider":
         parts.append(role)
@@ -195,13 +199,22 @@ def _phase(m, where, known_variants, paper_order, default_game):
         raise ConfigError("%s: role: '%s' is not one of %s" % (where, role, ", ".join(ROLES)))
     ship = _flag(m.get("ship", role == "hider"), "ship", where)
     if ship and role != "hider":
-        raise ConfigError("%s: ship: a seeker's phase ships nothing (set ship: false)" % where)
+        raise ConfigError("%s: ship: a %s phase ships nothing (set ship: false)"
+                          % (where, "seeker's" if role == "seeker" else "self-play"))
+    generations = _whole(m.get("generations", 4), "generations", where, 1)
+    if role == "selfplay":
+        if network != "ff" or m.get("opponent"):
+            raise ConfigError("%s: a self-play phase trains feed-forward learners against each other's pools "
+                              "(no network other than ff, no opponent)" % where)
+        if _whole(m["steps"], "steps", where, 1) % generations:
+            raise ConfigError("%s: steps: %s is not a whole number of generations (%d): a generation trains "
+                              "steps / generations a side" % (where, m["steps"], generations))
     return Phase(name=str(m["name"]), commit=commit, game=str(m.get("game") or default_game), variants=variants,
                  seeds=[_whole(s, "seeds", where) for s in _words(m["seeds"])], network=network,
                  steps=_whole(m["steps"], "steps", where, 1), precision=str(m["precision"]),
                  jobs=_whole(m["jobs"], "jobs", where, 1),
                  hider_threads=_whole(m["hider_threads"], "hider_threads", where, 1), ship=ship, role=role,
-                 opponent=str(m.get("opponent") or ""))
+                 opponent=str(m.get("opponent") or ""), generations=generations)
 
 
 def _flag(value, key, where):
