@@ -536,9 +536,14 @@ def test_a_self_play_phase_trains_both_sides_in_turn_then_records_its_cross_play
     docs = rec / "docs" / "runs" / "basic_selfplay_seed0"
     for f in ("crossplay.csv", "crossplay.md", "crossplay.png", "learning_curves.png", "hider_training_log.csv",
               "seeker_training_log.csv", "generations.yaml", "hider_g001/evaluation.csv",
-              "hider_g002/trajectories.png", "hider_g002/analysis/behaviour.csv"):
+              "hider_g002/trajectories.png", "hider_g002/analysis/behaviour.csv", "trajectories_g001.png",
+              "trajectories_g002.png"):
         assert (docs / f).is_file(), f
     assert not (docs / "hider_g001" / "analysis").exists()
+    # the self-play's own games: generation k's hider against generation k's seeker
+    played = [line for line in calls.read_text().splitlines() if line.startswith("play_episodes")]
+    assert any("hider_g002.pt" in p and p.endswith("--seeker-policy %s" % (
+        tmp_path / "sweep" / "runs" / "basic_selfplay_seed0" / "generations" / "seeker_g002.pt")) for p in played)
     summary = (docs / "selfplay.md").read_text()
     assert "| basic_seed0 | against the scripted seeker only | 450.0 |" in summary
     assert "lives 321.0 steps against the scripted seeker: within their range of the 2 hiders" in summary

@@ -8,6 +8,9 @@
 //   GAME: v2, v1 or v3 (none: config/games.yaml's default), resolved as the nodes resolve ~game.
 //   memoryless (GRU policies only, an ablation): every step starts from the zero state, so the
 //   trained GRU acts on the current image alone.
+//   --seeker-policy CHECKPOINT: a learned seeker's checkpoint plays the seeker (from its own camera,
+//   deciding once a decision step, as in the graph), with --action as the hider's; else the
+//   variant's scripted seeker. --variant-config FILE: a variant file of one's own (tests).
 //   POLICY: a checkpoint, "random", or scripted/EVADER (backpedal, flee, hide, lap). Columns:
 //   seed,step,hider_x,hider_y,hider_yaw,seeker_x, seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome (outcome on
 //   the last step of an episode: captured or survived; empty before). Beside it, OUTPUT_layouts.yaml (OUTPUT's name
@@ -23,9 +26,11 @@
 #include <string>
 #include <vector>
 
+#include "hideseek_game/agent.h"
 #include "hideseek_game/command_line.h"
 #include "hideseek_game/game_loop.h"
 #include "hideseek_game/game_selection.h"
+#include "hideseek_game/hash_uniform.h"
 #include "hideseek_game/package_paths.h"
 #include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_policy.h"
@@ -76,16 +81,42 @@ void writeLayouts(const hw::World& world, const std::string& csv_path, const std
   }
 }
 
+// A learned seeker: a seeker's checkpoint (its role and the game's seeker actions checked) on
+// the seeker's camera images, with the learned seeker's own stream of sampled actions.
+std::unique_ptr<hideseek_hider::NetworkHiderPolicy> makeLearnedSeeker(const std::string& path,
+                                                                      const hw::VariantConfig& variant, bool greedy) {
+  return std::make_unique<hideseek_hider::NetworkHiderPolicy>(
+      hideseek_hider::loadCheckpoint(path, variant.game.camera.height, variant.game.camera.width, nullptr, std::nullopt,
+                                     "seeker", hw::actionCount(variant.game, true)),
+      torch::kCPU, greedy, hw::kSaltSampledSeekerPolicy);
+}
+
+// Observations of every arena for a network, `images` the role's camera images, arena after arena.
+std::vector<hideseek_hider::ArenaObservation> observations(const hw::World& world, const uint8_t* images) {
+  std::vector<hideseek_hider::ArenaObservation> batch(world.numArenas());
+  for (int i = 0; i < world.numArenas(); ++i) {
+    const hw::Arena& a = world.arena(i);
+    batch[i] = {images + i * world.imageBytes(), a.seed(), static_cast<uint32_t>(a.stepCount()), a.hider(), a.seeker()};
+  }
+  return batch;
+}
+
 // Plays every arena to the end of its first episode and writes those steps to `out`, one row per
 // step. Every arena plays on after its first episode (the arenas stay in phase, as in the graph).
+// The seeker: `learned` where given (it decides once a step, from its images), else `seekers`.
 void playFirstEpisodes(hw::GameLoop& game, hideseek_hider::HiderPolicy& hider,
-                       std::vector<hideseek_seeker::SeekerPolicy>& seekers, std::ofstream& out) {
+                       std::vector<hideseek_seeker::SeekerPolicy>& seekers, hideseek_hider::HiderPolicy* learned,
+                       std::ofstream& out) {
   const hw::World& world = game.world();
   const int n = world.numArenas();
   out << "seed,step,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome\n";
   std::vector<bool> playing(n, true);
-  const hw::ArenaSeekerDecide decide = [&](int i, const hw::SeekerPerception& p) { return seekers[i].act(p); };
+  std::vector<uint8_t> learned_actions;
+  const hw::ArenaSeekerDecide decide = [&](int i, const hw::SeekerPerception& p) {
+    return learned ? static_cast<hw::Action>(learned_actions[i]) : seekers[i].act(p);
+  };
   for (int left = n; left > 0;) {
+    if (learned) learned_actions = learned->act(observations(world, game.seekerImages().data()));
     std::vector<hideseek_hider::ArenaObservation> batch(n);
     std::vector<hw::AgentState> hiders(n), seeker_states(n);
     std::vector<hw::Labels> labels(n);
@@ -107,7 +138,7 @@ void playFirstEpisodes(hw::GameLoop& game, hideseek_hider::HiderPolicy& hider,
     const hw::Decision d = game.step(hider_actions, decide);
     for (int i = 0; i < n; ++i) {
       const std::optional<hw::EpisodeSummary>& finished = d.steps[i].finished;
-      if (finished) seekers[i].reset(world.arena(i).layout(), world.arena(i).seed());
+      if (finished && !learned) seekers[i].reset(world.arena(i).layout(), world.arena(i).seed());
       if (!playing[i]) continue;
       const hw::AgentState &hs = hiders[i], &ss = seeker_states[i];
       const hw::Labels& l = labels[i];
@@ -137,11 +168,11 @@ int main(int argc, char** argv) {
       "play_episodes: plays seeded episodes of a variant in process and writes every step to a CSV\n"
       "usage: play_episodes [--game GAME] --variant VARIANT --policy POLICY --first-seed S --count N --output "
       "OUTPUT.csv\n"
-      "       [--action greedy|sampled] [--memory memory|memoryless]\n"
+      "       [--action greedy|sampled] [--memory memory|memoryless] [--seeker-policy CHECKPOINT]\n"
       "   or: play_episodes [--game GAME] VARIANT POLICY FIRST_SEED COUNT OUTPUT.csv [greedy|sampled] "
       "[memory|memoryless]";
   long first_seed = 0, count = 0;
-  std::string game_name, variant_name, policy_path, csv_path, mode, memory;
+  std::string game_name, variant_name, policy_path, csv_path, mode, memory, seeker_path, variant_file;
   line.options.add_options()                                                                           //
       ("game", po::value(&game_name), "v2, v1 or v3 (none: config/games.yaml's default)")              //
       ("variant", po::value(&variant_name)->required(), "the variant (config/variants/VARIANT.yaml)")  //
@@ -153,7 +184,10 @@ int main(int argc, char** argv) {
       ("output", po::value(&csv_path)->required(), "the CSV of every step (OUTPUT_layouts.yaml beside it)")  //
       ("action", po::value(&mode)->default_value("greedy"), "greedy (the most likely action) or sampled")    //
       ("memory", po::value(&memory)->default_value("memory"),
-       "memory, or memoryless (GRU policies: every step from the zero state, an ablation)");
+       "memory, or memoryless (GRU policies: every step from the zero state, an ablation)")  //
+      ("seeker-policy", po::value(&seeker_path),
+       "a learned seeker's checkpoint plays the seeker (none: the variant's scripted seeker)")  //
+      ("variant-config", po::value(&variant_file), "a variant file of one's own instead of VARIANT's (tests)");
   for (const char* name : {"variant", "policy", "first-seed", "count", "output", "action", "memory"}) {
     line.positional.add(name, 1);
   }
@@ -170,24 +204,31 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const auto variant = hw::selectGame(hw::configDirectory(), game_name, variant_name).config;
+    const std::string config = hw::configDirectory();
+    hw::VariantConfig variant = variant_file.empty()
+                                    ? hw::selectGame(config, game_name, variant_name).config
+                                    : hw::loadVariantConfig(hw::gameFile(config, game_name), variant_file);
+    // A learned seeker decides once a decision step, from its camera, as the graph plays it.
+    if (!seeker_path.empty()) variant.game = hw::withLearnedSeeker(variant.game);
     const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(variant.map_file));
     const int n = static_cast<int>(count);
     hw::GameLoopOptions loop_options;
     loop_options.num_arenas = n;
     loop_options.seed = static_cast<uint32_t>(first_seed);
+    loop_options.render_seeker = !seeker_path.empty();
     hw::GameLoop game(variant.game, map, loop_options);
     const hw::World& world = game.world();
     const auto hider = makeHider(policy_path, variant, mode == "greedy", memory == "memoryless");
+    const auto learned = seeker_path.empty() ? nullptr : makeLearnedSeeker(seeker_path, variant, mode == "greedy");
     std::vector<hideseek_seeker::SeekerPolicy> seekers;
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < n && !learned; ++i) {
       seekers.emplace_back(hideseek_seeker::seekerOptionsFor(variant));
       seekers.back().reset(world.arena(i).layout(), world.arena(i).seed());
     }
     std::ofstream out(csv_path);
     if (!out) throw std::runtime_error("cannot write " + csv_path);
     writeLayouts(world, csv_path, variant_name);
-    playFirstEpisodes(game, *hider, seekers, out);
+    playFirstEpisodes(game, *hider, seekers, learned.get(), out);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "play_episodes: %s\n", e.what());
     return 1;

@@ -4,7 +4,8 @@
 # fp32), trained twice into two folders with the same seed, save the same weights (every tensor of
 # every generation's exported policy), the same training logs (timing columns aside) and the same
 # opponents; every generation is registered with its role. Then the cross-play table of the first
-# folder (one episode a pair) and a seeker evaluation beside the scripted seeker.
+# folder (one episode a pair), the same episodes played in process (play_episodes --seeker-policy)
+# and a seeker evaluation beside the scripted seeker.
 # usage: selfplay_test.sh XUNIT_OUTPUT
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -52,6 +53,19 @@ pairs=$(($(grep -c . "$dir/a/crossplay/crossplay.csv" 2>/dev/null || echo 1) - 1
 [ "$pairs" -eq 12 ] || failures+=("crossplay.csv holds $pairs pairs, not 3 hiders x 4 seekers")
 for f in crossplay.md crossplay.png learning_curves.png; do
   [ -s "$dir/a/crossplay/$f" ] || failures+=("no crossplay/$f")
+done
+# In process, play_episodes plays a learned seeker as the graph does: the same episode as the
+# cross-play's pair (seed 0, greedy, fp32), for the last hider and for the random hider.
+play=$(catkin_find hideseek_play play_episodes --first-only)
+for hider in hider_g002 random; do
+  policy=$([ "$hider" = random ] && echo random || echo "$dir/a/generations/$hider.pt")
+  "$play" tiny_basic "$policy" 0 1 "$dir/$hider.csv" greedy --variant-config "$here/data/tiny_basic.yaml" \
+    --seeker-policy "$dir/a/generations/seeker_g002.pt" > "$dir/$hider.play.log" 2>&1 ||
+    failures+=("play_episodes against seeker_g002 failed: $(tail -n 1 "$dir/$hider.play.log")")
+  graph=$(tail -n 1 "$dir/a/crossplay/$hider/seeker_g002/episodes.csv" 2>/dev/null | cut -d, -f2,3)
+  played=$(tail -n 1 "$dir/$hider.csv" 2>/dev/null | awk -F, '{print $2 + 1 "," $NF}')
+  [ -n "$graph" ] && [ "$played" = "$graph" ] ||
+    failures+=("$hider against seeker_g002, seed 0: in process '$played' (steps, outcome), the graph '$graph'")
 done
 pipeline evaluate-seeker "$dir/a/generations/seeker_g002.pt" --variant tiny_basic \
   --variant-config "$here/data/tiny_basic.yaml" --hiders random --output "$dir/eval" --episodes 2 --port "$port" \

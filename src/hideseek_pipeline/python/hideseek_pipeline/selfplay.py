@@ -247,7 +247,7 @@ def record(ws, records, o, name, episodes=100, say=print):
     the variant's hiders trained only against the scripted seeker. selfplay.md comes last: it is
     what marks the self-play recorded."""
     from hideseek_pipeline.analyze import analyze_run
-    from hideseek_pipeline.evaluate import evaluate
+    from hideseek_pipeline.evaluate import evaluate, trajectories
     generations = load_generations(o.out)
     hiders = [g for g in generations if g["role"] == "hider"]
     if not hiders:
@@ -260,10 +260,15 @@ def record(ws, records, o, name, episodes=100, say=print):
     game = generations[0]["game"]
     entry = {"variant": o.variant, "network": "ff", "game": game}
     against_scripted = {}
+    seekers = {g["generation"]: os.path.join(o.out, g["checkpoint"]) for g in generations if g["role"] == "seeker"}
     for g in (hiders[0], hiders[-1]) if len(hiders) > 1 else hiders[:1]:
         label = seeker_evaluation.label(g["checkpoint"])
         folder = os.path.join(dest, label)
         weights = os.path.join(o.out, g["checkpoint"])
+        # the self-play's own games: this generation's hider against its seeker
+        trajectories(ws, "%s, generation %d: the hider against the seeker" % (name, g["generation"]), entry, weights,
+                     os.path.join(dest, "trajectories_g%03d.png" % g["generation"]), say,
+                     seeker=seekers[g["generation"]])
         evaluate(ws, records, "%s/%s" % (name, label), weights, ("greedy",), o.port + 2, say, entry=entry,
                  docs=folder)
         against_scripted[label] = _living_steps(os.path.join(folder, "evaluation.csv"))
@@ -298,12 +303,16 @@ def _scripted_only(records, variant, game):
 
 
 def summary(name, o, game, generations, against_scripted, scripted_only, episodes):
+    hiders = [g for g in generations if g["role"] == "hider"]
     lines = ["# Self-play: %s (variant %s, game %s, seed %d)" % (name, o.variant, game, o.seed), "",
              "The seeker and the hider trained in turn, each against a draw from a pool of the other side's past "
              "generations and its random policy, %d steps a side and generation. Cross-play: every saved hider "
              "against every saved seeker, seeds 0-%d, greedy ([crossplay.md](crossplay.md), "
-             "[crossplay.png](crossplay.png)); both learning curves: [learning_curves.png](learning_curves.png)."
-             % (o.steps, episodes - 1), "",
+             "[crossplay.png](crossplay.png)); both learning curves: [learning_curves.png](learning_curves.png). "
+             "The first and last generation's hider against the same generation's seeker, seeds 0-5, greedy: %s."
+             % (o.steps, episodes - 1, ", ".join("[trajectories_g%03d.png](trajectories_g%03d.png)" % (k, k)
+                                                   for k in sorted({hiders[0]["generation"],
+                                                                    hiders[-1]["generation"]}))), "",
              "| generation | role | steps | trained against | wall time (min) |", "| --- | --- | --- | --- | --- |"]
     for g in generations:
         lines.append("| %d | %s | %d | %s | %.0f |" % (g["generation"], g["role"], g["steps"],
