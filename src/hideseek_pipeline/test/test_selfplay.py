@@ -78,3 +78,32 @@ def test_policies_get_short_file_safe_labels():
     assert seeker.label("scripted/flee") == "scripted_flee"
     assert seeker.label("/runs/x/generations/seeker_g004.pt") == "seeker_g004"
     assert seeker.label("shipped") == "shipped"
+
+
+def test_a_resumed_cross_play_keeps_only_the_pairs_played_to_the_end(tmp_path):
+    table = tmp_path / "episodes.csv"
+    assert selfplay._played(str(table), 3) is None  # never played
+    table.write_text("seed,living_steps,outcome\n0,20,captured\n1,1000,survived\n2,40,captured\n")
+    assert selfplay._played(str(table), 3)["captures"] == 2
+    assert selfplay._played(str(table), 4) is None  # played with fewer episodes than asked
+    assert selfplay._played(str(table), 3, first_seed=100) is None  # other seeds
+    table.write_text("seed,living_steps,outcome\n0,20,captured\n1,10")  # cut off mid-write
+    assert selfplay._played(str(table), 2) is None
+    table.write_text("seed,living_steps,outcome\n0,20,captured\n1,\n")
+    assert selfplay._played(str(table), 2) is None
+
+
+def test_a_generation_s_time_is_its_own_though_each_side_resumes_one_run():
+    saved = [dict(gen("seeker", 1), wall_s=100), dict(gen("hider", 1), wall_s=50), dict(gen("seeker", 2), wall_s=230),
+             dict(gen("hider", 2), wall_s=110)]
+    assert selfplay.generation_seconds(saved) == [100, 50, 130, 60]
+    assert sum(selfplay.generation_seconds(saved)) == 230 + 110
+
+
+def test_the_records_of_a_self_play_wait_for_every_generation(tmp_path):
+    o = selfplay.SelfPlayOptions(out=str(tmp_path), generations=2)
+    selfplay.write_generations(str(tmp_path), [gen("seeker", 1), gen("hider", 1), gen("seeker", 2)])
+    with pytest.raises(selfplay.ToolError, match="has not saved hider_g002: train them first"):
+        selfplay.require_generations(o)
+    selfplay.write_generations(str(tmp_path), [gen("seeker", 1), gen("hider", 1), gen("seeker", 2), gen("hider", 2)])
+    selfplay.require_generations(o)

@@ -13,7 +13,7 @@ out=$1
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../../.." && pwd)
 dir=$(mktemp -d /tmp/hideseek_selfplay_test.XXXXXX)
-port=$((12100 + RANDOM % 100 * 5))
+port=$((12500 + RANDOM % 80 * 5))  # the sweep uses 12100-12112, the fault campaign 12400-12499
 failures=()
 pipeline() { PYTHONPATH="$root/src/hideseek_pipeline/python" /usr/bin/python3 -m hideseek_pipeline "$@"; }
 for copy in a b; do
@@ -54,24 +54,37 @@ pairs=$(($(grep -c . "$dir/a/crossplay/crossplay.csv" 2>/dev/null || echo 1) - 1
 for f in crossplay.md crossplay.png learning_curves.png; do
   [ -s "$dir/a/crossplay/$f" ] || failures+=("no crossplay/$f")
 done
-# In process, play_episodes plays a learned seeker as the graph does: the same episode as the
-# cross-play's pair (seed 0, greedy, fp32), for the last hider and for the random hider.
-play=$(catkin_find hideseek_play play_episodes --first-only)
-for hider in hider_g002 random; do
-  policy=$([ "$hider" = random ] && echo random || echo "$dir/a/generations/$hider.pt")
-  "$play" tiny_basic "$policy" 0 1 "$dir/$hider.csv" greedy --variant-config "$here/data/tiny_basic.yaml" \
-    --seeker-policy "$dir/a/generations/seeker_g002.pt" > "$dir/$hider.play.log" 2>&1 ||
-    failures+=("play_episodes against seeker_g002 failed: $(tail -n 1 "$dir/$hider.play.log")")
-  graph=$(tail -n 1 "$dir/a/crossplay/$hider/seeker_g002/episodes.csv" 2>/dev/null | cut -d, -f2,3)
-  played=$(tail -n 1 "$dir/$hider.csv" 2>/dev/null | awk -F, '{print $2 + 1 "," $NF}')
-  [ -n "$graph" ] && [ "$played" = "$graph" ] ||
-    failures+=("$hider against seeker_g002, seed 0: in process '$played' (steps, outcome), the graph '$graph'")
-done
 pipeline evaluate-seeker "$dir/a/generations/seeker_g002.pt" --variant tiny_basic \
-  --variant-config "$here/data/tiny_basic.yaml" --hiders random --output "$dir/eval" --episodes 2 --port "$port" \
+  --variant-config "$here/data/tiny_basic.yaml" --hiders random --output "$dir/eval" --episodes 4 --port "$port" \
   > "$dir/evaluate_seeker.log" 2>&1 || failures+=("evaluate-seeker failed: $(tail -n 3 "$dir/evaluate_seeker.log")")
 rows=$(cut -d, -f1,2 "$dir/eval/seeker_evaluation.csv" 2>/dev/null | tr '\n' ' ')
 [ "$rows" = "hider,seeker random,learned random,scripted " ] || failures+=("seeker_evaluation.csv rows: '$rows'")
+# In process, play_episodes plays a learned seeker as the graph does: the episodes of the seeker
+# evaluation (the random hider, seeds 0-3) and of the cross-play's last pair (seed 0), each
+# episode's steps and outcome; and the learned seeker is not the scripted one (its path differs).
+play=$(catkin_find hideseek_play play_episodes --first-only)
+tiny=(--variant-config "$here/data/tiny_basic.yaml")
+seeker=(--seeker-policy "$dir/a/generations/seeker_g002.pt")
+"$play" tiny_basic random 0 4 "$dir/random.csv" greedy "${tiny[@]}" "${seeker[@]}" > "$dir/random.log" 2>&1 &&
+  "$play" tiny_basic "$dir/a/generations/hider_g002.pt" 0 1 "$dir/g002.csv" greedy "${tiny[@]}" "${seeker[@]}" \
+    > "$dir/g002.log" 2>&1 &&
+  "$play" tiny_basic random 0 1 "$dir/scripted.csv" greedy "${tiny[@]}" > "$dir/scripted.log" 2>&1 ||
+  failures+=("play_episodes failed: $(tail -q -n 1 "$dir"/random.log "$dir"/g002.log "$dir"/scripted.log 2>/dev/null)")
+/usr/bin/python3 - "$dir" > "$dir/in_process.log" 2>&1 <<'PY' || failures+=("$(cat "$dir/in_process.log")")
+import csv, sys
+d = sys.argv[1]
+def played(path):  # seed -> (living steps, outcome), from play_episodes' last row of each episode
+    rows = list(csv.DictReader(open(path)))
+    return {int(r["seed"]): (int(r["step"]) + 1, r["outcome"]) for r in rows if r["outcome"]}
+def graph(path):
+    return {int(r["seed"]): (int(r["living_steps"]), r["outcome"]) for r in csv.DictReader(open(path))}
+for name, ours, theirs in (("random", "random.csv", "eval/random/learned/episodes.csv"),
+                           ("hider_g002", "g002.csv", "a/crossplay/hider_g002/seeker_g002/episodes.csv")):
+    a, b = played(d + "/" + ours), graph(d + "/" + theirs)
+    assert a and a == b, "%s against seeker_g002: in process %s, the graph %s (seed: steps, outcome)" % (name, a, b)
+path = lambda f: [(r["seeker_x"], r["seeker_y"]) for r in csv.DictReader(open(d + "/" + f)) if r["seed"] == "0"]
+assert path("random.csv") != path("scripted.csv"), "the learned seeker moved as the scripted seeker does"
+PY
 write_xunit "$out" selfplay ReplaysBitIdenticallyAndCrossPlays "${failures[@]}"
 printf 'failure: %s\n' "${failures[@]}"
 rm -rf "$dir"

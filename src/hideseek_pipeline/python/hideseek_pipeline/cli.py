@@ -154,11 +154,14 @@ def _seeker_parsers(sub, common):
     p.add_argument("--precision", choices=["auto", "fp32", "bf16"], default="auto")
     p.add_argument("--ppo-config", help="default: config/ppo.yaml (its annealing turned off)")
     p.add_argument("--port", type=int, default=11620, help="ROS master ports: this, +1 and +2 (default 11620)")
-    p.add_argument("--crossplay", action="store_true", help="then the cross-play table of every generation")
+    p.add_argument("--crossplay", action="store_true",
+                   help="then the cross-play table of every generation (a pair played to the end before, with as "
+                   "many episodes, is kept: remove OUT/crossplay to play every pair again)")
     p.add_argument("--episodes", type=int, default=100, help="cross-play: episodes per pair (default 100)")
     p.add_argument("--record", metavar="RUN",
-                   help="then the cross-play (keeping the pairs played to the end before) and the records: "
-                   "docs/runs/RUN/ of --record-root (the sweep's self-play phase)")
+                   help="instead of training: the cross-play (keeping the pairs played to the end before) and the "
+                   "records, docs/runs/RUN/ of --record-root, once every generation is saved (the sweep's self-play "
+                   "phase)")
 
 
 def bench_doc():
@@ -253,7 +256,10 @@ def run_command(args):
             seed=args.seed, num_arenas=args.num_arenas, hider_threads=args.hider_threads, precision=args.precision,
             ppo_config=args.ppo_config and os.path.realpath(args.ppo_config),
             variant_config=args.variant_config and os.path.realpath(args.variant_config), port=args.port)
-        selfplay.selfplay(ws, o)
+        if args.record:
+            selfplay.require_generations(o)  # the records train nothing
+        else:
+            selfplay.selfplay(ws, o)
         if args.crossplay or args.record:
             selfplay.crossplay(ws, o, args.episodes)
         if args.record:

@@ -8,6 +8,7 @@ import time
 import yaml
 
 from hideseek_pipeline import processes as proc
+from hideseek_pipeline import selfplay
 from hideseek_pipeline.queue import RETRAIN_SUFFIX, SweepError, last_line, read_lines, remove_file
 
 
@@ -55,7 +56,8 @@ def _status_line(sweep, run, training):
             "weights in %s" % os.path.dirname(sweep.weights(name)) if sweep.has_weights(name)
             else "weights not on this machine")
     saved = _generations(os.path.join(sweep.runs_dir, name, "generations.yaml"))
-    if run.phase.role == "selfplay" and saved:
+    if run.phase.role == "selfplay" and (saved or os.path.isfile(os.path.join(sweep.runs_dir, name, "seeker",
+                                                                              "checkpoint.pt"))):
         return "%-34s partial   %d of %d generations saved in %s (resumes at the next start)" % (
             name, len(saved) // 2, run.phase.generations, os.path.join(sweep.runs_dir, name))
     if os.path.isfile(os.path.join(sweep.runs_dir, name, "checkpoint.pt")):
@@ -95,10 +97,13 @@ def hours(sweep):
 
 
 def _run_s(sweep, run, entries):
-    """A done run's training seconds: its registry entry's, or a self-play's generations' in all."""
+    """A done run's training seconds: its registry entry's, or a self-play's generations' in all
+    (each side's last wall_s counts all its generations), less the time the sweep held it paused
+    where this machine kept it."""
     if run.phase.role == "selfplay":
-        return sum(float(g.get("wall_s") or 0)
-                   for g in _generations(sweep.records.docs(run.name, "generations.yaml")))
+        generations = _generations(sweep.records.docs(run.name, "generations.yaml"))
+        held = last_line(os.path.join(sweep.runs_dir, run.name, "paused_s")).split(".")[0]
+        return sum(selfplay.generation_seconds(generations)) - (int(held) if held.isdigit() else 0)
     return _wall_s(entries.get(run.name))
 
 

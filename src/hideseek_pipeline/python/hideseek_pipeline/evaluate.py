@@ -53,7 +53,7 @@ def evaluate(ws, records, name, weights, modes=("greedy",), port=11479, say=prin
     trajectories(ws, name, entry, weights, os.path.join(docs, "trajectories.png"), say)
 
 
-def trajectories(ws, name, entry, weights, png, say=print, seeker=None):
+def trajectories(ws, name, entry, weights, png, say=print, seeker=None, title=None):
     """Six seeded episodes (seeds 0-5, greedy) drawn from above, against the variant's scripted
     seeker or the learned `seeker` (a seeker's checkpoint)."""
     variant, game = entry["variant"], entry["game"]
@@ -61,5 +61,5 @@ def trajectories(ws, name, entry, weights, png, say=print, seeker=None):
     ws.command([ws.tool("hideseek_play", "play_episodes"), "--game", game, variant, weights, 0, 6, steps, "greedy"] +
                (["--seeker-policy", seeker] if seeker else []))
     ws.python("plot_trajectories.py", steps, ws.resolve(variant, "map_file", game), png,
-              "%s (%s, game %s), greedy, seeds 0-5" % (name, variant, game))
+              title or "%s (%s, game %s), greedy, seeds 0-5" % (name, variant, game))
     say("evaluate: %s: %s" % (name, png))

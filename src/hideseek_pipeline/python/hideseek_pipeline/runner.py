@@ -66,14 +66,10 @@ def job(sweep, run, slot):
     paused = os.path.join(sweep.runs_dir, run.name, "paused_s")
     script = os.path.join(tree, "scripts", "train_variant.sh")
     if os.path.isfile(script) and phase.role != "hider":
-        say("%s: phase %s trains a %s, which the shell trainer of its pin %s cannot: pin a later commit"
-            % (run.name, phase.name, phase.role, sweep.commit(phase)[:12]))
+        say("%s: phase %s (role %s) needs hideseek_pipeline at its pin; %s has only the shell trainer: pin a "
+            "later commit" % (run.name, phase.name, phase.role, sweep.commit(phase)[:12]))
         return 3
-    if phase.role == "selfplay":
-        if os.path.isfile(script):
-            say("%s: phase %s plays self-play, which the shell trainer of its pin %s cannot: pin a later commit"
-                % (run.name, phase.name, sweep.commit(phase)[:12]))
-            return 3
+    if phase.role == "selfplay":  # (a shell trainer's pin was refused just above)
         return _selfplay_job(sweep, run, port, tree, log)
     if os.path.isfile(script):
         # A pin from before this command: its own shell trainer.

@@ -17,6 +17,7 @@ episodes of its own (seeds SEED + 100000 (k - 1) on), not the same openings agai
 
 Each training is a train.launch of its own, on its own ROS master (port, port + 1), as the sweep
 runs its runs."""
+import csv
 import os
 import random
 import shutil
@@ -119,6 +120,27 @@ def save_generation(ws, o, game, role, generation, opponent, steps, wall_s):
             "log": "%s/training_log.csv" % role}
 
 
+def generation_seconds(generations):
+    """Each generation's own training seconds: a side resumes one run, whose wall_s counts every
+    generation of that side so far, so a generation's time is the difference from its side's last."""
+    last, out = {}, []
+    for g in generations:
+        total = float(g.get("wall_s") or 0)
+        out.append(total - last.get(g["role"], 0.0))
+        last[g["role"]] = total
+    return out
+
+
+def require_generations(o):
+    """Every generation of both sides saved, or a ToolError naming what is missing (the records
+    train nothing)."""
+    saved = {(g["role"], g["generation"]) for g in load_generations(o.out)}
+    missing = ["%s_g%03d" % (role, k) for k in range(1, o.generations + 1) for role in ROLES if (role, k) not in saved]
+    if missing:
+        raise ToolError("selfplay --record: %s has not saved %s: train them first (selfplay without --record)"
+                        % (o.out, ", ".join(missing)))
+
+
 def load_generations(out):
     path = os.path.join(out, "generations.yaml")
     if not os.path.isfile(path):
@@ -179,7 +201,7 @@ def crossplay(ws, o, episodes=100, first_seed=0, say=print):
     for hider in hiders:
         for seeker in seekers:
             where = os.path.join(dest, seeker_evaluation.label(hider), seeker_evaluation.label(seeker))
-            s = _played(os.path.join(where, "episodes.csv"), episodes)  # a resumed cross-play keeps its cells
+            s = _played(os.path.join(where, "episodes.csv"), episodes, first_seed)  # a resumed one keeps its pairs
             if s is None:
                 s = seeker_evaluation.play(ws, o.variant, game, _path(o, hider), _path(o, seeker), where, episodes,
                                            first_seed, o.port + 2, variant_config=o.variant_config)
@@ -200,13 +222,17 @@ def crossplay(ws, o, episodes=100, first_seed=0, say=print):
     return rows
 
 
-def _played(table, episodes):
-    """The capture summary of a cell played to the end before, or None."""
+def _played(table, episodes, first_seed=0):
+    """The capture summary of a pair played to the end before (every seed of first_seed ..
+    first_seed + episodes - 1, each with its outcome), or None."""
     try:
-        s = seeker_evaluation.capture_summary(table)
-    except (OSError, ToolError, KeyError):
+        with open(table) as f:
+            rows = list(csv.DictReader(f))
+        whole = (sorted(int(r["seed"]) for r in rows) == list(range(first_seed, first_seed + episodes))
+                 and all(r["outcome"] in ("captured", "survived") and r["living_steps"].isdigit() for r in rows))
+        return seeker_evaluation.capture_summary(table) if whole else None
+    except (OSError, ToolError, KeyError, ValueError, TypeError, AttributeError):  # none, or cut off mid-write
         return None
-    return s if s["episodes"] == episodes else None
 
 
 def _path(o, policy):
@@ -265,10 +291,15 @@ def record(ws, records, o, name, episodes=100, say=print):
         label = seeker_evaluation.label(g["checkpoint"])
         folder = os.path.join(dest, label)
         weights = os.path.join(o.out, g["checkpoint"])
+        if g["generation"] not in seekers:
+            raise ToolError("selfplay: %s lists no seeker of generation %d beside %s"
+                            % (os.path.join(o.out, "generations.yaml"), g["generation"], g["checkpoint"]))
         # the self-play's own games: this generation's hider against its seeker
-        trajectories(ws, "%s, generation %d: the hider against the seeker" % (name, g["generation"]), entry, weights,
+        trajectories(ws, "%s_g%03d" % (name, g["generation"]), entry, weights,
                      os.path.join(dest, "trajectories_g%03d.png" % g["generation"]), say,
-                     seeker=seekers[g["generation"]])
+                     seeker=seekers[g["generation"]],
+                     title="%s, generation %d: the hider against the seeker (%s, game %s), greedy, seeds 0-5"
+                     % (name, g["generation"], o.variant, game))
         evaluate(ws, records, "%s/%s" % (name, label), weights, ("greedy",), o.port + 2, say, entry=entry,
                  docs=folder)
         against_scripted[label] = _living_steps(os.path.join(folder, "evaluation.csv"))
@@ -314,13 +345,14 @@ def summary(name, o, game, generations, against_scripted, scripted_only, episode
                                                    for k in sorted({hiders[0]["generation"],
                                                                     hiders[-1]["generation"]}))), "",
              "| generation | role | steps | trained against | wall time (min) |", "| --- | --- | --- | --- | --- |"]
-    for g in generations:
+    for g, seconds in zip(generations, generation_seconds(generations)):
         lines.append("| %d | %s | %d | %s | %.0f |" % (g["generation"], g["role"], g["steps"],
-                                                       seeker_evaluation.label(g["opponent"]), g["wall_s"] / 60.0))
+                                                       seeker_evaluation.label(g["opponent"]), seconds / 60.0))
     lines += ["", "## Against the scripted seeker", "",
               "Each hider generation named here, against the variant's scripted seeker on seeds 0-99, greedy "
               "(its folder: evaluation.md, trajectories.png; the last one's analysis/), beside the hiders of this "
-              "variant and game trained only against the scripted seeker (the sweep's first draws, 2M steps).", "",
+              "variant and game trained only against the scripted seeker (the sweep's first draws of 2M steps "
+              "recorded when this was written).", "",
               "| hider | trained | mean living steps, seeds 0-99 |", "| --- | --- | --- |"]
     for label, living in against_scripted.items():
         lines.append("| [%s](%s/evaluation.md) | self-play | %.1f |" % (label, label, living))
