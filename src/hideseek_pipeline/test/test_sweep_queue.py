@@ -317,7 +317,8 @@ def test_hold_runs_a_command_with_the_sweep_paused_and_resumes_it(tmp_path):
 def test_analyze_redoes_only_the_missing_memoryless_ablation_of_a_gru_run(tmp_path):
     """`sweep analyze` on a GRU phase: a done GRU run analysed without its memoryless ablation
     (analysed before it existed, or the part failed) gets that part alone while its weights are
-    here; a run that has it, or whose weights are gone, is left as it is."""
+    here; a run that has it, or whose weights are gone, is left as it is. The random hider's
+    behaviour, which the claims need beside each variant, is analysed once where it is missing."""
     names = ("basic_gru_seed0", "slowerhider_gru_seed0", "basic_gru_seed1")
     rec = make_records(tmp_path, {n: (n.split("_gru")[0], int(n[-1]), 2000000, [30], [30]) for n in names})
     calls = tmp_path / "calls.txt"
@@ -337,7 +338,12 @@ def test_analyze_redoes_only_the_missing_memoryless_ablation_of_a_gru_run(tmp_pa
     assert r.returncode == 0, r.stderr
     weights = tmp_path / "sweep" / "runs" / "slowerhider_gru_seed0" / "policy.pt"
     plays = [line.split() for line in calls.read_text().splitlines() if line.startswith("play_episodes")]
-    assert plays and all(p[4] == str(weights) and p[-1] == "memoryless" for p in plays), plays
+    runs = [p for p in plays if p[4] != "random"]
+    assert runs and all(p[4] == str(weights) and p[-1] == "memoryless" for p in runs), plays
+    # and, once a variant of a game has a done run, its random hider's behaviour where the records lack it
+    assert sorted({p[3] for p in plays if p[4] == "random"}) == ["basic", "slowerhider"]
+    for variant in ("basic", "slowerhider"):
+        assert (rec / "docs" / "analysis" / "baselines" / variant / "random" / "behaviour.csv").is_file()
     assert not [line for line in calls.read_text().splitlines() if line.startswith("probe")]
     assert "slowerhider_gru_seed0: memoryless into" in r.stdout + r.stderr
     # A feed-forward phase never asks a run for a memoryless ablation.

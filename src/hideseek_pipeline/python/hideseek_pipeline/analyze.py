@@ -78,12 +78,17 @@ def analyze_run(ws, records, name, policy, part="all", episodes=100, first=10000
     say("analyze: %s: %s into %s" % (name, part if part != "all" else "probes, behaviour, t-SNE", out))
 
 
+def baseline_folder(records_root, variant, policy, game):
+    """docs/analysis/baselines/[<game>/ unless v2]<variant>/<policy>/ of the records."""
+    parts = [records_root, "docs", "analysis", "baselines"] + ([] if game == "v2" else [game])
+    return os.path.join(*parts, variant, policy.replace("/", "_"))
+
+
 def analyze_baseline(ws, records_root, variant, policy, game=None, episodes=100, first=10000, say=print):
     """The behaviour alone of the random hider (`random`) or a scripted evader (`scripted/EVADER`)."""
     game = game or ws.resolve(variant, "game")
+    out = baseline_folder(records_root, variant, policy, game)
     label = policy.replace("/", "_")
-    parts = [records_root, "docs", "analysis", "baselines"] + ([] if game == "v2" else [game]) + [variant, label]
-    out = os.path.join(*parts)
     os.makedirs(out, exist_ok=True)
     tmp = tempfile.mkdtemp(prefix="hideseek_analyze_")
     try:

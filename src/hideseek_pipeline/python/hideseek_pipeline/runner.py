@@ -10,6 +10,7 @@ import subprocess
 import sys
 import time
 
+from hideseek_pipeline import analyze as analysis
 from hideseek_pipeline import processes as proc
 from hideseek_pipeline.queue import NO_BF16, RETRAIN_SUFFIX, SweepError, last_line, package_path, remove_file, say
 
@@ -107,6 +108,7 @@ def job(sweep, run, slot):
         say("%s: done: %s" % (run.name, sweep.records.seeker_evaluation(run.name)))
         return 0  # a seeker's run: no hider analysis, nothing shipped
     analyze(sweep, run.name)
+    baseline(sweep, run.variant, phase.game)
     ship(sweep, run.variant, phase)
     say("%s: done: greedy %s, sampled %s (living steps/success)" % (
         run.name, sweep.records.evaluation(run.name), sweep.records.evaluation(run.name, "sampled")))
@@ -173,6 +175,22 @@ def analyze(sweep, name, part=None):
         say("%s: %s into %s" % (name, what if part else "analysed", sweep.records.docs(name, "analysis")))
     else:
         say("%s: the %s failed; see %s" % (name, "%s part" % part if part else "analysis", log))
+    return ok
+
+
+def baseline(sweep, variant, game):
+    """The random hider's behaviour on the variant and game, which the claims set every run of
+    them beside (hideseek_pipeline analyze --baseline, into the records' docs/analysis/baselines/),
+    once: nothing where the records hold it. Its failure does not undo the run."""
+    if os.path.isfile(os.path.join(analysis.baseline_folder(sweep.records.root, variant, "random", game),
+                                   "behaviour.csv")):
+        return True
+    cmd = [sys.executable, "-m", "hideseek_pipeline", "analyze", "--baseline", variant, "random", "--game", game,
+           "--record-root", sweep.records.root, "--workspace", sweep.records.root]
+    log = os.path.join(sweep.logs, "baseline.%s.%s.log" % (game, variant))
+    env = dict(os.environ, PYTHONPATH=package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    ok = _logged(cmd, env, log) == 0
+    say("%s on %s: the random hider's behaviour %s" % (variant, game, "analysed" if ok else "failed; see " + log))
     return ok
 
 
@@ -310,12 +328,14 @@ def start(sweep):
 
 def analyze_all(sweep):
     """The per-run analysis of every done run that lacks it and whose weights are here (the
-    t-SNE, or a GRU's memoryless ablation, alone where only that is missing)."""
+    t-SNE, or a GRU's memoryless ablation, alone where only that is missing), and the random
+    hider's behaviour on each variant and game with a done run, where the records lack it."""
     sweep.make_dirs()
     n = 0
     for run in sweep.all_runs():
         if not sweep.records.is_done(run) or run.phase.role != "hider":
             continue
+        baseline(sweep, run.variant, run.phase.game)
         if not sweep.records.analysed(run.name):
             n += analyze(sweep, run.name)
             continue
