@@ -232,17 +232,25 @@ def hold(sweep, command):
         raise SweepError("hold: name the command to run while the sweep is paused")
     if not sweep.queue_pid() or os.path.exists(sweep.state_file("paused")):
         return subprocess.run(command).returncode
-    pause(sweep)
-    child = subprocess.Popen(command)
-
     # As a shell would: a Ctrl-C reaches the command through the terminal, a TERM is passed on to
-    # it, and either way the command is waited out, then the queue resumed.
+    # it, and either way the command is waited out, then the queue resumed. The handlers are in
+    # place before the pause: a signal that comes before the command has started stops it from
+    # starting, and the queue is resumed all the same.
+    child, caught = None, []
+
     def pass_on(signum, _):
-        if signum == signal.SIGTERM:
+        caught.append(signum)
+        if child is not None and signum == signal.SIGTERM:
             child.send_signal(signum)
 
     previous = {s: signal.signal(s, pass_on) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
+        pause(sweep)
+        if caught:
+            return 128 + caught[0]
+        child = subprocess.Popen(command)
+        if signal.SIGTERM in caught:  # it came while the command was being started
+            child.terminate()
         rc = child.wait()
         return 128 - rc if rc < 0 else rc
     finally:
