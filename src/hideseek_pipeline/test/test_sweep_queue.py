@@ -524,7 +524,7 @@ def test_a_self_play_phase_trains_both_sides_in_turn_then_records_its_cross_play
     repo = stand_in_workspace(tmp_path / "repo")
     (repo / "config").mkdir()
     (repo / "config" / "ppo.yaml").write_text("learning_rate: 0.0003\nanneal_learning_rate: true\n")
-    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000000, [400, 500], [300]),
+    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000896, [400, 500], [300]),  # the steps trained
                                   "basic_seed1": ("basic", 1, 2000000, [100, 200], [300])})
     fake_analysis(rec)
     calls = tmp_path / "calls.txt"

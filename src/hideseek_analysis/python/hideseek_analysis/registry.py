@@ -310,13 +310,11 @@ def greedy_living_steps(name, root=ROOT):
     return float(rows[0]["avg_living_steps"])
 
 
-def median_run(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE, steps=None):
-    """The hider run to ship for a variant: among its runs whose note starts with `note` and that have a
-    greedy evaluation, the one whose mean living steps is the median (the lower of the middle two
-    for an even count; ties broken by name). With `steps`, only runs of that budget count (recorded
-    steps from `steps` to under twice it: a run ends at the first whole rollout past its budget).
-    None when there is no such run."""
-    scored = []
+def first_draws(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE, steps=None):
+    """{run: greedy mean living steps} of a variant's first-draw hider runs whose note starts with
+    `note` and that have a greedy evaluation. With `steps`, only runs of that budget (recorded steps
+    from `steps` to under twice it: a run ends at the first whole rollout past its budget)."""
+    found = {}
     for name, e in runs(registry).items():
         if (e["variant"], e["network"], e["game"], role(e)) != (variant, network, game, "hider"):
             continue
@@ -326,10 +324,18 @@ def median_run(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, n
             continue
         living = greedy_living_steps(name, root)
         if living is not None:
-            scored.append((living, name))
+            found[name] = living
+    return found
+
+
+def median_run(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE, steps=None):
+    """The hider run to ship for a variant: among its first draws (first_draws), the one whose mean
+    living steps is the median (the lower of the middle two for an even count; ties broken by
+    name). None when there is no such run."""
+    scored = sorted((living, name) for name, living in
+                    first_draws(variant, network, game, registry, root, note, steps).items())
     if not scored:
         return None
-    scored.sort()
     return scored[(len(scored) - 1) // 2][1]
 
 

@@ -128,6 +128,11 @@ def _pinned_env(tree):
     return env
 
 
+def _own_env():
+    """hideseek_pipeline as this checkout has it (the analysis and records, which train nothing)."""
+    return dict(os.environ, PYTHONPATH=package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
+
+
 def _logged(cmd, env, log, mode="a"):
     """Runs `cmd` into `log`; its exit status (a signal's as negative)."""
     with open(log, mode) as f:
@@ -149,7 +154,7 @@ def _selfplay_job(sweep, run, port, tree, log):
         return 1
     record = [sys.executable, "-m", "hideseek_pipeline"] + common + ["--workspace", sweep.records.root, "--record",
                                                                      run.name]
-    env = dict(os.environ, PYTHONPATH=package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    env = _own_env()
     if _logged(record, env, log):
         say("%s: its cross-play or records failed; see %s (the next start plays the pairs left)" % (run.name, log))
         return 1
@@ -167,7 +172,7 @@ def analyze(sweep, name, part=None):
     cmd = [sys.executable, "-m", "hideseek_pipeline", "analyze", name, sweep.weights(name), "--part", part or "all",
            "--record-root", sweep.records.root, "--workspace", sweep.records.root]
     log = os.path.join(sweep.logs, name + ".analysis.log")
-    env = dict(os.environ, PYTHONPATH=package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    env = _own_env()
     with open(log, "a") as f:
         ok = subprocess.run(cmd, env=env, stdout=f, stderr=subprocess.STDOUT).returncode == 0
     what = part or "analysed"
@@ -188,7 +193,7 @@ def baseline(sweep, variant, game):
     cmd = [sys.executable, "-m", "hideseek_pipeline", "analyze", "--baseline", variant, "random", "--game", game,
            "--record-root", sweep.records.root, "--workspace", sweep.records.root]
     log = os.path.join(sweep.logs, "baseline.%s.%s.log" % (game, variant))
-    env = dict(os.environ, PYTHONPATH=package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    env = _own_env()
     ok = _logged(cmd, env, log) == 0
     say("%s on %s: the random hider's behaviour %s" % (variant, game, "analysed" if ok else "failed; see " + log))
     return ok

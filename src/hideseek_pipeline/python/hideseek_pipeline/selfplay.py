@@ -302,7 +302,7 @@ def record(ws, records, o, name, episodes=100, say=print):
                      % (name, g["generation"], o.variant, game))
         evaluate(ws, records, "%s/%s" % (name, label), weights, ("greedy",), o.port + 2, say, entry=entry,
                  docs=folder)
-        against_scripted[label] = _living_steps(os.path.join(folder, "evaluation.csv"))
+        against_scripted[label] = records.registry.greedy_living_steps("%s/%s" % (name, label), records.root)
         if g is hiders[-1]:
             analyze_run(ws, records, "%s_%s" % (name, label), weights, say=say, entry=entry,
                         out=os.path.join(folder, "analysis"))
@@ -312,25 +312,11 @@ def record(ws, records, o, name, episodes=100, say=print):
     say("selfplay: recorded into %s" % dest)
 
 
-def _living_steps(evaluation_csv):
-    with open(evaluation_csv) as f:
-        return float(f.read().strip().splitlines()[-1].split(",")[3])
-
-
 def _scripted_only(records, variant, game):
     """The variant's hiders of this game trained only against the scripted seeker: the sweep's
     first draws of 2M steps, feed-forward, and their greedy living steps on seeds 0-99."""
-    out = {}
-    reg = records.registry
-    for run, e in sorted(records.entries().items()):
-        if ((e["variant"], e.get("network", "ff"), e["game"], reg.role(e), reg.draw(e)) != (variant, "ff", game,
-                                                                                             "hider", "first")
-                or int(e.get("steps", 0)) != 2_000_000 or not str(e.get("note", "")).startswith(records.note)):
-            continue
-        table = records.docs(run, "evaluation.csv")
-        if os.path.isfile(table):
-            out[run] = _living_steps(table)
-    return out
+    return dict(sorted(records.registry.first_draws(variant, "ff", game, records.registry_path, records.root,
+                                                    records.note, 2_000_000).items()))
 
 
 def summary(name, o, game, generations, against_scripted, scripted_only, episodes):
