@@ -154,7 +154,8 @@ class Bench:
         out("train_gru_gflops %s" % field(gru_out, "^gflops"))
 
     def memory_format_group(self):
-        # The NCHW lines are there for one release (#64): until a CPU with native bf16 has measured them too.
+        # NCHW against channels-last, in the floor and (ros_group) the graph: the layout's effect on any CPU
+        # (docs/performance.md: 1.4x with AMX-BF16 in Python, none measurable on Zen 4's native bf16).
         out = self.out
         out("# memory format: the floors again with the images copied into NCHW order (memory_format nchw), against")
         out("# the channels-last layout the hider trains in (the '# memory format' line above); their ratios")
