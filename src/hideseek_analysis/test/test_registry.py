@@ -58,9 +58,9 @@ def test_record_then_ship_makes_one_run_the_shipped_one(tree, tmp_path):
         reg.record("basic_seed%d" % seed, {"variant": "basic", "network": "ff", "game": "v2",
                                            "training_seed": seed, "steps": 2000896}, registry)
     reg.ship("basic_seed0", str(weights), registry)
-    assert reg.shipped("basic", registry=registry)[0] == "basic_seed0"
+    assert reg.shipped("basic", game="v2", registry=registry)[0] == "basic_seed0"
     reg.ship("basic_seed1", str(weights), registry)  # shipping another run takes the place of the first
-    name, path = reg.shipped("basic", registry=registry)
+    name, path = reg.shipped("basic", game="v2", registry=registry)
     assert name == "basic_seed1" and path.endswith("policies/basic.pt") and os.path.isfile(path)
     assert "weights" not in reg.runs(registry)["basic_seed0"]
     assert reg.problems(registry, variants) == []
@@ -98,7 +98,8 @@ def test_a_seeker_run_ships_beside_the_hider_and_never_as_it(tree, tmp_path):
             fields["role"] = role
         reg.record(name, fields, registry)
         reg.ship(name, str(weights), registry)
-    hider, seeker = reg.shipped("basic", registry=registry), reg.shipped("basic", registry=registry, of="seeker")
+    hider = reg.shipped("basic", game="v2", registry=registry)
+    seeker = reg.shipped("basic", game="v2", registry=registry, of="seeker")
     assert hider[0] == "basic_seed0" and open(hider[1], "rb").read() == b"hider"
     assert seeker[1].endswith("policies/basic_seeker.pt") and open(seeker[1], "rb").read() == b"seeker"
     assert reg.problems(registry, variants) == []
@@ -106,7 +107,7 @@ def test_a_seeker_run_ships_beside_the_hider_and_never_as_it(tree, tmp_path):
         docs = tmp_path / "docs" / "runs" / name
         docs.mkdir(parents=True)
         (docs / "evaluation.csv").write_text("variant,policy,episodes,avg_living_steps,success_rate\nb,p,100,50,0\n")
-    assert reg.median_run("basic", registry=registry, root=str(tmp_path)) == "basic_seed0"
+    assert reg.median_run("basic", game="v2", registry=registry, root=str(tmp_path)) == "basic_seed0"
     with pytest.raises(reg.RegistryError, match="field 'role' is 'referee', not one of hider, seeker"):
         reg.record("basic_seed1", {"variant": "basic", "network": "ff", "game": "v2", "role": "referee"}, registry)
 
@@ -166,9 +167,9 @@ def test_a_malformed_run_is_refused_naming_it(tree):
 
 def test_shipped_exits_1_where_nothing_is_shipped(tree):
     registry, variants = tree
-    result = cli("--registry", registry, "--variants-dir", variants, "shipped", "slowerhider")
+    result = cli("--registry", registry, "--variants-dir", variants, "shipped", "slowerhider")  # the default game
     assert result.returncode == 1
-    assert "no ff policy is shipped for variant slowerhider on game v2" in result.stderr
+    assert "no ff policy is shipped for variant slowerhider on game %s" % reg.default_game() in result.stderr
 
 
 def test_ship_median_ships_the_median_sweep_run_and_keeps_the_shipped_one_without_its_weights(tree, tmp_path):
@@ -189,23 +190,23 @@ def test_ship_median_ships_the_median_sweep_run_and_keeps_the_shipped_one_withou
     (weights_dir / "basic_pilot").mkdir(parents=True)
     (weights_dir / "basic_pilot" / "policy.pt").write_bytes(b"pilot")
     reg.ship("basic_pilot", str(weights_dir / "basic_pilot" / "policy.pt"), registry)
-    assert reg.median_run("basic", registry=registry, root=root) == "basic_seed2"
+    assert reg.median_run("basic", game="v2", registry=registry, root=root) == "basic_seed2"
     # seed 2's weights are gone: the pilot stays shipped, and the CLI says so with exit 1
     result = cli("--registry", registry, "--variants-dir", str(tmp_path / "variants"), "ship-median", "basic",
-                 "--weights-dir", str(weights_dir))
+                 "--game", "v2", "--weights-dir", str(weights_dir))
     assert result.returncode == 1 and "basic_seed2" in result.stderr and "basic_pilot stays shipped" in result.stderr
-    assert reg.shipped("basic", registry=registry)[0] == "basic_pilot"
+    assert reg.shipped("basic", game="v2", registry=registry)[0] == "basic_pilot"
     (weights_dir / "basic_seed2").mkdir()
     (weights_dir / "basic_seed2" / "policy.pt").write_bytes(b"seed2")
     result = cli("--registry", registry, "--variants-dir", str(tmp_path / "variants"), "ship-median", "basic",
-                 "--weights-dir", str(weights_dir))
+                 "--game", "v2", "--weights-dir", str(weights_dir))
     assert result.returncode == 0, result.stderr
-    name, path = reg.shipped("basic", registry=registry)
+    name, path = reg.shipped("basic", game="v2", registry=registry)
     assert name == "basic_seed2" and open(path, "rb").read() == b"seed2"
-    assert "already shipped" in reg.ship_median("basic", str(weights_dir), registry=registry, root=root)
+    assert "already shipped" in reg.ship_median("basic", str(weights_dir), game="v2", registry=registry, root=root)
     # an even count ships the lower of the middle two
     (tmp_path / "docs" / "runs" / "basic_seed2" / "evaluation.csv").unlink()
-    assert reg.median_run("basic", registry=registry, root=root) == "basic_seed1"
+    assert reg.median_run("basic", game="v2", registry=registry, root=root) == "basic_seed1"
 
 
 def test_the_median_counts_first_draws_and_ships_a_retrain_where_the_first_draws_weights_are_lost(tree, tmp_path):
@@ -226,13 +227,13 @@ def test_the_median_counts_first_draws_and_ships_a_retrain_where_the_first_draws
         folder.mkdir(parents=True)
         (folder / "evaluation.csv").write_text("variant,policy,episodes,avg_living_steps,success_rate\n"
                                                "basic,%s (greedy),100,%.2f,0.1\n" % (name, living))
-    assert reg.median_run("basic", registry=registry, root=root) == "basic_seed2"  # 900 is not a first draw
+    assert reg.median_run("basic", game="v2", registry=registry, root=root) == "basic_seed2"  # 900 is not a first draw
     (weights_dir / "basic_seed2_retrain").mkdir(parents=True)
     (weights_dir / "basic_seed2_retrain" / "policy.pt").write_bytes(b"retrain")
-    said = reg.ship_median("basic", str(weights_dir), registry=registry, root=root)
+    said = reg.ship_median("basic", str(weights_dir), game="v2", registry=registry, root=root)
     assert "shipped basic_seed2_retrain as the median run of basic (its retrain)" in said
-    assert reg.shipped("basic", registry=registry)[0] == "basic_seed2_retrain"
-    assert "already shipped" in reg.ship_median("basic", str(weights_dir), registry=registry, root=root)
+    assert reg.shipped("basic", game="v2", registry=registry)[0] == "basic_seed2_retrain"
+    assert "already shipped" in reg.ship_median("basic", str(weights_dir), game="v2", registry=registry, root=root)
     assert reg.problems(registry, variants) == []
     reg.record("basic_seed1_retrain", dict(sweep, training_seed=0, draw="retrain", retrain_of="basic_seed1"), registry)
     assert "not a retrain of basic_seed1" in "\n".join(reg.problems(registry, variants))

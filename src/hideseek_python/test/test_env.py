@@ -133,7 +133,7 @@ def test_bad_variant_file_names_file_and_field(tmp_path):
     config = tmp_path / "config"
     real = hideseek._core.config_directory()
     os.makedirs(config / "variants")
-    for f in ("game.yaml", "games.yaml"):
+    for f in ("game.yaml", "game_v3.yaml", "games.yaml"):  # the default game's file, and the one it extends
         (config / f).write_text(open(os.path.join(real, f)).read())
     os.symlink(os.path.join(real, "maps"), config / "maps")
     (config / "variants" / "broken.yaml").write_text("variant: broken\nmap: deterministic.yaml\nepisode:\n  max_steps: -5\n")
@@ -324,9 +324,9 @@ def test_vector_observation_wrappers_refuse_same_step_autoreset(name):
 
 def test_the_seekers_side_sees_its_own_camera_and_earns_its_own_rewards():
     """role="seeker": the seeker's images and rewards (+1 on capture, -0.001 a step), the hider
-    played by a script; its actions are the scripted seeker's in the game (7 in game v3)."""
-    seekers = hideseek.make_vec("basic", num_envs=2, seed=3, role="seeker", opponent="random")
-    hiders = hideseek.make_vec("basic", num_envs=2, seed=3)
+    played by a script; its actions are the scripted seeker's in the game (5 in game v2, 7 in game v3)."""
+    seekers = hideseek.make_vec("basic", num_envs=2, seed=3, game="v2", role="seeker", opponent="random")
+    hiders = hideseek.make_vec("basic", num_envs=2, seed=3, game="v2")
 
     def chase(infos):  # the test's seeker reads the true poses to turn towards the hider
         d = infos["hider_pose"][:, :2] - infos["seeker_pose"][:, :2]

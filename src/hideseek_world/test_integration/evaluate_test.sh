@@ -5,7 +5,7 @@
 # 2. The random hider through the ROS graph (4 arenas) plays exactly the episodes that the
 #    in-process calibration table plays (calibration_table): the calibration is the real game,
 #    and an episode's draws do not depend on the number of arenas.
-# 3. The same for a scripted evader (scripted/hide), for game v1's random hider (game:=v1), and for
+# 3. The same for a scripted evader on game v2 (scripted/hide), for game v1's random hider (game:=v1), and for
 #    policy:=shipped on a variant that ships none (the random hider, with a warning).
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -53,7 +53,7 @@ printf 'failure: %s\n' "${failures[@]}"
 random_failed=${#failures[@]}
 
 # 3. A scripted evader through the graph (policy:=scripted/hide, 4 arenas, stochastic maps whose
-#    layouts the hider draws again from each seed) plays the calibration table's episodes, and so
+#    layouts the hider draws again from each seed; game v2) plays the calibration table's episodes, and so
 #    does the random hider of game v1 (game:=v1).
 failures=()
 compare() {  # NAME VARIANT POLICY EVADER GAME_FILE [LAUNCH ARGS...]
@@ -70,7 +70,7 @@ compare() {  # NAME VARIANT POLICY EVADER GAME_FILE [LAUNCH ARGS...]
     failures+=("$name: graph and in-process differ: $(head -c 300 "$dir/$name/diff.txt" | tr '\n' ' ')")
   fi
 }
-compare hide stochasticmaps scripted/hide hide "$root/../../config/game.yaml"
+compare hide stochasticmaps scripted/hide hide "$root/../../config/game.yaml" game:=v2  # (part 2 played the default game, v3)
 compare v1 basic random random "$root/../../config/game_v1.yaml" game:=v1
 # A variant without a shipped policy of its game plays the random hider by default, and says so.
 # Game v1 ships none (its weights left the tree with game v2), while the sweep ships game v2's.

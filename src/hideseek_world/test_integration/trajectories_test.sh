@@ -6,6 +6,7 @@
 #    the figure's numbers (.md) give one row per episode whose steps match the CSV and whose
 #    action shares add up to 100 %.
 # 2. basic (fixed map): every episode's layout is the map file's obstacles.
+# Both on game v3 and its maps (config/maps/v3/).
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
 out=$1
@@ -17,12 +18,12 @@ failures=()
 if [ -z "$play" ]; then
   failures+=("play_episodes not built")
 else
-  "$play" stochasticmaps random 0 3 "$dir/sm.csv" > "$dir/sm.log" 2>&1 || failures+=("play_episodes stochasticmaps failed: $(tail -n 1 "$dir/sm.log")")
-  "$play" basic random 0 2 "$dir/basic.csv" > "$dir/basic.log" 2>&1 || failures+=("play_episodes basic failed: $(tail -n 1 "$dir/basic.log")")
-  /usr/bin/python3 "$workspace/src/hideseek_analysis/scripts/plot_trajectories.py" "$dir/sm.csv" "$root/../../config/maps/stochastic.yaml" "$dir/sm.png" \
+  "$play" --game v3 stochasticmaps random 0 3 "$dir/sm.csv" > "$dir/sm.log" 2>&1 || failures+=("play_episodes stochasticmaps failed: $(tail -n 1 "$dir/sm.log")")
+  "$play" --game v3 basic random 0 2 "$dir/basic.csv" > "$dir/basic.log" 2>&1 || failures+=("play_episodes basic failed: $(tail -n 1 "$dir/basic.log")")
+  /usr/bin/python3 "$workspace/src/hideseek_analysis/scripts/plot_trajectories.py" "$dir/sm.csv" "$root/../../config/maps/v3/stochastic.yaml" "$dir/sm.png" \
     "stochasticmaps, random" > "$dir/plot.log" 2>&1 || failures+=("plot_trajectories failed: $(tail -n 1 "$dir/plot.log")")
   [ -s "$dir/sm.png" ] || failures+=("no figure")
-  /usr/bin/python3 - "$dir" "$root/../../config/maps/deterministic.yaml" > "$dir/problems.txt" 2> "$dir/check.log" <<'PY'
+  /usr/bin/python3 - "$dir" "$root/../../config/maps/v3/deterministic.yaml" > "$dir/problems.txt" 2> "$dir/check.log" <<'PY'
 import csv, sys, yaml
 d, fixed_map = sys.argv[1:]
 problems = []

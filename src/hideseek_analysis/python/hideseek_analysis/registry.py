@@ -310,11 +310,12 @@ def greedy_living_steps(name, root=ROOT):
     return float(rows[0]["avg_living_steps"])
 
 
-def first_draws(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE, steps=None):
-    """{run: greedy mean living steps} of a variant's first-draw hider runs whose note starts with
-    `note` and that have a greedy evaluation. With `steps`, only runs of that budget (recorded steps
-    from `steps` to under twice it: a run ends at the first whole rollout past its budget)."""
-    found = {}
+def first_draws(variant, network="ff", game=None, registry=REGISTRY, root=ROOT, note=SWEEP_NOTE, steps=None):
+    """{run: greedy mean living steps} of a variant's first-draw hider runs on a game (None: the
+    default game) whose note starts with `note` and that have a greedy evaluation. With `steps`,
+    only runs of that budget (recorded steps from `steps` to under twice it: a run ends at the
+    first whole rollout past its budget)."""
+    found, game = {}, game or default_game()
     for name, e in runs(registry).items():
         if (e["variant"], e["network"], e["game"], role(e)) != (variant, network, game, "hider"):
             continue
@@ -328,10 +329,10 @@ def first_draws(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, 
     return found
 
 
-def median_run(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE, steps=None):
-    """The hider run to ship for a variant: among its first draws (first_draws), the one whose mean
-    living steps is the median (the lower of the middle two for an even count; ties broken by
-    name). None when there is no such run."""
+def median_run(variant, network="ff", game=None, registry=REGISTRY, root=ROOT, note=SWEEP_NOTE, steps=None):
+    """The hider run to ship for a variant on a game (None: the default game): among its first
+    draws (first_draws), the one whose mean living steps is the median (the lower of the middle two
+    for an even count; ties broken by name). None when there is no such run."""
     scored = sorted((living, name) for name, living in
                     first_draws(variant, network, game, registry, root, note, steps).items())
     if not scored:
@@ -339,11 +340,12 @@ def median_run(variant, network="ff", game="v2", registry=REGISTRY, root=ROOT, n
     return scored[(len(scored) - 1) // 2][1]
 
 
-def ship_median(variant, weights_dir, network="ff", game="v2", registry=REGISTRY, root=ROOT, note=SWEEP_NOTE,
+def ship_median(variant, weights_dir, network="ff", game=None, registry=REGISTRY, root=ROOT, note=SWEEP_NOTE,
                 steps=None):
     """Ships the median run of a variant (median_run, by first draws) from weights_dir/<run>/policy.pt,
     or, where those weights are lost, its retrain <run>_retrain from weights_dir/<run>_retrain/.
     Returns a sentence saying what it did; raises WeightsMissing when neither's weights are there."""
+    game = game or default_game()
     name = median_run(variant, network, game, registry, root, note, steps)
     if name is None:
         return "variant %s has no evaluated run whose note starts with %r; nothing shipped" % (variant, note)
@@ -436,7 +438,7 @@ def _parser():
     p.add_argument("variant")
     p.add_argument("--weights-dir", required=True, help="the folder of the runs' folders (<run>/policy.pt)")
     p.add_argument("--network", default="ff", choices=NETWORKS)
-    p.add_argument("--game", default="v2")
+    p.add_argument("--game", default=None, help="default: config/games.yaml's")
     p.add_argument("--note", default=SWEEP_NOTE, help="the runs considered: those whose note starts with this")
     sub.add_parser("check", help="exit 1, naming the problem, where the registries disagree with each other or the tree")
     return parser
