@@ -20,7 +20,7 @@ exec 9> "$dir.lock"
 flock 9
 if [ ! -s "$dir/images.npy" ] || [ ! -s "$dir/labels.csv" ]; then
   echo "probe_set.sh: making the probe set in $dir" >&2
-  "$bin" make "$dir" >&2
+  "$bin" make "$dir" --game v2 >&2  # the committed set was drawn from game v2, whichever game is the default
 fi
 sha=$(sha256sum "$dir/images.npy" | cut -d' ' -f1)
 if [ "$fix" = --fix ]; then

@@ -83,6 +83,21 @@ def test_train_refuses_a_bad_name_an_unknown_variant_and_another_game_s_run(ws, 
     assert not calls.exists() or "train.launch" not in calls.read_text()
 
 
+def test_a_run_of_another_game_is_named_after_it_and_never_takes_a_v2_run_s_name(ws, tmp_path):
+    """Unnamed, a run of a game other than v2 carries the game in its name (as the sweep's do), so
+    `train basic --seed 0` on v3 is basic_v3_seed0 beside v2's basic_seed0, not refused as it."""
+    w, rec, calls = ws
+    (rec / "policies" / "policies.yaml").write_text(
+        "basic_seed0: {variant: basic, network: ff, game: v2, training_seed: 0, steps: 2048}\n")
+    r = pipeline(w, rec, calls, "train", "basic", "--seed", "0", "--steps", "4096", "--game", "v3",
+                 "--runs-dir", str(tmp_path / "runs"), "--eval-modes", "greedy")
+    assert r.returncode == 0, r.stdout + r.stderr
+    e = entries(rec)
+    assert e["basic_v3_seed0"]["game"] == "v3" and e["basic_seed0"]["game"] == "v2"
+    assert "--name basic_v3_seed0" in e["basic_v3_seed0"]["command"]
+    assert (tmp_path / "runs" / "basic_v3_seed0" / "policy.pt").is_file()
+
+
 def test_analyze_plays_the_run_s_game_in_chunks_and_refuses_a_memoryless_feed_forward_run(ws, tmp_path):
     w, rec, calls = ws
     (rec / "policies" / "policies.yaml").write_text(

@@ -45,10 +45,13 @@ class TrainOptions:
     role: str = "hider"               # who learns: hider or seeker
     opponent: Optional[str] = None    # the fixed other side (None: train.launch's; a seeker's: the shipped hider)
 
-    def run_name(self):
+    def run_name(self, game):
+        """--name, or <variant>[_seeker][_<game> unless v2][_<network> unless ff]_seed<S> (as the
+        sweep names its runs, less the budget), so that a run of one game never takes the name of a
+        run of another."""
         if self.name:
             return self.name
-        return (self.variant + ("_seeker" if self.role == "seeker" else "") +
+        return (self.variant + ("_seeker" if self.role == "seeker" else "") + ("" if game == "v2" else "_" + game) +
                 ("" if self.network == "ff" else "_" + self.network) + "_seed%d" % self.seed)
 
 
@@ -79,18 +82,18 @@ def command_line(o, name, root):
 def train(ws, records, o, say=print):
     """`ws`: the Workspace that trains (its launch files, binaries and commit); `records`: the
     Records of the checkout that receives the run's files and registry entry."""
-    name = o.run_name()
-    if not name or "/" in name or name.startswith("."):
-        raise ToolError("train: the run's name '%s' must be a plain file name (no '/', not starting with '.')" % name)
     if o.variant not in records.registry.variants():
         raise ToolError("train: no variant '%s' in config/variants" % o.variant)
+    game = o.game or ws.resolve(o.variant, "game")
+    name = o.run_name(game)
+    if not name or "/" in name or name.startswith("."):
+        raise ToolError("train: the run's name '%s' must be a plain file name (no '/', not starting with '.')" % name)
     if o.ppo_config and not os.path.isfile(o.ppo_config):
         raise ToolError("train: --ppo-config: no file %s" % o.ppo_config)
     if o.role not in ROLES:
         raise ToolError("train: --role: '%s' is not one of %s" % (o.role, ", ".join(ROLES)))
     if o.ship and o.role != "hider":
         raise ToolError("train: --ship ships a hider's run as its variant's policy; a seeker's run is not shipped")
-    game = o.game or ws.resolve(o.variant, "game")
     opponent = _opponent(records, o, game)
     # A run keeps its game: a name recorded under another game is not trained (or resumed) under this one.
     recorded = (records.entry(name) or {}).get("game")
