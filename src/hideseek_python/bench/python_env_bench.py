@@ -15,7 +15,7 @@ def main():
     num_envs = int(sys.argv[1]) if len(sys.argv) > 1 else 16
     seconds = float(sys.argv[2]) if len(sys.argv) > 2 else 10.0
     variant = sys.argv[3] if len(sys.argv) > 3 else "basic"
-    envs = hideseek.make_vec(variant, num_envs=num_envs, seed=0)
+    envs = hideseek.make_vec(variant, num_envs=num_envs, seed=0, game="v2")  # v2, as every bench line (comparable over time)
     envs.reset(seed=0)
     rng = np.random.default_rng(1)
 

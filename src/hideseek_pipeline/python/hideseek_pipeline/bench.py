@@ -8,6 +8,7 @@ order; PPO through the ROS graph with where the hider's loop went, timed after t
 (hideseek_pipeline.measure); training across machines with both ranks here, and one gradient
 all-reduce. This machine's speed drifts by 10 % and more over minutes: the floor is timed again
 right after the graph, and the efficiency divides by the mean of the floors on either side.
+Every group plays game v2, whatever the default game, so that its figures compare over time.
 """
 import os
 import re
@@ -71,7 +72,8 @@ class Bench:
         """PPO through the ROS graph (world, seeker, hider in train mode) for WARMUP + ROS_UPDATES
         updates: (samples/s, (update, inference, wait, other) shares of the loop's time)."""
         steps = self.o.arenas * self.rollout * (measure.WARMUP + self.o.ros_updates)
-        self.ws.command(["roslaunch", "-p", PORT, "hideseek_world", "train.launch", "num_arenas:=%d" % self.o.arenas,
+        self.ws.command(["roslaunch", "-p", PORT, "hideseek_world", "train.launch", "game:=v2",
+                         "num_arenas:=%d" % self.o.arenas,
                          "steps:=%d" % steps, "output_dir:=" + out, "checkpoint_interval:=100000",
                          "network:=" + network, "memory_format:=" + memory_format],
                         env={"ROS_MASTER_URI": "http://localhost:%d" % PORT}, check=False)
@@ -93,7 +95,7 @@ class Bench:
         with tempfile.TemporaryDirectory() as run0, tempfile.TemporaryDirectory() as run1:
             ranks = [subprocess.Popen(
                 ["bash", "-c", 'source scripts/env.sh && exec "$@"', "bench", "roslaunch", "-p", str(DD_PORT + r),
-                 "hideseek_world", "train.launch", "num_arenas:=%d" % self.o.arenas, "hider_threads:=1",
+                 "hideseek_world", "train.launch", "game:=v2", "num_arenas:=%d" % self.o.arenas, "hider_threads:=1",
                  "world_size:=2", "rank:=%d" % r, "rendezvous:=127.0.0.1:%d" % port, "steps:=%d" % steps,
                  "output_dir:=" + (run0, run1)[r], "checkpoint_interval:=100000"], cwd=self.ws.root,
                 env=dict(os.environ, ROS_MASTER_URI="http://localhost:%d" % (DD_PORT + r)),
