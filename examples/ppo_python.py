@@ -6,7 +6,7 @@ can be laid beside the C++ trainer's for the same steps.
 
     source devel/setup.bash
     /usr/bin/python3 examples/ppo_python.py --steps 122880 --out /tmp/ppo_python
-    # the policy in the project's checkpoint format, played in rviz:
+    # the policy in the project's checkpoint format (recording the game it trained on), played in rviz:
     rosrun hideseek_hider import_policy /tmp/ppo_python/policy_torchscript.pt /tmp/ppo_python/policy.pt basic
     roslaunch hideseek_world basic.launch policy:=/tmp/ppo_python/policy.pt
 
@@ -31,6 +31,8 @@ import hideseek
 def parse_args():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--variant", default="basic")
+    p.add_argument("--game", default=None, help="v3, v2 or v1 (default: config/games.yaml's); give import_policy "
+                   "the same --game")
     p.add_argument("--seed", type=int, default=0, help="training seed: torch's and the first episode seed")
     p.add_argument("--num-envs", type=int, default=16)
     p.add_argument("--steps", type=int, default=122880, help="environment steps to train")
@@ -82,7 +84,8 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     autocast = torch.autocast("cpu", dtype=torch.bfloat16, enabled=args.precision == "bf16")
 
-    envs = hideseek.make_vec(args.variant, num_envs=args.num_envs, seed=args.seed)
+    envs = hideseek.make_vec(args.variant, num_envs=args.num_envs, seed=args.seed, game=args.game)
+    print("ppo_python: %s on game %s" % (args.variant, envs.game))
     agent = Agent(envs.single_observation_space.shape[0], envs.single_observation_space.shape[1])
     optimizer = torch.optim.Adam(agent.parameters(), lr=cfg["learning_rate"], eps=cfg["adam_epsilon"])
 

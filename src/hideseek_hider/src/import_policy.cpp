@@ -1,8 +1,9 @@
 // Converts a feed-forward policy trained in Python (TorchScript of a network with the hider's layers
 // and parameter names, as examples/ppo_python.py saves it) into the project's checkpoint format,
 // which the hider node, play_episodes and the evaluation load.
-// usage: import_policy TORCHSCRIPT.pt OUTPUT.pt VARIANT [STEPS] [HEIGHT WIDTH]
-//   VARIANT and STEPS (environment steps trained) are recorded in the checkpoint; the images are
+// usage: import_policy TORCHSCRIPT.pt OUTPUT.pt VARIANT [STEPS] [HEIGHT WIDTH] [--game GAME]
+//   VARIANT, STEPS (environment steps trained) and GAME (default: config/games.yaml's, the game
+//   hideseek.make_vec plays unless told otherwise) are recorded in the checkpoint; the images are
 //   84 x 84 unless HEIGHT and WIDTH say otherwise. Every parameter of the hider's network must be
 //   in the file with its shape, and nothing else: a mismatch is refused, naming the parameter.
 #include <torch/script.h>
@@ -15,6 +16,8 @@
 #include <string>
 
 #include "hideseek_game/command_line.h"
+#include "hideseek_game/game_selection.h"
+#include "hideseek_game/package_paths.h"
 #include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/hider_net.h"
 
@@ -30,7 +33,7 @@ std::string shape(const torch::Tensor& t) {
 
 int main(int argc, char** argv) {
   namespace po = boost::program_options;
-  std::string torchscript, output, variant_name;
+  std::string torchscript, output, variant_name, game;
   int64_t steps = 0;
   int height = 84, width = 84;
   hideseek_game::CommandLine line;
@@ -38,14 +41,16 @@ int main(int argc, char** argv) {
   line.about =
       "import_policy: converts a feed-forward policy trained in Python (TorchScript with the hider's layers and\n"
       "parameter names) into the project's checkpoint format\n"
-      "usage: import_policy TORCHSCRIPT.pt OUTPUT.pt VARIANT [STEPS] [HEIGHT WIDTH], or the same as named options";
+      "usage: import_policy TORCHSCRIPT.pt OUTPUT.pt VARIANT [STEPS] [HEIGHT WIDTH] [--game GAME], or the same as\n"
+      "named options";
   line.options.add_options()                                                                             //
       ("torchscript", po::value(&torchscript)->required(), "the TorchScript file")                       //
       ("output", po::value(&output)->required(), "the checkpoint to write")                              //
       ("variant", po::value(&variant_name)->required(), "the variant it was trained on (recorded)")      //
       ("steps", po::value(&steps)->default_value(0), "environment steps it was trained for (recorded)")  //
       ("height", po::value(&height)->default_value(84), "image height (at least 36)")                    //
-      ("width", po::value(&width)->default_value(84), "image width (at least 36)");
+      ("width", po::value(&width)->default_value(84), "image width (at least 36)")                       //
+      ("game", po::value(&game), "the game it was trained on (recorded; default: config/games.yaml's)");
   line.positional.add("torchscript", 1)
       .add("output", 1)
       .add("variant", 1)
@@ -64,6 +69,9 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("VARIANT '" + variant + "' is not a variant name (config/variants/NAME.yaml)");
     if (steps < 0 || height < 36 || width < 36)
       throw std::invalid_argument("STEPS must be >= 0, HEIGHT and WIDTH >= 36");
+    const std::string config = hideseek_game::configDirectory();
+    if (game.empty()) game = hideseek_game::defaultGame(config);
+    hideseek_game::gameFile(config, game);  // an unknown game is refused, naming the games there are
     torch::jit::Module source;
     try {
       source = torch::jit::load(torchscript, torch::kCPU);
@@ -95,9 +103,10 @@ int main(int argc, char** argv) {
     info.image_width = width;
     info.variant = variant;
     info.steps = steps;
+    info.game = game;
     hideseek_hider::saveCheckpoint(output, net, info);
-    std::printf("%s: %s policy imported from %s, %dx%d images, %ld training steps\n", output.c_str(), variant.c_str(),
-                torchscript.c_str(), height, width, static_cast<long>(steps));
+    std::printf("%s: %s policy of game %s imported from %s, %dx%d images, %ld training steps\n", output.c_str(),
+                variant.c_str(), game.c_str(), torchscript.c_str(), height, width, static_cast<long>(steps));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "import_policy: %s\n", e.what());
     return 1;

@@ -105,6 +105,23 @@ def test_a_network_of_another_shape_is_refused_naming_the_parameter(tmp_path):
     assert r.returncode == 1 and "not a TorchScript file" in r.stderr
 
 
+def test_the_checkpoint_records_the_game_it_was_trained_on(tmp_path):
+    """The game is recorded (the default game's unless --game names another), so that a node playing it
+    on another game says so; an unknown game is refused, naming the games there are."""
+    script = tmp_path / "agent.pt"
+    torch.jit.script(_example().Agent()).save(str(script))
+    tool = _tool("hideseek_hider", "import_policy")
+    subprocess.run([tool, str(script), str(tmp_path / "default.pt"), "basic"], check=True, capture_output=True)
+    subprocess.run([tool, str(script), str(tmp_path / "v2.pt"), "basic", "--game", "v2"], check=True,
+                   capture_output=True)
+    assert torch.jit.load(str(tmp_path / "default.pt")).game == hideseek._core.default_game(
+        hideseek._core.config_directory())
+    assert torch.jit.load(str(tmp_path / "v2.pt")).game == "v2"
+    r = subprocess.run([tool, str(script), str(tmp_path / "v9.pt"), "basic", "--game", "v9"], capture_output=True,
+                       text=True)
+    assert r.returncode == 1 and "'v9' is not a game here" in r.stderr and not (tmp_path / "v9.pt").exists()
+
+
 def test_a_height_without_a_width_is_refused(tmp_path):
     script = tmp_path / "agent.pt"
     torch.jit.script(_example().Agent()).save(str(script))
