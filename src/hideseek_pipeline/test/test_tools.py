@@ -95,14 +95,26 @@ def test_report_from_scratch_evaluates_every_shipped_policy_then_analyses_it(che
     evaluations = [c.split("output_dir:=")[1].split()[0].rsplit("/", 1)[1] for c in calls if "evaluate.launch" in c]
     assert evaluations == ["basic_random", "basic_trained", "basic_gru_trained", "basic_gru_memoryless",
                            "slowerhider_random"]
+    assert all("game:=v2" in c for c in calls if ".launch" in c)  # the default game (config/games.yaml)
     assert "memoryless:=true" in [c for c in calls if "basic_gru_memoryless" in c][0]
     analyses = [c for c in calls if "analyze.launch" in c]
-    assert len(analyses) == 2 and "report_dir:=%s/basic " % (tmp_path / "report") in analyses[0] + " "
+    assert len(analyses) == 2 and "report_dir:=%s/v2/basic " % (tmp_path / "report") in analyses[0] + " "
     assert "steps:=500" in analyses[0] and "policy:=%s/policies/basic_gru.pt" % checkout in analyses[1]
     ran = [c.split()[0] for c in calls if c.endswith(".py") or ".py " in c]
     assert ran == ["table2.py", "reproduce_report.py", "table2.py", "seed_figures.py", "claims.py"]
-    assert "slowerhider: no shipped policy" in r.stdout
-    assert not (tmp_path / "report" / "evaluations" / "basic_trained" / "launch.log").exists()
+    assert "slowerhider: no shipped policy on game v2" in r.stdout
+    assert (tmp_path / "report" / "v2" / "evaluations" / "basic_trained" / "evaluation.csv").is_file()
+    assert not (tmp_path / "report" / "v2" / "evaluations" / "basic_trained" / "launch.log").exists()
+
+
+def test_report_from_scratch_plays_the_game_it_is_given(checkout, tmp_path):
+    """--game v3: that game's shipped policies (none here: the random hiders only), into v3/."""
+    r = report(checkout, tmp_path, "--from-scratch", "--game", "v3")
+    assert r.returncode == 0, r.stdout + r.stderr
+    launched = [c for c in (tmp_path / "calls.txt").read_text().splitlines() if ".launch" in c]
+    assert [c.split("output_dir:=")[1].split()[0] for c in launched] == [
+        "%s/v3/evaluations/%s_random" % (tmp_path / "report", v) for v in ("basic", "slowerhider")]
+    assert all("game:=v3" in c for c in launched) and "basic: no shipped policy on game v3" in r.stdout
 
 
 def test_report_names_a_failed_evaluation_and_an_unknown_variant(checkout, tmp_path):

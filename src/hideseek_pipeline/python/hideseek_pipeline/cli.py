@@ -181,6 +181,8 @@ def _report_parser(sub):
                    "large, not part of the report)")
     r.add_argument("--steps", type=int, help="--from-scratch's recorded steps per policy (default 50000; 5000 for a "
                    "quick look)")
+    r.add_argument("--game", help="--from-scratch's game: its shipped policies, into REPORT_DIR/<game>/ (default: "
+                   "config/games.yaml's)")
     r.add_argument("--variants", nargs="+", metavar="VARIANT", help="--from-scratch: these variants only (with "
                    "their GRU hiders), keeping what the report holds for the others (give REPORT_DIR before it)")
     r.add_argument("--port", type=int, default=11478, help="ROS master port (default 11478)")
@@ -294,13 +296,13 @@ def workspace_command(args):
         from hideseek_pipeline import bench  # its progress bars need python3-tqdm, which install_deps.sh installs
         return bench.bench(Workspace(root))
     given = [name for name, value in (("--work-dir", args.work_dir), ("--steps", args.steps),
-                                      ("--variants", args.variants)) if value is not None]
+                                      ("--variants", args.variants), ("--game", args.game)) if value is not None]
     if given and not args.from_scratch:
         raise ToolError("report: %s only with --from-scratch (without it the report is made from the committed "
                         "records alone)" % ", ".join(given))
     from hideseek_pipeline import report
     return report.report(Workspace(root), args.report_dir, args.from_scratch, args.work_dir, args.steps or 50000,
-                         args.variants, args.port, lambda: runner.analyze_all(make_sweep(root)))
+                         args.variants, args.port, lambda: runner.analyze_all(make_sweep(root)), args.game)
 
 
 def held(root, command, config=None):

@@ -6,13 +6,14 @@ seeds (<game>/), from every sweep run's evaluation and per-run analysis; and the
 games side by side (claims.md) (hideseek_analysis: table2.py, seed_figures.py, claims.py).
 
 --from-scratch, given the weights: first analyses every sweep run whose weights are on this
-machine and lacks its analysis (hideseek_pipeline sweep analyze); then evaluates every shipped
-policy and the random hider on every variant through the ROS graph (evaluate.launch, seeds 0-99:
-evaluations/ and Table 2 of the shipped policies, table2_shipped/); analyses every variant that has
-a shipped policy (analyze.launch: --steps recorded steps, probes, t-SNE, state statistics, distance
-over time; the bags and feature arrays go to --work-dir, large, not part of the report); gathers
-Table 3, the figures across variants and an index.md (reproduce_report.py); and ends with the
-tables across seeds as above. --variants V ... evaluates and analyses those variants only (with
+machine and lacks its analysis (hideseek_pipeline sweep analyze); then, on one game (--game,
+default config/games.yaml's) and into <game>/, evaluates every policy shipped for that game and
+the random hider on every variant through the ROS graph (evaluate.launch, seeds 0-99:
+<game>/evaluations/ and Table 2 of the shipped policies, <game>/table2_shipped/); analyses every
+variant that has a shipped policy (analyze.launch: --steps recorded steps, probes, t-SNE, state
+statistics, distance over time, into <game>/<variant>/; the bags and feature arrays go to
+--work-dir, large, not part of the report); gathers Table 3, the figures across variants and an
+index.md (reproduce_report.py, into <game>/); and ends with the tables across seeds as above. --variants V ... evaluates and analyses those variants only (with
 their GRU hiders) and keeps what the report already holds for the others: for a newly trained
 policy; after a change to the game, run it all.
 """
@@ -36,13 +37,13 @@ def across_seeds(ws, report, say):
             tqdm.write("  " + line)
 
 
-def _evaluation(ws, variant, policy, folder, port, extra=()):
+def _evaluation(ws, variant, policy, folder, port, game, extra=()):
     """One evaluation through evaluate.launch into `folder`; its evaluation.csv is the verdict
     (roslaunch exits 0 even when a required node dies)."""
     shutil.rmtree(folder, ignore_errors=True)
     os.makedirs(folder)
     log = os.path.join(folder, "launch.log")
-    ws.command(["roslaunch", "-p", port, "hideseek_world", "evaluate.launch", "variant:=" + variant,
+    ws.command(["roslaunch", "-p", port, "hideseek_world", "evaluate.launch", "variant:=" + variant, "game:=" + game,
                 "policy:=" + policy, "output_dir:=" + folder] + list(extra),
                env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=log, check=False)
     table = os.path.join(folder, "evaluation.csv")
@@ -54,50 +55,50 @@ def _evaluation(ws, variant, policy, folder, port, extra=()):
     return "%s %s" % (last[3], last[4])
 
 
-def evaluations_of(reg, variants):
-    """(variant, label, policy, extra launch arguments) of every evaluation: the random hider, the
-    shipped feed-forward policy, the shipped GRU hider with and without its memory."""
+def evaluations_of(reg, variants, game):
+    """(variant, label, policy, extra launch arguments) of every evaluation on `game`: the random
+    hider, the shipped feed-forward policy, the shipped GRU hider with and without its memory."""
     jobs = []
     for v in variants:
         jobs.append((v, "random", "random", ()))
-        _, ff = reg.shipped(v, "ff")
+        _, ff = reg.shipped(v, "ff", game)
         if ff:
             jobs.append((v, "trained", ff, ()))
-        _, gru = reg.shipped(v, "gru")
+        _, gru = reg.shipped(v, "gru", game)
         if gru:
             jobs += [(v, "gru_trained", gru, ()), (v, "gru_memoryless", gru, ("memoryless:=true",))]
     return jobs
 
 
-def evaluate_shipped(ws, reg, report, variants, keep, port, say):
+def evaluate_shipped(ws, reg, report, variants, keep, port, game, say):
     """Every shipped policy and the random hider of `variants`, then Table 2 of the shipped policies
     (table2_shipped/). `keep`: leave the other variants' evaluations in place."""
     folder = os.path.join(report, "evaluations")
     if not keep:
         shutil.rmtree(folder, ignore_errors=True)
     os.makedirs(folder, exist_ok=True)
-    jobs = evaluations_of(reg, variants)
+    jobs = evaluations_of(reg, variants, game)
     for v in variants:
-        if not reg.shipped(v, "ff")[1]:
-            say("report: %s: no shipped policy" % v)
+        if not reg.shipped(v, "ff", game)[1]:
+            say("report: %s: no shipped policy on game %s" % (v, game))
     for v, label, policy, extra in tqdm(jobs, desc="report: evaluations", unit="evaluation"):
         start = time.time()
-        result = _evaluation(ws, v, policy, os.path.join(folder, "%s_%s" % (v, label)), port, extra)
+        result = _evaluation(ws, v, policy, os.path.join(folder, "%s_%s" % (v, label)), port, game, extra)
         tqdm.write("report: %s %s: %s (living steps, success; %d s)" % (v, label, result, time.time() - start))
     ws.python("table2.py", "--evaluations", folder, "--out", os.path.join(report, "table2_shipped"), show_stderr=True)
 
 
-def analyse_shipped(ws, reg, report, work, variants, steps, port):
-    """analyze.launch on every shipped policy of `variants` (its label's folder of the report)."""
+def analyse_shipped(ws, reg, report, work, variants, steps, port, game):
+    """analyze.launch on every policy of `variants` shipped for `game` (its label's folder of the report)."""
     shipped = [(reg.label(v, n), v, path) for v in reg.paper_order() for n in reg.NETWORKS
-               for _, path in [reg.shipped(v, n)] if path and v in variants]
+               for _, path in [reg.shipped(v, n, game)] if path and v in variants]
     os.makedirs(work, exist_ok=True)
     for label, variant, weights in tqdm(shipped, desc="report: analyses", unit="policy"):
         shutil.rmtree(os.path.join(report, label), ignore_errors=True)
         log = os.path.join(work, label + ".log")
         # roslaunch exits 0 even when a required node dies: the report's files are the verdict.
         ws.command(["roslaunch", "-p", port, "hideseek_world", "analyze.launch", "variant:=" + variant,
-                    "policy:=" + weights, "steps:=%d" % steps, "output_dir:=" + os.path.join(work, label),
+                    "game:=" + game, "policy:=" + weights, "steps:=%d" % steps, "output_dir:=" + os.path.join(work, label),
                     "report_dir:=" + os.path.join(report, label)],
                    env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=log, check=False)
         with open(log) as f:
@@ -109,7 +110,7 @@ def analyse_shipped(ws, reg, report, work, variants, steps, port):
 
 
 def report(ws, report_dir=None, from_scratch=False, work_dir=None, steps=50000, variants=None, port=11478,
-           analyze_sweep=None, say=print):
+           analyze_sweep=None, game=None, say=print):
     """The report into `report_dir` (default ws.root/docs/report), as the module's docstring says.
     `analyze_sweep`: a callable that analyses the sweep's runs lacking their analysis (--from-scratch)."""
     start = time.time()
@@ -125,16 +126,18 @@ def report(ws, report_dir=None, from_scratch=False, work_dir=None, steps=50000, 
     unknown = [v for v in variants or [] if v not in known]
     if unknown:
         raise ToolError("report: --variants names %s, not among: %s" % (", ".join(unknown), " ".join(known)))
+    game = game or reg.default_game()
+    scratch = os.path.join(report_dir, game)
     if analyze_sweep:
         analyze_sweep()
-    say("report: [1/3] Table 2: every shipped policy and the random hider, seeds 0-99")
-    evaluate_shipped(ws, reg, report_dir, variants or known, bool(variants), port, say)
+    say("report: [1/3] Table 2 of game %s: every shipped policy and the random hider, seeds 0-99" % game)
+    evaluate_shipped(ws, reg, scratch, variants or known, bool(variants), port, game, say)
     say("report: [2/3] the analysis of every shipped policy (%d steps each; %d s so far)" % (steps, time.time() - start))
     work = os.path.abspath(os.path.expanduser(work_dir or "~/.ros/hideseek_reproduce"))
-    analyse_shipped(ws, reg, report_dir, work, variants or known, steps, port)
+    analyse_shipped(ws, reg, scratch, os.path.join(work, game), variants or known, steps, port, game)
     say("report: [3/3] tables and figures across variants")
-    ws.python("reproduce_report.py", report_dir, "--paper", os.path.join(ws.root, "config", "paper_reference.yaml"),
+    ws.python("reproduce_report.py", scratch, "--paper", os.path.join(ws.root, "config", "paper_reference.yaml"),
               show_stderr=True)
     across_seeds(ws, report_dir, say)
-    say("report: done in %d s; open %s/index.md" % (time.time() - start, report_dir))
+    say("report: done in %d s; open %s/index.md" % (time.time() - start, scratch))
     return 0
