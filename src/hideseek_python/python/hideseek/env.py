@@ -281,7 +281,7 @@ class HideSeekEnv(_EnvBase):
 
 def make_vec(variant="basic", num_envs=16, seed=0, **kwargs):
     """A batched environment of `variant` (config/variants/VARIANT.yaml) with num_envs arenas; keyword
-    arguments: game ('v2', 'v1' or 'v3'), config_dir (default: the hideseek_game package's config/),
+    arguments: game ('v3', 'v2' or 'v1'; default: config/games.yaml's), config_dir (default: the hideseek_game package's config/),
     render_threads, render_mode, role ('hider' or 'seeker') and opponent (the other side: see the
     module's docstring)."""
     return HideSeekVecEnv(variant, num_envs, seed, **kwargs)
