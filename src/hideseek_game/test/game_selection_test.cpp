@@ -48,9 +48,9 @@ TEST(GameSelection, AnUnknownNameIsRefusedWithTheNamesThere) {
 
 // No game named: config/games.yaml's `default`, the one place the default game is written.
 TEST(GameSelection, NoGameNamedIsTheDefaultOfGamesYaml) {
-  EXPECT_EQ(defaultGame(kConfig), "v2");
-  EXPECT_EQ(gameFile(kConfig, ""), kConfig + "/game.yaml");
-  EXPECT_EQ(selectGame(kConfig, "", "basic").game, "v2");
+  EXPECT_EQ(defaultGame(kConfig), "v3");
+  EXPECT_EQ(gameFile(kConfig, ""), kConfig + "/game_v3.yaml");
+  EXPECT_EQ(selectGame(kConfig, "", "basic").game, "v3");
   const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "default_game";
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "game.yaml") << "game: v2\n";
@@ -70,7 +70,7 @@ TEST(GameSelection, NoGameNamedIsTheDefaultOfGamesYaml) {
 }
 
 TEST(GameSelection, AToolsGameArgumentIsANameOrAFile) {
-  EXPECT_EQ(gameArgument(kConfig, ""), kConfig + "/game.yaml");
+  EXPECT_EQ(gameArgument(kConfig, ""), kConfig + "/game_v3.yaml");
   EXPECT_EQ(gameArgument(kConfig, "v1"), kConfig + "/game_v1.yaml");
   EXPECT_EQ(gameArgument(kConfig, "/somewhere/mine.yaml"), "/somewhere/mine.yaml");
   EXPECT_EQ(gameArgument(kConfig, "mine.yaml"), "mine.yaml");
