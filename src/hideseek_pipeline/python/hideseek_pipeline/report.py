@@ -13,9 +13,10 @@ the random hider on every variant through the ROS graph (evaluate.launch, seeds 
 variant that has a shipped policy (analyze.launch: --steps recorded steps, probes, t-SNE, state
 statistics, distance over time, into <game>/<variant>/; the bags and feature arrays go to
 --work-dir, large, not part of the report); gathers Table 3, the figures across variants and an
-index.md (reproduce_report.py, into <game>/); and ends with the tables across seeds as above. --variants V ... evaluates and analyses those variants only (with
-their GRU hiders) and keeps what the report already holds for the others: for a newly trained
-policy; after a change to the game, run it all.
+index.md (reproduce_report.py, into <game>/); and ends with the tables across seeds as above.
+--variants V ... evaluates and analyses those variants only (with their GRU hiders) and keeps what
+the report already holds for the others: for a newly trained policy; after a change to the game, run
+it all.
 """
 import os
 import shutil
@@ -43,8 +44,8 @@ def _evaluation(ws, variant, policy, folder, port, game, extra=()):
     shutil.rmtree(folder, ignore_errors=True)
     os.makedirs(folder)
     log = os.path.join(folder, "launch.log")
-    ws.command(["roslaunch", "-p", port, "hideseek_world", "evaluate.launch", "variant:=" + variant, "game:=" + game,
-                "policy:=" + policy, "output_dir:=" + folder] + list(extra),
+    ws.command(["roslaunch", "-p", port, "hideseek_world", "evaluate.launch", "variant:=" + variant,
+                "game:=" + game, "policy:=" + policy, "output_dir:=" + folder] + list(extra),
                env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=log, check=False)
     table = os.path.join(folder, "evaluation.csv")
     if not os.path.isfile(table) or os.path.getsize(table) == 0:
@@ -98,7 +99,8 @@ def analyse_shipped(ws, reg, report, work, variants, steps, port, game):
         log = os.path.join(work, label + ".log")
         # roslaunch exits 0 even when a required node dies: the report's files are the verdict.
         ws.command(["roslaunch", "-p", port, "hideseek_world", "analyze.launch", "variant:=" + variant,
-                    "game:=" + game, "policy:=" + weights, "steps:=%d" % steps, "output_dir:=" + os.path.join(work, label),
+                    "game:=" + game, "policy:=" + weights, "steps:=%d" % steps,
+                    "output_dir:=" + os.path.join(work, label),
                     "report_dir:=" + os.path.join(report, label)],
                    env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=log, check=False)
         with open(log) as f:
