@@ -43,10 +43,10 @@ def test_train_records_the_run_evaluates_it_and_keeps_the_paused_time_apart(ws, 
                  str(tmp_path / "runs"), "--hider-threads", "1", "--eval-modes", "greedy", "sampled",
                  "--paused-file", str(paused), "--port", "12345")
     assert r.returncode == 0, r.stdout + r.stderr
-    e = entries(rec)["basic_seed3"]
+    e = entries(rec)["basic_4096_seed3"]
     assert (e["variant"], e["network"], e["game"], e["training_seed"], e["steps"]) == ("basic", "ff", "v2", 3, 4096)
     assert e["wall_s"] == 103 and e["paused_s"] == 20 and e["precision"] == "fp32"
-    assert e["command"] == ("hideseek_pipeline train basic --seed 3 --steps 4096 --network ff --name basic_seed3 "
+    assert e["command"] == ("hideseek_pipeline train basic --seed 3 --steps 4096 --network ff --name basic_4096_seed3 "
                             "--hider-threads 1")
     launched = [line for line in calls.read_text().splitlines() if line.startswith("roslaunch")]
     assert launched[0].startswith("roslaunch -p 12345 hideseek_world train.launch variant:=basic game:=v2 seed:=3")
@@ -54,11 +54,12 @@ def test_train_records_the_run_evaluates_it_and_keeps_the_paused_time_apart(ws, 
     # greedy and sampled evaluations on the run's port + 1000 and the next, naming the run, not its weights
     assert "-p 13345 hideseek_world evaluate.launch" in launched[1] and "greedy:=true" in launched[1]
     assert "-p 13346 hideseek_world evaluate.launch" in launched[2] and "greedy:=false" in launched[2]
-    docs = rec / "docs" / "runs" / "basic_seed3"
-    assert "basic_seed3" in (docs / "evaluation.csv").read_text() and "policy.pt" not in (docs / "evaluation.md").read_text()
+    docs = rec / "docs" / "runs" / "basic_4096_seed3"
+    assert "basic_4096_seed3" in (docs / "evaluation.csv").read_text()
+    assert "policy.pt" not in (docs / "evaluation.md").read_text()
     for f in ("training_log.csv", "learning_curve.png", "trajectories.png", "sampled/evaluation.csv"):
         assert (docs / f).is_file(), f
-    assert (tmp_path / "runs" / "basic_seed3" / "policy.pt").read_text() == "ckpt\n"
+    assert (tmp_path / "runs" / "basic_4096_seed3" / "policy.pt").read_text() == "ckpt\n"
 
 
 def test_a_run_that_stops_short_records_nothing(ws, tmp_path):
@@ -83,19 +84,30 @@ def test_train_refuses_a_bad_name_an_unknown_variant_and_another_game_s_run(ws, 
     assert not calls.exists() or "train.launch" not in calls.read_text()
 
 
-def test_a_run_of_another_game_is_named_after_it_and_never_takes_a_v2_run_s_name(ws, tmp_path):
-    """Unnamed, a run of a game other than v2 carries the game in its name (as the sweep's do), so
-    `train basic --seed 0` on v3 is basic_v3_seed0 beside v2's basic_seed0, not refused as it."""
+def test_an_unnamed_run_is_named_as_the_sweep_names_it_and_never_takes_another_run_s_name(ws, tmp_path):
+    """Unnamed, a run carries in its name what tells it apart (as the sweep's runs do): `train basic
+    --seed 0` on v3 is basic_v3_seed0 beside v2's basic_seed0, and a run of another budget on v3 is
+    basic_v3_<budget>_seed0, so it never resumes or overwrites v3's 2M run. A name the registry holds
+    for another network (or game, variant, role) is refused."""
     w, rec, calls = ws
     (rec / "policies" / "policies.yaml").write_text(
-        "basic_seed0: {variant: basic, network: ff, game: v2, training_seed: 0, steps: 2048}\n")
+        "basic_seed0: {variant: basic, network: ff, game: v2, training_seed: 0, steps: 2048}\n"
+        "basic_v3_seed0: {variant: basic, network: ff, game: v3, training_seed: 0, steps: 2000896}\n")
     r = pipeline(w, rec, calls, "train", "basic", "--seed", "0", "--steps", "4096", "--game", "v3",
                  "--runs-dir", str(tmp_path / "runs"), "--eval-modes", "greedy")
     assert r.returncode == 0, r.stdout + r.stderr
     e = entries(rec)
-    assert e["basic_v3_seed0"]["game"] == "v3" and e["basic_seed0"]["game"] == "v2"
-    assert "--name basic_v3_seed0" in e["basic_v3_seed0"]["command"]
-    assert (tmp_path / "runs" / "basic_v3_seed0" / "policy.pt").is_file()
+    assert e["basic_v3_4096_seed0"]["game"] == "v3" and e["basic_seed0"]["game"] == "v2"
+    assert e["basic_v3_seed0"]["steps"] == 2000896  # v3's 2M run untouched
+    assert "--name basic_v3_4096_seed0" in e["basic_v3_4096_seed0"]["command"]
+    assert (tmp_path / "runs" / "basic_v3_4096_seed0" / "policy.pt").is_file()
+    assert not (tmp_path / "runs" / "basic_v3_seed0").exists()
+    calls.unlink()
+    r = pipeline(w, rec, calls, "train", "basic", "--seed", "0", "--network", "gru", "--name", "basic_v3_seed0",
+                 "--game", "v3", "--runs-dir", str(tmp_path / "runs"))
+    assert r.returncode == 1 and "basic_v3_seed0 is recorded as a run of network ff" in r.stderr
+    assert "this is network gru: name the run otherwise" in r.stderr
+    assert not calls.exists() or "train.launch" not in calls.read_text()
 
 
 def test_analyze_plays_the_run_s_game_in_chunks_and_refuses_a_memoryless_feed_forward_run(ws, tmp_path):
@@ -129,24 +141,24 @@ def test_a_seeker_s_run_trains_against_the_shipped_hider_and_is_evaluated_as_a_s
     r = pipeline(w, rec, calls, "train", "basic", "--role", "seeker", "--steps", "4096", "--runs-dir",
                  str(tmp_path / "runs"), "--port", "12345")
     assert r.returncode == 0, r.stdout + r.stderr
-    e = entries(rec)["basic_seeker_seed0"]
+    e = entries(rec)["basic_seeker_4096_seed0"]
     assert (e["role"], e["variant"], e["game"], e["steps"]) == ("seeker", "basic", "v2", 4096)
     assert e["command"].startswith("hideseek_pipeline train basic --seed 0 --steps 4096 --network ff "
-                                   "--name basic_seeker_seed0 --role seeker")
+                                   "--name basic_seeker_4096_seed0 --role seeker")
     launched = [line for line in calls.read_text().splitlines() if line.startswith("roslaunch")]
     # the shipped hider as the records ship it (a pinned worktree's registry may ship another)
     assert "role:=seeker" in launched[0] and "opponent:=%s" % (rec / "policies" / "basic.pt") in launched[0]
     # then the learned and the scripted seeker against that hider and the four evaders, no hider evaluation
     evaluations = launched[1:]
     assert len(evaluations) == 10 and all("evaluate.launch" in line for line in evaluations)
-    assert "seeker_policy:=%s" % (tmp_path / "runs" / "basic_seeker_seed0" / "policy.pt") in evaluations[0]
+    assert "seeker_policy:=%s" % (tmp_path / "runs" / "basic_seeker_4096_seed0" / "policy.pt") in evaluations[0]
     assert "seeker_mode:=scripted" in evaluations[1]
-    table = (rec / "docs" / "runs" / "basic_seeker_seed0" / "seeker_evaluation.csv").read_text().splitlines()
+    table = (rec / "docs" / "runs" / "basic_seeker_4096_seed0" / "seeker_evaluation.csv").read_text().splitlines()
     assert [row.split(",")[:2] for row in table[1:3]] == [["basic", "learned"], ["basic", "scripted"]]
     assert [row.split(",")[0] for row in table[3::2]] == ["scripted/backpedal", "scripted/flee", "scripted/hide",
                                                           "scripted/lap"]
-    assert str(tmp_path) not in (rec / "docs" / "runs" / "basic_seeker_seed0" / "seeker_evaluation.md").read_text()
-    assert not (rec / "docs" / "runs" / "basic_seeker_seed0" / "evaluation.csv").exists()
+    assert str(tmp_path) not in (rec / "docs" / "runs" / "basic_seeker_4096_seed0" / "seeker_evaluation.md").read_text()
+    assert not (rec / "docs" / "runs" / "basic_seeker_4096_seed0" / "evaluation.csv").exists()
     r = pipeline(w, rec, calls, "train", "basic", "--role", "seeker", "--ship", "--runs-dir", str(tmp_path / "runs"))
     assert r.returncode == 1 and "a seeker's run is not shipped" in r.stderr
 
@@ -181,4 +193,4 @@ def test_a_trainer_writes_the_records_with_the_records_own_registry_reader(ws, t
         "basic_seed9: {variant: basic, network: ff, game: v2, training_seed: 9, steps: 2048, field_of_tomorrow: 1}\n")
     r = pipeline(w, rec, calls, "train", "basic", "--steps", "4096", "--runs-dir", str(tmp_path / "runs"))
     assert r.returncode == 0, r.stdout + r.stderr
-    assert entries(rec)["basic_seed9"]["field_of_tomorrow"] == 1 and entries(rec)["basic_seed0"]["steps"] == 4096
+    assert entries(rec)["basic_seed9"]["field_of_tomorrow"] == 1 and entries(rec)["basic_4096_seed0"]["steps"] == 4096

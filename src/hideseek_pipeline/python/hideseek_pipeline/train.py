@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 from hideseek_pipeline import seeker as seeker_evaluation
+from hideseek_pipeline import sweep_config
 from hideseek_pipeline.evaluate import evaluate
 from hideseek_pipeline.workspace import ToolError
 
@@ -46,13 +47,10 @@ class TrainOptions:
     opponent: Optional[str] = None    # the fixed other side (None: train.launch's; a seeker's: the shipped hider)
 
     def run_name(self, game):
-        """--name, or <variant>[_seeker][_<game> unless v2][_<network> unless ff]_seed<S> (as the
-        sweep names its runs, less the budget), so that a run of one game never takes the name of a
-        run of another."""
-        if self.name:
-            return self.name
-        return (self.variant + ("_seeker" if self.role == "seeker" else "") + ("" if game == "v2" else "_" + game) +
-                ("" if self.network == "ff" else "_" + self.network) + "_seed%d" % self.seed)
+        """--name, or the name the sweep gives the same run (sweep_config.run_name): the role, the
+        game, the network and the budget, each where it is not the default (basic_v3_seed0,
+        basic_v3_8m_seed0), so that no run takes the name of a run that differs from it."""
+        return self.name or sweep_config.run_name(self.variant, self.seed, game, self.network, self.steps, self.role)
 
 
 def _commit(ws):
@@ -95,11 +93,7 @@ def train(ws, records, o, say=print):
     if o.ship and o.role != "hider":
         raise ToolError("train: --ship ships a hider's run as its variant's policy; a seeker's run is not shipped")
     opponent = _opponent(records, o, game)
-    # A run keeps its game: a name recorded under another game is not trained (or resumed) under this one.
-    recorded = (records.entry(name) or {}).get("game")
-    if recorded and recorded != game:
-        raise ToolError("train: %s is recorded as a run of game %s (policies/policies.yaml); this is game %s: "
-                        "name the run otherwise" % (name, recorded, game))
+    _refuse_another_run(records.entry(name) or {}, name, o, game)
     run = os.path.join(os.path.realpath(os.path.expanduser(o.runs_dir)), name)
     os.makedirs(run, exist_ok=True)
     port = o.port or 11700 + o.seed + (50 if o.network == "gru" else 0) + (25 if o.role == "seeker" else 0)
@@ -150,6 +144,20 @@ def train(ws, records, o, say=print):
         records.registry.ship(name, os.path.join(run, "policy.pt"), records.registry_path)
         say("train: %s shipped as the %s policy" % (name, o.variant))
     return name
+
+
+def _refuse_another_run(entry, name, o, game):
+    """A run keeps what it was recorded with: a name that the registry holds for another game,
+    variant, role or network is not trained (or resumed, or overwritten) as this run. (An unnamed
+    run's name carries its budget, as the sweep's do; the registry records the steps trained.)"""
+    if not entry:
+        return
+    for field, recorded, here in (("game", entry.get("game"), game), ("variant", entry.get("variant"), o.variant),
+                                  ("role", entry.get("role", "hider"), o.role),
+                                  ("network", entry.get("network"), o.network)):
+        if recorded is not None and str(recorded) != str(here):
+            raise ToolError("train: %s is recorded as a run of %s %s (policies/policies.yaml); this is %s %s: name "
+                            "the run otherwise" % (name, field, recorded, field, here))
 
 
 def _opponent(records, o, game):
