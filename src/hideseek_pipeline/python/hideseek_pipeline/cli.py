@@ -88,7 +88,8 @@ def _train_parser(sub, common):
     t.add_argument("--steps", type=int, default=2_000_000, help="environment steps (default 2000000)")
     t.add_argument("--runs-dir", default="~/hideseek_runs", help="where <run>/ holds weights and checkpoints")
     t.add_argument("--network", choices=["ff", "gru"], default="ff")
-    t.add_argument("--name", help="the run's name (default <variant>[_seeker][_<game> unless v2][_gru]_seed<S>)")
+    t.add_argument("--name", help="the run's name (default: as the sweep names it, <variant>[_seeker][_<game> unless v2]"
+                   "[_gru][_<budget> unless 2M]_seed<S>, e.g. basic_v3_8m_seed0)")
     t.add_argument("--game", help="default: config/games.yaml's")
     t.add_argument("--precision", choices=["auto", "fp32", "bf16"], default="auto")
     t.add_argument("--num-arenas", type=int, help="default: train.launch's")
