@@ -524,3 +524,18 @@ def test_the_claims_on_both_games_sit_side_by_side_with_the_budget_check_last(tm
     # 8M minus 2M on v3: (600 + 610 + 620) / 3 - (300 + 310 + 320) / 3 = 300 living steps
     assert "| **supported** | 300.000 [" in last and "(basic 8m 3, basic 2M 3)" in last
     assert "the A mode: v2 brakes on every turn, v3 keeps the hider's momentum" in both
+
+
+def test_a_miss_names_only_the_causes_its_game_still_has_and_says_when_none_is_left():
+    """The "what could cause a miss" cell: v2 names its A mode and seeker motion; v3, which has
+    neither, says that no tested cause is left rather than leaving the cell empty; a cause that both
+    games share (the 2M budget, which the 8M check on basic tests) stays on both."""
+    on_v2 = claims.Causes(("a_mode", "seeker_motion"), "v2")
+    assert "A mode brakes on every turn" in on_v2 and "turns or moves, never both" in on_v2
+    on_v3 = claims.Causes(("a_mode", "seeker_motion"), "v3")
+    assert on_v3.startswith("no tested cause left on game v3: what could cause it on v2 is gone here")
+    assert "v3 keeps the hider's momentum" in on_v3 and "v3 turns while it moves" in on_v3
+    assert on_v3.keys == ("a_mode", "seeker_motion")  # the side-by-side table's "what changed" reads them
+    basic = claims.Causes(("seeker_motion", "steps"), "v3")
+    assert basic == claims.DEPARTURES["steps"] and "8M budget check on basic" in basic
+    assert claims.Causes((), "v3") == ""

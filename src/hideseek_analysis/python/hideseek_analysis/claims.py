@@ -69,6 +69,9 @@ class Causes(str):
 
     def __new__(cls, keys, game="v2"):
         text = "; ".join(DEPARTURES[k] for k in keys if k not in FIXED_ON.get(game, ()))
+        if keys and not text:  # every departure named is one this game no longer has: say so, not nothing
+            text = "no tested cause left on game %s: what could cause it on v2 is gone here (%s)" % (
+                game, "; ".join(CHANGED.get(k, k) for k in keys))
         made = super().__new__(cls, text)
         made.keys = tuple(keys)
         return made
@@ -357,7 +360,8 @@ def turn_then_run_claim(c):
     return claim("basic turns away, then runs", "Figure 5 and section 5: turn away from the seeker, then run",
                  "S1H1 -> S0H1 and S0H1 -> S0H0 per 100 steps, trained minus random: turn away %s; run %s "
                  "(both must hold)" % (effect_text(c6a), effect_text(c6b)),
-                 runs=c6a["runs"], result=res, note=c6a["note"] or c6b["note"], departure=c.causes("seeker_motion"),
+                 runs=c6a["runs"], result=res, note=c6a["note"] or c6b["note"],
+                 departure=c.causes("seeker_motion", "steps"),
                  practical=PRACTICAL["rate"][1])
 
 
