@@ -110,6 +110,52 @@ def test_an_unnamed_run_is_named_as_the_sweep_names_it_and_never_takes_another_r
     assert not calls.exists() or "train.launch" not in calls.read_text()
 
 
+def test_the_sweep_s_runs_and_a_recorded_run_s_seed_budget_and_role_are_not_taken_over(ws, tmp_path):
+    """An unnamed run does not take the name of a sweep run, recorded (its note) or still to train
+    (config/sweep.yaml); a named one does not train a recorded run under another training seed,
+    budget or role. Each is refused before anything trains, and the records are left as they were."""
+    w, rec, calls = ws
+    subprocess.run(["cp", "-r", os.path.join(ROOT, "config"), str(rec / "config")], check=True)
+    registry = ("basic_v3_seed0: {variant: basic, network: ff, game: v3, training_seed: 0, steps: 2000896, "
+                "note: 'sweep run (config/sweep.yaml), phase v3_ff, pinned at 3a74733b91ed'}\n"
+                "basic_seeker_v3_seed0: {variant: basic, network: ff, game: v3, training_seed: 0, steps: 2000896, "
+                "role: seeker}\n")
+    (rec / "policies" / "policies.yaml").write_text(registry)
+    runs = str(tmp_path / "runs")
+    for args, said in (
+            ([], "basic_v3_seed0 is a run of the sweep (config/sweep.yaml), which trains and records it: give yours "
+                 "a name of its own with --name"),
+            (["--steps", "8000000"], "basic_v3_8m_seed0 is a run of the sweep"),  # v3_8m's, not yet trained
+            (["--name", "basic_v3_seed0", "--steps", "8000000"],
+             "basic_v3_seed0 is recorded with 2000896 steps trained (policies/policies.yaml); this run's budget is "
+             "8000000 steps: name the run otherwise"),
+            (["--name", "basic_v3_seed0", "--seed", "1"],
+             "basic_v3_seed0 is recorded as a run of training seed 0 (policies/policies.yaml); this is training "
+             "seed 1"),
+            (["--name", "basic_seeker_v3_seed0"], "recorded as a run of role seeker (policies/policies.yaml); this "
+                                                  "is role hider")):
+        r = pipeline(w, rec, calls, "train", "basic", "--game", "v3", "--runs-dir", runs, *args)
+        assert r.returncode == 1 and said in r.stderr, (args, r.stderr)
+    assert not calls.exists() or "train.launch" not in calls.read_text()
+    assert (rec / "policies" / "policies.yaml").read_text() == registry
+    r = pipeline(w, rec, calls, "train", "basic", "--game", "v3", "--steps", "4096", "--name", "my_basic",
+                 "--runs-dir", runs, "--eval-modes", "greedy")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert entries(rec)["my_basic"]["steps"] == 4096
+
+
+def test_an_unnamed_run_takes_the_name_the_sweep_gives_the_same_run():
+    sys.path.insert(0, PACKAGE)
+    from hideseek_pipeline import sweep_config
+    from hideseek_pipeline.train import TrainOptions
+    for kw, game in ((dict(steps=8_000_000), "v3"), (dict(network="gru", seed=2), "v3"), (dict(role="seeker"), "v3"),
+                     (dict(steps=500_000, network="gru", role="seeker", seed=1), "v2"), (dict(), "v2")):
+        o = TrainOptions("basic", **kw)
+        assert o.run_name(game) == sweep_config.run_name("basic", o.seed, game, o.network, o.steps, o.role)
+    assert TrainOptions("basic", steps=8_000_000).run_name("v3") == "basic_v3_8m_seed0"
+    assert TrainOptions("basic", name="mine", steps=8_000_000).run_name("v3") == "mine"
+
+
 def test_analyze_plays_the_run_s_game_in_chunks_and_refuses_a_memoryless_feed_forward_run(ws, tmp_path):
     w, rec, calls = ws
     (rec / "policies" / "policies.yaml").write_text(

@@ -1,7 +1,7 @@
 """The claims table: every claim of the paper decided on the sweep's runs, with the effect size and
 the 95 % interval that decide it, on each game the sweep trains and side by side.
 
-Reads each game's sweep runs (runs.py selects them: registry entries <variant>[_<game>]_seed<S>,
+Reads each game's sweep runs (runs.py selects them: registry entries <variant>[_<game>][_<budget>]_seed<S>,
 plus --extra of that game), each run's evaluation (docs/runs/<run>/episodes.csv) and per-run
 analysis (docs/runs/<run>/analysis/: probes.csv, states.csv, transitions.csv, behaviour.csv,
 written by hideseek_pipeline analyze), the random hider's behaviour per variant

@@ -1,9 +1,10 @@
 """The runs the analysis across training seeds counts, and what each left in the checkout.
 
-A sweep run is a registry entry (policies/policies.yaml) named after its variant, game, network and
-training seed (<variant>[_<game> unless v2][_<network> unless ff]_seed<S>), of that variant, network
-and game, trained for at least the sweep's steps by the sweep's queue (its note says so), and the
-first draw of its seed: a retrain (<run>_retrain) never counts. Its records lie in
+A sweep run is a registry entry (policies/policies.yaml) named after its variant, game, network,
+budget and training seed (<variant>[_<game> unless v2][_<network> unless ff][_<budget> unless
+2M]_seed<S>), of that variant, network and game, trained for at least the sweep's steps by the
+sweep's queue (its note says so), and the first draw of its seed: a retrain (<run>_retrain) never
+counts. Its records lie in
 docs/runs/<run>/: episodes.csv (greedy evaluation, seeds 0-99), sampled/episodes.csv, and analysis/
 (probes, states, transitions, behaviour, distance, t-SNE: hideseek_pipeline analyze).
 """

@@ -93,7 +93,7 @@ def train(ws, records, o, say=print):
     if o.ship and o.role != "hider":
         raise ToolError("train: --ship ships a hider's run as its variant's policy; a seeker's run is not shipped")
     opponent = _opponent(records, o, game)
-    _refuse_another_run(records.entry(name) or {}, name, o, game)
+    _refuse_another_run(records, name, o, game)
     run = os.path.join(os.path.realpath(os.path.expanduser(o.runs_dir)), name)
     os.makedirs(run, exist_ok=True)
     port = o.port or 11700 + o.seed + (50 if o.network == "gru" else 0) + (25 if o.role == "seeker" else 0)
@@ -146,18 +146,46 @@ def train(ws, records, o, say=print):
     return name
 
 
-def _refuse_another_run(entry, name, o, game):
+def _sweep_runs(records):
+    """The names of the runs that config/sweep.yaml of the records' checkout trains (done or not);
+    none where it has no such file or cannot read it (the sweep itself says what is wrong)."""
+    path = os.path.join(records.root, "config", "sweep.yaml")
+    if not os.path.isfile(path):
+        return set()
+    reg = records.registry
+    environ = {k: v for k, v in os.environ.items() if k != "SWEEP_PHASES"}  # every phase, not a chosen few
+    try:
+        return {r.name for r in sweep_config.load(path, reg.variants(), reg.paper_order(), reg.default_game(),
+                                                  environ).runs()}
+    except (sweep_config.ConfigError, OSError):
+        return set()
+
+
+def _refuse_another_run(records, name, o, game):
     """A run keeps what it was recorded with: a name that the registry holds for another game,
-    variant, role or network is not trained (or resumed, or overwritten) as this run. (An unnamed
-    run's name carries its budget, as the sweep's do; the registry records the steps trained.)"""
+    variant, role, network, training seed or budget is not trained (or resumed, or overwritten) as
+    this run; and an unnamed run does not take the name of one of the sweep's runs (recorded or
+    still to train), whose records Table 2 and the claims count."""
+    entry = records.entry(name) or {}
+    if not o.name and (str(entry.get("note", "")).startswith(records.registry.SWEEP_NOTE)
+                       or name in _sweep_runs(records)):
+        raise ToolError("train: %s is a run of the sweep (config/sweep.yaml), which trains and records it: give "
+                        "yours a name of its own with --name" % name)
     if not entry:
         return
     for field, recorded, here in (("game", entry.get("game"), game), ("variant", entry.get("variant"), o.variant),
                                   ("role", entry.get("role", "hider"), o.role),
-                                  ("network", entry.get("network"), o.network)):
+                                  ("network", records.registry.run_network(name, entry), o.network),
+                                  ("training seed", entry.get("training_seed"), o.seed)):
         if recorded is not None and str(recorded) != str(here):
             raise ToolError("train: %s is recorded as a run of %s %s (policies/policies.yaml); this is %s %s: name "
                             "the run otherwise" % (name, field, recorded, field, here))
+    # A run ends at the first whole rollout past its budget: its recorded steps lie in [budget, 2 x budget).
+    trained = int(entry.get("steps") or 0)
+    if trained and not o.steps <= trained < 2 * o.steps:
+        raise ToolError("train: %s is recorded with %d steps trained (policies/policies.yaml); this run's budget is "
+                        "%d steps: name the run otherwise (a recorded run is not extended or cut under its name)"
+                        % (name, trained, o.steps))
 
 
 def _opponent(records, o, game):
