@@ -68,10 +68,13 @@ class Causes(str):
     """The departures that could cause a miss, in words, with their DEPARTURES keys (`keys`)."""
 
     def __new__(cls, keys, game="v2"):
+        gone = [CHANGED.get(k, k) for k in keys if k in FIXED_ON.get(game, ())]
         text = "; ".join(DEPARTURES[k] for k in keys if k not in FIXED_ON.get(game, ()))
-        if keys and not text:  # every departure named is one this game no longer has: say so, not nothing
+        if gone and not text:  # every departure named is one this game no longer has: say so, not nothing
             text = "no tested cause left on game %s: what could cause it on v2 is gone here (%s)" % (
-                game, "; ".join(CHANGED.get(k, k) for k in keys))
+                game, "; ".join(gone))
+        elif gone:
+            text += " (gone on game %s, which could cause it on v2: %s)" % (game, "; ".join(gone))
         made = super().__new__(cls, text)
         made.keys = tuple(keys)
         return made
