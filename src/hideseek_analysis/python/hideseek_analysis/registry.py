@@ -310,6 +310,12 @@ def greedy_living_steps(name, root=ROOT):
     return float(rows[0]["avg_living_steps"])
 
 
+def of_budget(trained, budget):
+    """Whether a run that trained `trained` steps was a run of `budget` steps: a run ends at the
+    first whole rollout past its budget, so its recorded steps lie in [budget, 2 x budget)."""
+    return budget <= int(trained or 0) < 2 * budget
+
+
 def first_draws(variant, network="ff", game=None, registry=REGISTRY, root=ROOT, note=SWEEP_NOTE, steps=None):
     """{run: greedy mean living steps} of a variant's first-draw hider runs on a game (None: the
     default game) whose note starts with `note` and that have a greedy evaluation. With `steps`,
@@ -319,7 +325,7 @@ def first_draws(variant, network="ff", game=None, registry=REGISTRY, root=ROOT, 
     for name, e in runs(registry).items():
         if (e["variant"], e["network"], e["game"], role(e)) != (variant, network, game, "hider"):
             continue
-        if steps is not None and not steps <= int(e.get("steps", 0)) < 2 * steps:
+        if steps is not None and not of_budget(e.get("steps", 0), steps):
             continue
         if not str(e.get("note", "")).startswith(note) or draw(e) != "first":
             continue

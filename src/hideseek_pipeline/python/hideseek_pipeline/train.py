@@ -180,12 +180,10 @@ def _refuse_another_run(records, name, o, game):
         if recorded is not None and str(recorded) != str(here):
             raise ToolError("train: %s is recorded as a run of %s %s (policies/policies.yaml); this is %s %s: name "
                             "the run otherwise" % (name, field, recorded, field, here))
-    # A run ends at the first whole rollout past its budget: its recorded steps lie in [budget, 2 x budget).
-    trained = int(entry.get("steps") or 0)
-    if trained and not o.steps <= trained < 2 * o.steps:
-        raise ToolError("train: %s is recorded with %d steps trained (policies/policies.yaml); this run's budget is "
+    if entry.get("steps") and not records.registry.of_budget(entry["steps"], o.steps):
+        raise ToolError("train: %s is recorded with %s steps trained (policies/policies.yaml); this run's budget is "
                         "%d steps: name the run otherwise (a recorded run is not extended or cut under its name)"
-                        % (name, trained, o.steps))
+                        % (name, entry["steps"], o.steps))
 
 
 def _opponent(records, o, game):
