@@ -97,6 +97,35 @@ def test_status_lists_runs_seed_major_with_their_state(tmp_path):
     assert "greedy 515.00/0.5000" in r.stdout
 
 
+def test_partial_records_each_unfinished_run_s_log_and_curve_and_clears_a_done_run_s(tmp_path):
+    """Before a machine goes: an unfinished run's training log and curve land in its records'
+    partial/ (no weights); a done run's stale partial/ goes; a run that has not trained writes
+    nothing."""
+    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000000, [30, 1000], [20, 40])})
+    stale = rec / "docs" / "runs" / "basic_seed0" / "partial"
+    stale.mkdir()
+    (stale / "training_log.csv").write_text("old")
+    header = ("update,steps,wall_s,steps_per_s,episodes,mean_length,mean_return,policy_loss,value_loss,entropy,"
+              "approx_kl,clip_fraction,learning_rate\n")
+    log = header + "".join("%d,%d,%.1f,450,%d,%d,-0.9,0,0,1.6,0,0,0.0003\n" % (u, 1024 * u, 2.3 * u, 10 * u, 40 + u)
+                           for u in range(1, 40))
+    runs = tmp_path / "sweep" / "runs"
+    (runs / "slowerhider_seed0").mkdir(parents=True)
+    (runs / "slowerhider_seed0" / "training_log.csv").write_text(log)
+    (runs / "slowerhider_seed0" / "checkpoint.pt").write_bytes(b"x")
+    (runs / "basic_seed1").mkdir()
+    (runs / "basic_seed1" / "training_log.csv").write_text(header)  # started, nothing logged yet
+    r = sweep(tmp_path, rec, "partial")
+    assert r.returncode == 0, r.stdout + r.stderr
+    unfinished = rec / "docs" / "runs" / "slowerhider_seed0" / "partial"
+    assert (unfinished / "training_log.csv").read_text() == log
+    assert (unfinished / "learning_curve.png").read_bytes()[:4] == b"\x89PNG"
+    assert "slowerhider_seed0: 39,936 of 2000000 steps, 89 s of training" in r.stdout
+    assert not stale.exists() and (rec / "docs" / "runs" / "basic_seed0" / "evaluation.csv").exists()
+    assert not (rec / "docs" / "runs" / "basic_seed1").exists()
+    assert r.stdout.strip().splitlines()[-1].startswith("sweep: 1 unfinished runs recorded, 1 done runs' partial")
+
+
 def test_hours_sums_each_phase_s_recorded_training_time_per_machine(tmp_path):
     rec = make_records(tmp_path, {
         "basic_seed0": ("basic", 0, 2000000, [30], [30]),
@@ -427,6 +456,9 @@ def test_the_queue_trains_phase_by_phase_records_ships_and_keeps_each_phase_s_ru
     (repo / "scripts" / "helper.py").write_text("VALUE = 1\n")
     rec = make_records(tmp_path, {})
     fake_analysis(rec)
+    # what `sweep partial` recorded of basic_seed0 before a machine went: gone once the run is recorded
+    (rec / "docs" / "runs" / "basic_seed0" / "partial").mkdir(parents=True)
+    (rec / "docs" / "runs" / "basic_seed0" / "partial" / "training_log.csv").write_text("steps\n")
     calls = tmp_path / "calls.txt"
     code, env, r = queue_in(tmp_path, repo, rec, TWO_PHASES, calls)
     assert r.returncode == 0, r.stdout + r.stderr
@@ -447,6 +479,7 @@ def test_the_queue_trains_phase_by_phase_records_ships_and_keeps_each_phase_s_ru
     assert entries["basic_v3_gru_8m_seed0"]["note"].startswith("sweep run (config/sweep.yaml), phase later, pinned at ")
     assert entries["basic_v3_gru_8m_seed0"]["game"] == "v3"
     assert (rec / "docs" / "runs" / "slowerhider_seed1" / "analysis" / "behaviour.csv").exists()
+    assert not (rec / "docs" / "runs" / "basic_seed0" / "partial").exists()
     # the median of basic's two v2 runs (100 and 101 living steps: the lower) ships as basic.pt
     assert entries["basic_seed0"].get("weights") == "basic.pt" and "weights" not in entries["basic_seed1"]
     # the later phase, a budget check, ships nothing

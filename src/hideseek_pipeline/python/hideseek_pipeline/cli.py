@@ -36,6 +36,8 @@ SWEEP_COMMANDS = {
               "whether its weights are here), training, partial (a checkpoint) or missing",
     "hours": "machine time per phase (a Markdown table): the done runs' training time as run-hours, and as "
              "machine-hours (run-hours / the runs the phase trains at once); retrains apart",
+    "partial": "record every unfinished run's training so far (log and curve, no weights) into docs/runs/<run>/"
+               "partial/ of the records, before a machine goes; a done run's partial records are removed",
     "analyze": "the per-run analysis of every done run that lacks it and whose weights are here",
     "ship": "ship every variant's median sweep run into policies/, where its weights are here",
     "retrain": "train again, after every other run, done runs whose weights are lost (RUN ...), each as "
@@ -231,7 +233,7 @@ def sweep_command(args):
     if c == "retrain":
         return control.retrain(sweep, args.runs)
     return {"start": runner.start, "analyze": runner.analyze_all, "ship": runner.ship_all, "status": control.status,
-            "hours": control.hours,
+            "hours": control.hours, "partial": control.partial,
             "pause": control.pause, "resume": control.resume, "stop": control.stop}[c](sweep)
 
 

@@ -1,5 +1,7 @@
-"""Reporting on and steering the sweep's queue: status, hours, retrain, pause, resume, stop, hold."""
+"""Reporting on and steering the sweep's queue: status, hours, partial, retrain, pause, resume, stop,
+hold."""
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -9,6 +11,7 @@ import yaml
 
 from hideseek_pipeline import processes as proc
 from hideseek_pipeline import selfplay
+from hideseek_pipeline.workspace import Workspace
 from hideseek_pipeline.queue import RETRAIN_SUFFIX, SweepError, last_line, read_lines, remove_file
 
 
@@ -64,6 +67,45 @@ def _status_line(sweep, run, training):
         return "%-34s partial   checkpoint in %s (resumes at the next start)" % (
             name, os.path.join(sweep.runs_dir, name))
     return "%-34s missing" % name
+
+
+def partial(sweep):
+    """Brings the records of every unfinished run up to date, for a machine that may not come back:
+    the training log of each run that has trained but is not done, copied into the records'
+    docs/runs/<run>/partial/ with its learning curve (no weights: a run is recorded only whole); and
+    the partial/ of every done run removed (the queue removes it as it records a run). A self-play
+    run's partial state is its saved generations, which only this machine can resume: it is named,
+    not copied."""
+    ws = Workspace(sweep.checkout)
+    written = removed = 0
+    for run in sweep.all_runs():
+        dest = sweep.records.partial(run.name)
+        if sweep.records.is_done(run):
+            if os.path.isdir(dest):
+                shutil.rmtree(dest)
+                removed += 1
+                print("sweep: %s is done: removed its partial records %s" % (run.name, dest))
+            continue
+        if run.phase.role == "selfplay":
+            if os.path.isfile(os.path.join(sweep.runs_dir, run.name, "generations.yaml")):
+                print("sweep: %s: unfinished self-play; its saved generations in %s resume only on this machine"
+                      % (run.name, os.path.join(sweep.runs_dir, run.name)))
+            continue
+        log = os.path.join(sweep.runs_dir, run.name, "training_log.csv")
+        last = last_line(log).split(",")
+        if len(last) < 3 or not last[1].isdigit():
+            continue  # nothing trained yet (or only the header)
+        os.makedirs(dest, exist_ok=True)
+        shutil.copyfile(log, os.path.join(dest, "training_log.csv"))
+        ws.python("plot_learning_curve.py", os.path.join(dest, "training_log.csv"),
+                  os.path.join(dest, "learning_curve.png"), "%s, unfinished: %s of %d steps" % (
+                      run.name, "{:,}".format(int(last[1])), run.phase.steps))
+        written += 1
+        print("sweep: %s: %s of %d steps, %s s of training: log and curve in %s" % (
+            run.name, "{:,}".format(int(last[1])), run.phase.steps, last[2].split(".")[0], dest))
+    print("sweep: %d unfinished runs recorded, %d done runs' partial records removed%s" % (
+        written, removed, " (commit docs/runs/*/partial)" if written or removed else ""))
+    return 0
 
 
 def hours(sweep):

@@ -47,6 +47,10 @@ class Records:
     def docs(self, name, *parts):
         return os.path.join(self.root, "docs", "runs", name, *parts)
 
+    def partial(self, name):
+        """An unfinished run's records (`sweep partial`): its training log and curve so far."""
+        return self.docs(name, "partial")
+
     def recorded_steps(self, name):
         """The steps the registry records for a sweep run (its note, which the queue writes last);
         0 for a run of that name that another command trained: the queue trains it again."""
