@@ -120,7 +120,7 @@ def test_partial_records_each_unfinished_run_s_log_and_curve_and_clears_a_done_r
     unfinished = rec / "docs" / "runs" / "slowerhider_seed0" / "partial"
     assert (unfinished / "training_log.csv").read_text() == log
     assert (unfinished / "learning_curve.png").read_bytes()[:4] == b"\x89PNG"
-    assert "slowerhider_seed0: 39,936 of 2000000 steps, 89 s of training" in r.stdout
+    assert "slowerhider_seed0: 39,936 of 2,000,000 steps, 89 s of training" in r.stdout
     assert not stale.exists() and (rec / "docs" / "runs" / "basic_seed0" / "evaluation.csv").exists()
     assert not (rec / "docs" / "runs" / "basic_seed1").exists()
     assert r.stdout.strip().splitlines()[-1].startswith("sweep: 1 unfinished runs recorded, 1 done runs' partial")

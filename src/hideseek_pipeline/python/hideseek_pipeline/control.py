@@ -98,11 +98,11 @@ def partial(sweep):
         os.makedirs(dest, exist_ok=True)
         shutil.copyfile(log, os.path.join(dest, "training_log.csv"))
         ws.python("plot_learning_curve.py", os.path.join(dest, "training_log.csv"),
-                  os.path.join(dest, "learning_curve.png"), "%s, unfinished: %s of %d steps" % (
-                      run.name, "{:,}".format(int(last[1])), run.phase.steps))
+                  os.path.join(dest, "learning_curve.png"), "%s, unfinished: %s of %s steps" % (
+                      run.name, "{:,}".format(int(last[1])), "{:,}".format(run.phase.steps)))
         written += 1
-        print("sweep: %s: %s of %d steps, %s s of training: log and curve in %s" % (
-            run.name, "{:,}".format(int(last[1])), run.phase.steps, last[2].split(".")[0], dest))
+        print("sweep: %s: %s of %s steps, %s s of training: log and curve in %s" % (
+            run.name, "{:,}".format(int(last[1])), "{:,}".format(run.phase.steps), last[2].split(".")[0], dest))
     print("sweep: %d unfinished runs recorded, %d done runs' partial records removed%s" % (
         written, removed, " (commit docs/runs/*/partial)" if written or removed else ""))
     return 0
