@@ -99,8 +99,8 @@ def test_status_lists_runs_seed_major_with_their_state(tmp_path):
 
 def test_partial_records_each_unfinished_run_s_log_and_curve_and_clears_a_done_run_s(tmp_path):
     """Before a machine goes: an unfinished run's training log and curve land in its records'
-    partial/ (no weights); a done run's stale partial/ goes; a run that has not trained writes
-    nothing."""
+    partial/ (no weights); a done run's stale partial/ goes; a run that has not trained, or has
+    trained all its steps and is being recorded, writes nothing."""
     rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000000, [30, 1000], [20, 40])})
     stale = rec / "docs" / "runs" / "basic_seed0" / "partial"
     stale.mkdir()
@@ -115,6 +115,9 @@ def test_partial_records_each_unfinished_run_s_log_and_curve_and_clears_a_done_r
     (runs / "slowerhider_seed0" / "checkpoint.pt").write_bytes(b"x")
     (runs / "basic_seed1").mkdir()
     (runs / "basic_seed1" / "training_log.csv").write_text(header)  # started, nothing logged yet
+    (runs / "slowerhider_seed1").mkdir()  # trained all its steps, its evaluation under way: not partial
+    (runs / "slowerhider_seed1" / "training_log.csv").write_text(header + "1954,2000896,4800.2,450,9000,300,-0.4,0,0,"
+                                                                 "0.5,0,0,0\n")
     r = sweep(tmp_path, rec, "partial")
     assert r.returncode == 0, r.stdout + r.stderr
     unfinished = rec / "docs" / "runs" / "slowerhider_seed0" / "partial"
@@ -123,6 +126,8 @@ def test_partial_records_each_unfinished_run_s_log_and_curve_and_clears_a_done_r
     assert "slowerhider_seed0: 39,936 of 2,000,000 steps, 89 s of training" in r.stdout
     assert not stale.exists() and (rec / "docs" / "runs" / "basic_seed0" / "evaluation.csv").exists()
     assert not (rec / "docs" / "runs" / "basic_seed1").exists()
+    assert not (rec / "docs" / "runs" / "slowerhider_seed1").exists()
+    assert "slowerhider_seed1: trained all its steps; the queue is evaluating and recording it" in r.stdout
     assert r.stdout.strip().splitlines()[-1].startswith("sweep: 1 unfinished runs recorded, 1 done runs' partial")
 
 

@@ -95,6 +95,10 @@ def partial(sweep):
         last = last_line(log).split(",")
         if len(last) < 3 or not last[1].isdigit():
             continue  # nothing trained yet (or only the header)
+        if int(last[1]) >= run.phase.steps:
+            print("sweep: %s: trained all its steps; the queue is evaluating and recording it (or its records "
+                  "failed: %s)" % (run.name, os.path.join(sweep.logs, run.name + ".log")))
+            continue
         os.makedirs(dest, exist_ok=True)
         shutil.copyfile(log, os.path.join(dest, "training_log.csv"))
         ws.python("plot_learning_curve.py", os.path.join(dest, "training_log.csv"),
