@@ -81,8 +81,7 @@ def partial(sweep):
     for run in sweep.all_runs():
         dest = sweep.records.partial(run.name)
         if sweep.records.is_done(run):
-            if os.path.isdir(dest):
-                shutil.rmtree(dest)
+            if sweep.records.clear_partial(run.name):
                 removed += 1
                 print("sweep: %s is done: removed its partial records %s" % (run.name, dest))
             continue
@@ -101,12 +100,11 @@ def partial(sweep):
             continue
         os.makedirs(dest, exist_ok=True)
         shutil.copyfile(log, os.path.join(dest, "training_log.csv"))
+        progress = "%s: %s of %s steps" % (run.name, "{:,}".format(int(last[1])), "{:,}".format(run.phase.steps))
         ws.python("plot_learning_curve.py", os.path.join(dest, "training_log.csv"),
-                  os.path.join(dest, "learning_curve.png"), "%s, unfinished: %s of %s steps" % (
-                      run.name, "{:,}".format(int(last[1])), "{:,}".format(run.phase.steps)))
+                  os.path.join(dest, "learning_curve.png"), progress.replace(":", ", unfinished:", 1))
         written += 1
-        print("sweep: %s: %s of %s steps, %s s of training: log and curve in %s" % (
-            run.name, "{:,}".format(int(last[1])), "{:,}".format(run.phase.steps), last[2].split(".")[0], dest))
+        print("sweep: %s, %s s of training: log and curve in %s" % (progress, last[2].split(".")[0], dest))
     print("sweep: %d unfinished runs recorded, %d done runs' partial records removed%s" % (
         written, removed, " (commit docs/runs/*/partial)" if written or removed else ""))
     return 0

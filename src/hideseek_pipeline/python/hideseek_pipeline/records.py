@@ -4,6 +4,7 @@ module, found in that checkout: a trainer pinned at an older commit writes today
 today's reader, which knows every field the registry holds now."""
 import importlib.util
 import os
+import shutil
 
 
 
@@ -50,6 +51,13 @@ class Records:
     def partial(self, name):
         """An unfinished run's records (`sweep partial`): its training log and curve so far."""
         return self.docs(name, "partial")
+
+    def clear_partial(self, name):
+        """Removes a run's partial records, once it is recorded whole; whether there were any."""
+        if not os.path.isdir(self.partial(name)):
+            return False
+        shutil.rmtree(self.partial(name))
+        return True
 
     def recorded_steps(self, name):
         """The steps the registry records for a sweep run (its note, which the queue writes last);

@@ -5,7 +5,6 @@ and ships each variant's median run. Runs resume from their checkpoints.
 """
 import multiprocessing
 import os
-import shutil
 import signal
 import subprocess
 import sys
@@ -105,7 +104,8 @@ def job(sweep, run, slot):
     if run.retrain:
         fields.update(draw="retrain", retrain_of=run.name[:-len(RETRAIN_SUFFIX)])
     sweep.records.registry.record(run.name, fields, sweep.records.registry_path)
-    clear_partial(sweep, run)
+    if sweep.records.clear_partial(run.name):
+        say("%s: its partial records %s removed" % (run.name, sweep.records.partial(run.name)))
     if phase.role != "hider":
         say("%s: done: %s" % (run.name, sweep.records.seeker_evaluation(run.name)))
         return 0  # a seeker's run: no hider analysis, nothing shipped
@@ -115,14 +115,6 @@ def job(sweep, run, slot):
     say("%s: done: greedy %s, sampled %s (living steps/success)" % (
         run.name, sweep.records.evaluation(run.name), sweep.records.evaluation(run.name, "sampled")))
     return 0
-
-
-def clear_partial(sweep, run):
-    """A recorded run's partial records (`sweep partial`: the log of its unfinished training) go."""
-    dest = sweep.records.partial(run.name)
-    if os.path.isdir(dest):
-        shutil.rmtree(dest)
-        say("%s: its partial records %s removed" % (run.name, dest))
 
 
 def _pinned_env(tree):
