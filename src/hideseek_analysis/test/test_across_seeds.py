@@ -475,6 +475,53 @@ def test_oscillation_counts_swings_of_a_metre_and_names_runs_without_them(tmp_pa
         tmp_path / "report" / "oscillation_thresholds.md").read_text()
 
 
+def write_state_tables(d, name, seq, episode_steps=100):
+    """states.csv and transitions.csv of a run (or the random hider) whose every episode follows seq."""
+    from hideseek_analysis import states as hs
+    d.mkdir(parents=True, exist_ok=True)
+    states = np.tile(seq, 10)
+    _, tc = hs.transitions(states, np.repeat(np.arange(10), len(seq)))
+    counts = np.bincount(states, minlength=8)
+    with open(d / "states.csv", "w") as f:
+        f.write("run,state,S,H,O,steps,frequency\n" + "".join(
+            "%s,%s,%d,%d,%d,%d,%.5f\n" % (name, hs.STATE_NAMES[i], i >> 2 & 1, i >> 1 & 1, i & 1, counts[i],
+                                          counts[i] / counts.sum()) for i in range(8)))
+    with open(d / "transitions.csv", "w") as f:
+        f.write("run,from,to,count,probability\n" + "".join(
+            "%s,%s,%s,%d,\n" % (name, hs.STATE_NAMES[a], hs.STATE_NAMES[b], tc[a, b])
+            for a in range(8) for b in range(8) if a != b))
+
+
+def test_a_transition_missed_is_split_into_its_factors_and_the_claim_points_to_them(tmp_path):
+    """Trained hiders that spend a tenth of their steps in S1H1 and leave it quickly turn away less
+    often per step than a random hider that sits there half the time: the claim is contradicted,
+    and the factors table shows why (time there), which the claim's cause names."""
+    S1H1, S0H1, S0H0 = 6, 2, 0
+    trained = [S1H1] * 10 + [S0H1] * 10 + [S0H0] * 80  # in S1H1 0.1, leaves 10 per 100 there, always to S0H1
+    random_hider = ([S1H1] * 25 + [S0H1] * 25) * 2  # in S1H1 0.5, leaves 4 per 100 there, always to S0H1
+    rec = make_records(tmp_path, {"%s_seed%d" % (v, s): (v, s, 2048, [100] * 20, [90] * 20)
+                                  for v in PAPER_VARIANTS for s in range(2)})
+    for v in PAPER_VARIANTS:
+        for s in range(2):
+            write_state_tables(rec / "docs" / "runs" / ("%s_seed%d" % (v, s)) / "analysis", "%s_seed%d" % (v, s),
+                               trained)
+        write_state_tables(rec / "docs" / "analysis" / "baselines" / v / "random", "random", random_hider)
+    c = run_claims(tmp_path, rec)["Transition 1: seen and seeing, the trained hider turns away (S1H1 -> S0H1)"]
+    assert c["result"] == "contradicted" and float(c["effect"]) == pytest.approx(1.0 - 2.0)
+    assert "[transitions_factors_seeds.md](transitions_factors_seeds.md)" in c["departure"]
+    shutil.copytree(os.path.join(ROOT, "config"), rec / "config", dirs_exist_ok=True)
+    out = tmp_path / "figures"
+    run_analysis("seed_figures.py", rec, out)
+    with open(out / "transitions_factors_seeds.csv") as f:
+        rows = {x["factor"]: x for x in csv.DictReader(f)
+                if x["variant"] == "stochasticmaps" and x["transition"].startswith("turns away")}
+    assert rows["time_in"]["runs"] == "2"
+    for key, mine, theirs in (("time_in", 0.1, 0.5), ("leave_rate", 10.0, 4.0), ("given", 1.0, 1.0), ("rate", 1.0, 2.0)):
+        assert float(rows[key]["trained"]) == pytest.approx(mine) and float(rows[key]["random"]) == pytest.approx(theirs)
+    md = (out / "transitions_factors_seeds.md").read_text()
+    assert "| turns away: S1H1 -> S0H1 | stochasticmaps, random hider | | 0.500 | 4.0 | 1.000 | 2.00 |" in md
+
+
 def test_a_retrain_never_enters_table2_or_a_claim(tmp_path):
     runs = {"basic_seed%d" % s: ("basic", s, 2048, [100 + 10 * s] * 20, [90] * 20) for s in range(3)}
     runs["basic_seed0_retrain"] = ("basic", 0, 2048, [900] * 20, [900] * 20)

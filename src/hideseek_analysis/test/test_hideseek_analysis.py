@@ -91,6 +91,37 @@ def test_transitions_do_not_cross_episodes_and_unvisited_states_are_nan():
     assert np.isnan(p[3]).all()
 
 
+def tables_of(states, episodes, name="run"):
+    """states.csv and transitions.csv rows, as the per-run analysis writes them, of a state sequence."""
+    counts = np.bincount(np.asarray(states), minlength=8)
+    state_rows = [{"run": name, "state": ha.STATE_NAMES[i], "S": str(i >> 2 & 1), "H": str(i >> 1 & 1),
+                   "O": str(i & 1), "steps": str(counts[i]), "frequency": str(round(counts[i] / counts.sum(), 5))}
+                  for i in range(8)]
+    _, tc = ha.transitions(states, episodes)
+    trans_rows = [{"run": name, "from": ha.STATE_NAMES[a], "to": ha.STATE_NAMES[b], "count": str(tc[a, b])}
+                  for a in range(8) for b in range(8) if a != b]
+    return trans_rows, state_rows
+
+
+def test_a_transition_rate_splits_into_time_there_how_often_it_leaves_and_where_it_goes():
+    """A hider 40 steps in S1H1 (an obstacle coming into view once: not a change of S or H), leaving
+    it twice, once to S0H1 and once to S1H0, over 100 steps: 0.4 x 5 per 100 x 0.5 = 1 per 100."""
+    S1H1, S1H1O, S0H1, S1H0, S0H0 = 6, 7, 2, 4, 0
+    seq = [S1H1] * 10 + [S1H1O] * 10 + [S0H1] * 30 + [S1H1] * 20 + [S1H0] * 10 + [S0H0] * 20
+    t, s = tables_of(seq, [0] * 100)
+    f = ha.transition_factors(t, s, (1, 1), (0, 1))
+    assert f["time_in"] == pytest.approx(0.4)
+    assert f["leave_rate"] == pytest.approx(5.0)
+    assert f["given"] == pytest.approx(0.5)
+    assert f["rate"] == pytest.approx(1.0)
+    assert f["rate"] == pytest.approx(f["time_in"] * f["leave_rate"] * f["given"])
+    # a state never left (the last 20 steps) leaves at 0 per 100 and goes nowhere (NaN, not 0);
+    # a state never visited has no leaving rate at all
+    none = ha.transition_factors(t, s, (0, 0), (0, 1))
+    assert np.isnan(none["given"]) and none["leave_rate"] == 0.0
+    assert np.isnan(ha.transition_factors(*tables_of([S0H0] * 10, [0] * 10), (1, 1), (0, 1))["leave_rate"])
+
+
 def test_report_writes_every_file_from_synthetic_inputs(tmp_path):
     rows = run_report_on_synthetic_inputs(tmp_path, with_memory=False)
     trained_s = [r for r in rows if r["label"] == "S" and r["network"] == "trained"][0]

@@ -348,6 +348,10 @@ def transition_claim(c, variants, label, paper_text, move, what):
     by_rate["measure"] = ("%s per 100 steps, trained minus the random hider of the same variant (beside it, "
                           "P(it | the hider leaves %s), trained minus random: %s)" % (what, what.split(" -> ")[0],
                                                                                   effect_text(cond)))
+    if by_rate["departure"]:
+        by_rate["departure"] += ("; measured: the rate's three factors per variant beside the random hider's (time in "
+                                 "%s, how often the hider leaves it, where it goes) in "
+                                 "[transitions_factors_seeds.md](transitions_factors_seeds.md)" % what.split(" -> ")[0])
     return by_rate
 
 

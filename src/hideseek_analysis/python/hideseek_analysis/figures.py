@@ -7,6 +7,8 @@ Into OUT (default ROOT/docs/report/<game>), with their numbers beside them as .c
   of the same variant, mean over runs with a 95 % bootstrap interval over runs;
 - transitions_seeds.png (Figure 5): P(S1H1 -> S0H1 | leaving S1H1) (turning away) and
   P(S0H1 -> S0H0 | leaving S0H1) (leaving the seeker's view), per variant, trained and random;
+  transitions_factors_seeds.md/.csv: each of the two as a rate per 100 steps split into its
+  factors (time in the from-state, how often the hider leaves it, where it goes);
 - distance_seeds.png (Figure 6): the mean distance between the agents over the episode, per
   variant, with the spread between its runs;
 - survival_representation.png (Figure 7): probe gain (mean of S and H, over the 5 random-init
@@ -35,7 +37,8 @@ from . import stats as st  # noqa: E402
 from .config import Config  # noqa: E402
 from .runs import Runs, load_episodes, outputs, parse_selection, read_csv, sweep_runs  # noqa: E402
 from .states import STATE_NAMES, transition_prob  # noqa: E402
-from .tables import behaviour_table, ci_over_runs, probe_value, rounded, table3, write_rows  # noqa: E402
+from .tables import (TRANSITIONS, behaviour_table, ci_over_runs, probe_value, rounded, table3,  # noqa: E402
+                     transition_factors_table, write_rows)
 
 
 def runs_label(n):
@@ -88,7 +91,6 @@ def states_figure(out, R, variants, seed, reps):
     save(fig, out, "state_frequencies_seeds", rows)
 
 
-TRANSITIONS = (((1, 1), (0, 1), "turns away: S1H1 -> S0H1"), ((0, 1), (0, 0), "leaves the view: S0H1 -> S0H0"))
 
 
 def _transition_panel(ax, src, dst, title, R, variants, seed, reps, rows):
@@ -276,13 +278,17 @@ def tsne_figure(root, out, R, variants, seed, reps):
     """The t-SNE across training seeds: the committed coordinates of every analysed run, one row per
     variant, and the neighbourhood scores with intervals over runs (tsne_seeds.csv)."""
     probe = os.path.join(root, "docs", "probe_set")
-    labels = {int(r["image"]): (int(r["S"]), int(r["H"])) for r in read_csv(os.path.join(probe, "labels.csv"))}
     rows_of = {v: [(n, read_csv(R.path(n, "analysis", "tsne.csv"))) for n, _ in R.analysed(v, "tsne_neighbours")]
                for v in variants}
     rows_of = {v: r for v, r in rows_of.items() if r}
     if not rows_of:
         print("seed_figures: no run has a t-SNE yet; tsne_seeds not drawn")
         return
+    label_rows = read_csv(os.path.join(probe, "labels.csv"))
+    if not label_rows:
+        raise SystemExit("seed_figures: runs have a t-SNE but the probe set's labels are missing (%s): "
+                         "the t-SNE is drawn on the probe set's images" % os.path.join(probe, "labels.csv"))
+    labels = {int(r["image"]): (int(r["S"]), int(r["H"])) for r in label_rows}
     base = _TsneBaselines(read_csv(os.path.join(probe, "tsne_baselines.csv")))
     table = _tsne_table(R, rows_of, base, seed, reps)
     panels = _tsne_panels(R, rows_of, base, read_csv(os.path.join(probe, "tsne_random_init_0.csv")))
@@ -326,6 +332,7 @@ def draw_all(root, out, R, cfg, found, seed, reps):
         return 0
     states_figure(out, R, variants, seed, reps)
     transitions_figure(out, R, variants, seed, reps)
+    transition_factors_table(out, R, variants, seed, reps)
     distance_figure(out, R, variants)
     survival_figure(out, R, variants, cfg.paper_variants)
     table3(root, out, R, cfg.order_of(found), cfg.paper, seed, reps)

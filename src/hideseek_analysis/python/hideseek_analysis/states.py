@@ -117,6 +117,31 @@ def transition_rate(transitions_rows, states_rows, src, dst):
     return 100.0 * n / steps if steps else np.nan
 
 
+def time_in(states_rows, src):
+    """The share of the run's steps spent in a state matching src ((S, H); O either), from the
+    step counts (exact, where states.csv's frequency column is rounded)."""
+    steps = sum(int(r["steps"]) for r in states_rows)
+    there = sum(int(r["steps"]) for r in states_rows if (int(r["S"]), int(r["H"])) == tuple(src))
+    return there / steps if steps else np.nan
+
+
+def leave_rate(transitions_rows, states_rows, src):
+    """Changes out of a state matching src ((S, H); O either) per 100 steps spent in it: how
+    quickly the hider leaves it once there."""
+    there = sum(int(r["steps"]) for r in states_rows if (int(r["S"]), int(r["H"])) == tuple(src))
+    out_of = sum(int(r["count"]) for r in transitions_rows if _sh(r["from"]) == src and _sh(r["to"]) != src)
+    return 100.0 * out_of / there if there else np.nan
+
+
+def transition_factors(transitions_rows, states_rows, src, dst):
+    """A transition's rate per 100 steps as the product of its three factors: the share of steps
+    in src, the changes out of src per 100 steps there, and P(dst | a change out of src). Returns
+    a dict of the four (rate = time_in x leave_rate x given, exactly)."""
+    return {"time_in": time_in(states_rows, src), "leave_rate": leave_rate(transitions_rows, states_rows, src),
+            "given": transition_prob(transitions_rows, src, dst),
+            "rate": transition_rate(transitions_rows, states_rows, src, dst)}
+
+
 def transition_prob(rows, src, dst):
     """P(to a state matching dst | a change out of a state matching src), from transition counts
     (src, dst: (S, H) pairs; O either)."""

@@ -167,3 +167,50 @@ def behaviour_table(out, R, variants, seed, reps):
             md += lines
     write_table(out, "behaviour_seeds", rows, "Behaviour across training seeds", BEHAVIOUR_INTRO,
                 ["variant", "runs"] + [label for _, label in BEHAVIOUR], md)
+
+
+# The paper's two highlighted transitions (Figure 5, this project's reading): (from, to, name).
+TRANSITIONS = (((1, 1), (0, 1), "turns away: S1H1 -> S0H1"), ((0, 1), (0, 0), "leaves the view: S0H1 -> S0H0"))
+FACTORS = (("time_in", "time in the from-state (share of steps)", "%.3f"),
+           ("leave_rate", "leaves it (per 100 steps there)", "%.1f"),
+           ("given", "to the to-state (P, given it leaves)", "%.3f"),
+           ("rate", "the transition (per 100 steps)", "%.2f"))
+FACTORS_INTRO = (
+    "Each transition's rate per 100 steps, on which the claims decide it, is the product of three factors: the "
+    "share of steps the hider spends in the from-state, how often it leaves that state (changes of S or H per "
+    "100 steps spent there), and where it goes when it leaves (the conditional form: P(to-state | it leaves)). "
+    "A trained hider can miss the random hider's rate on any of the three: this table says which. Per variant "
+    "the mean over its runs' greedy rollouts (seeds 10000-10099) with a 95 % bootstrap interval over runs (with "
+    "two runs, their range), and below it the random hider of the same variant.")
+
+
+def transition_factors_table(out, R, variants, seed, reps):
+    """transitions_factors_seeds.md/.csv: each highlighted transition's rate split into its three
+    factors (states.transition_factors), per variant over runs, beside the random hider."""
+    from .states import transition_factors
+    rows, md = [], []
+    for src, dst, name in TRANSITIONS:
+        for v in variants:
+            analysed = [(t, s) for n in R.names(v) for t, s in [(R.analysis(n, "transitions"), R.analysis(n, "states"))]
+                        if t and s]
+            if not analysed:
+                continue
+            base_t, base_s = R.baseline(v, "transitions"), R.baseline(v, "states")
+            rnd = transition_factors(base_t, base_s, src, dst) if base_t and base_s else {}
+            cells, random_cells = [], []
+            for key, _, f in FACTORS:
+                vals = [transition_factors(t, s, src, dst)[key] for t, s in analysed]
+                vals = [x for x in vals if np.isfinite(x)]
+                m, ci = ci_over_runs(vals, seed, reps, "factors", name, v, key) if vals else (np.nan, (np.nan,) * 2)
+                r = float(rnd.get(key, np.nan))
+                rows.append({"transition": name, "variant": v, "factor": key, "runs": len(vals),
+                             "trained": rounded(m), "ci_low": rounded(ci[0]), "ci_high": rounded(ci[1]),
+                             "random": rounded(r)})
+                cells.append("-" if not vals else (f % m) + ("" if np.isnan(ci[0]) else
+                                                             interval_text(ci[0], ci[1], len(vals), f)))
+                random_cells.append("-" if np.isnan(r) else f % r)
+            md += ["| %s | %s | %d | %s |" % (name, v, len(analysed), " | ".join(cells)),
+                   "| %s | %s, random hider | | %s |" % (name, v, " | ".join(random_cells))]
+    write_table(out, "transitions_factors_seeds", rows, "The highlighted transitions, factor by factor",
+                FACTORS_INTRO, ["transition", "variant", "runs"] + [label for _, label, _ in FACTORS], md)
+    return rows
