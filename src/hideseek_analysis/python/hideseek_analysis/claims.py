@@ -349,10 +349,14 @@ def transition_claim(c, variants, label, paper_text, move, what):
                           "P(it | the hider leaves %s), trained minus random: %s)" % (what, what.split(" -> ")[0],
                                                                                   effect_text(cond)))
     if by_rate["departure"]:
-        by_rate["departure"] += ("; measured: the rate's three factors per variant beside the random hider's (time in "
-                                 "%s, how often the hider leaves it, where it goes) in "
-                                 "[transitions_factors_seeds.md](transitions_factors_seeds.md)" % what.split(" -> ")[0])
+        by_rate["departure"] += factors_pointer(what.split(" -> ")[0])
     return by_rate
+
+
+def factors_pointer(state):
+    """Where a missed transition's rate is split into its factors, run by run (tables.transition_factors_table)."""
+    return ("; measured: the rate's three factors run by run beside the random hider's (time in the from-state, %s; "
+            "how often the hider leaves it; where it goes) in [transitions_factors_seeds.md](transitions_factors_seeds.md)" % state)
 
 
 def turn_then_run_claim(c):
@@ -364,12 +368,15 @@ def turn_then_run_claim(c):
     res = "supported" if both == ["supported"] * 2 else ("contradicted" if "contradicted" in both else
                                                          "negligible" if "negligible" in both and "inconclusive" not in both
                                                          else "inconclusive")
-    return claim("basic turns away, then runs", "Figure 5 and section 5: turn away from the seeker, then run",
+    made = claim("basic turns away, then runs", "Figure 5 and section 5: turn away from the seeker, then run",
                  "S1H1 -> S0H1 and S0H1 -> S0H0 per 100 steps, trained minus random: turn away %s; run %s "
                  "(both must hold)" % (effect_text(c6a), effect_text(c6b)),
                  runs=c6a["runs"], result=res, note=c6a["note"] or c6b["note"],
                  departure=c.causes("seeker_motion", "steps"),
                  practical=PRACTICAL["rate"][1])
+    if made["departure"]:
+        made["departure"] += factors_pointer("S1H1 and S0H1")
+    return made
 
 
 def behaviour_claims(c):

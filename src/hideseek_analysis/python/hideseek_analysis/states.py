@@ -136,7 +136,9 @@ def leave_rate(transitions_rows, states_rows, src):
 def transition_factors(transitions_rows, states_rows, src, dst):
     """A transition's rate per 100 steps as the product of its three factors: the share of steps
     in src, the changes out of src per 100 steps there, and P(dst | a change out of src). Returns
-    a dict of the four (rate = time_in x leave_rate x given, exactly)."""
+    a dict of the four. rate = time_in x leave_rate x given exactly wherever the hider is in src and
+    leaves it; where it never leaves, the rate is 0 and `given` NaN (it goes nowhere); where it is
+    never in src, `leave_rate` and `given` are NaN."""
     return {"time_in": time_in(states_rows, src), "leave_rate": leave_rate(transitions_rows, states_rows, src),
             "given": transition_prob(transitions_rows, src, dst),
             "rate": transition_rate(transitions_rows, states_rows, src, dst)}

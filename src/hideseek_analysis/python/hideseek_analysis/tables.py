@@ -18,11 +18,12 @@ def write_rows(path, rows, fields=None):
             w.writerow({k: r.get(k, "") for k in (fields or list(rows[0]))})
 
 
-def write_table(out, name, rows, title, intro, columns, md_rows):
-    """OUT/NAME.csv (rows) and OUT/NAME.md (title, intro, a markdown table); nothing without rows."""
+def write_table(out, name, rows, title, intro, columns, md_rows, fields=None):
+    """OUT/NAME.csv (rows, with `fields` as its header: default the first row's keys) and OUT/NAME.md
+    (title, intro, a markdown table); nothing without rows."""
     if not rows:
         return
-    write_rows(os.path.join(out, name + ".csv"), rows)
+    write_rows(os.path.join(out, name + ".csv"), rows, fields)
     text = ["# " + title, "", intro, "", "| " + " | ".join(columns) + " |", "|" + " --- |" * len(columns)] + md_rows
     with open(os.path.join(out, name + ".md"), "w") as f:
         f.write("\n".join(text + [""]))
@@ -178,39 +179,48 @@ FACTORS = (("time_in", "time in the from-state (share of steps)", "%.3f"),
 FACTORS_INTRO = (
     "Each transition's rate per 100 steps, on which the claims decide it, is the product of three factors: the "
     "share of steps the hider spends in the from-state, how often it leaves that state (changes of S or H per "
-    "100 steps spent there), and where it goes when it leaves (the conditional form: P(to-state | it leaves)). "
-    "A trained hider can miss the random hider's rate on any of the three: this table says which. Per variant "
-    "the mean over its runs' greedy rollouts (seeds 10000-10099) with a 95 % bootstrap interval over runs (with "
-    "two runs, their range), and below it the random hider of the same variant.")
+    "100 steps spent there) and where it goes when it leaves (the conditional form: P(to-state | it leaves)). "
+    "Each run's row multiplies out to its rate (where the hider never leaves the from-state, the rate is 0 and "
+    "where it goes is undefined: -), so a run that misses the random hider's rate shows which factor does it. "
+    "The factors are given per run, not averaged: two runs can miss on opposite factors, and a product of means "
+    "is not a mean of products. Below a variant's runs, the mean of their rates with a 95 % bootstrap interval "
+    "over runs (with two runs, their range), as the claim takes it, and the random hider of the same variant. "
+    "Greedy rollouts on seeds 10000-10099 (`hideseek_pipeline analyze`).")
+FACTORS_COLUMNS = ["transition", "variant", "run"] + [label for _, label, _ in FACTORS]
+
+
+def _factor_cells(f):
+    return ["-" if not np.isfinite(f[key]) else fmt % f[key] for key, _, fmt in FACTORS]
 
 
 def transition_factors_table(out, R, variants, seed, reps):
     """transitions_factors_seeds.md/.csv: each highlighted transition's rate split into its three
-    factors (states.transition_factors), per variant over runs, beside the random hider."""
+    factors (states.transition_factors), run by run, with the variant's mean rate over runs and its
+    random hider."""
     from .states import transition_factors
     rows, md = [], []
     for src, dst, name in TRANSITIONS:
         for v in variants:
-            analysed = [(t, s) for n in R.names(v) for t, s in [(R.analysis(n, "transitions"), R.analysis(n, "states"))]
-                        if t and s]
-            if not analysed:
+            runs = [(n, transition_factors(t, s, src, dst)) for n in R.names(v)
+                    for t, s in [(R.analysis(n, "transitions"), R.analysis(n, "states"))] if t and s]
+            if not runs:
                 continue
+            for n, f in runs:
+                rows.append(dict(transition=name, variant=v, run=n, **{k: rounded(f[k]) for k, _, _ in FACTORS}))
+                md.append("| %s | %s | %s | %s |" % (name, v, n, " | ".join(_factor_cells(f))))
+            m, ci = ci_over_runs([f["rate"] for _, f in runs], seed, reps, "factors", name, v)
+            rows.append({"transition": name, "variant": v, "run": "mean of %d runs" % len(runs), "rate": rounded(m),
+                         "rate_ci_low": rounded(ci[0]), "rate_ci_high": rounded(ci[1])})
+            md.append("| %s | %s | mean of %d runs | | | | %s |" % (
+                name, v, len(runs), ("%.2f" % m) + ("" if np.isnan(ci[0]) else interval_text(ci[0], ci[1], len(runs),
+                                                                                            "%.2f"))))
             base_t, base_s = R.baseline(v, "transitions"), R.baseline(v, "states")
-            rnd = transition_factors(base_t, base_s, src, dst) if base_t and base_s else {}
-            cells, random_cells = [], []
-            for key, _, f in FACTORS:
-                vals = [transition_factors(t, s, src, dst)[key] for t, s in analysed]
-                vals = [x for x in vals if np.isfinite(x)]
-                m, ci = ci_over_runs(vals, seed, reps, "factors", name, v, key) if vals else (np.nan, (np.nan,) * 2)
-                r = float(rnd.get(key, np.nan))
-                rows.append({"transition": name, "variant": v, "factor": key, "runs": len(vals),
-                             "trained": rounded(m), "ci_low": rounded(ci[0]), "ci_high": rounded(ci[1]),
-                             "random": rounded(r)})
-                cells.append("-" if not vals else (f % m) + ("" if np.isnan(ci[0]) else
-                                                             interval_text(ci[0], ci[1], len(vals), f)))
-                random_cells.append("-" if np.isnan(r) else f % r)
-            md += ["| %s | %s | %d | %s |" % (name, v, len(analysed), " | ".join(cells)),
-                   "| %s | %s, random hider | | %s |" % (name, v, " | ".join(random_cells))]
+            if base_t and base_s:
+                f = transition_factors(base_t, base_s, src, dst)
+                rows.append(dict(transition=name, variant=v, run="random hider",
+                                 **{k: rounded(f[k]) for k, _, _ in FACTORS}))
+                md.append("| %s | %s | random hider | %s |" % (name, v, " | ".join(_factor_cells(f))))
     write_table(out, "transitions_factors_seeds", rows, "The highlighted transitions, factor by factor",
-                FACTORS_INTRO, ["transition", "variant", "runs"] + [label for _, label, _ in FACTORS], md)
+                FACTORS_INTRO, FACTORS_COLUMNS, md,
+                ["transition", "variant", "run"] + [k for k, _, _ in FACTORS] + ["rate_ci_low", "rate_ci_high"])
     return rows
