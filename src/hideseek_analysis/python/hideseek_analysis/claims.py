@@ -356,7 +356,8 @@ def transition_claim(c, variants, label, paper_text, move, what):
 def factors_pointer(state):
     """Where a missed transition's rate is split into its factors, run by run (tables.transition_factors_table)."""
     return ("; measured: the rate's three factors run by run beside the random hider's (time in the from-state, %s; "
-            "how often the hider leaves it; where it goes) in [transitions_factors_seeds.md](transitions_factors_seeds.md)" % state)
+            "how often the hider leaves it; where it goes) in "
+            "[transitions_factors_seeds.md](transitions_factors_seeds.md)" % state)
 
 
 def turn_then_run_claim(c):

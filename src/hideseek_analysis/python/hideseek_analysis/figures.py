@@ -91,8 +91,6 @@ def states_figure(out, R, variants, seed, reps):
     save(fig, out, "state_frequencies_seeds", rows)
 
 
-
-
 def _transition_panel(ax, src, dst, title, R, variants, seed, reps, rows):
     for k, v in enumerate(variants):
         vals = [transition_prob(r, src, dst) for _, r in R.analysed(v, "transitions")]

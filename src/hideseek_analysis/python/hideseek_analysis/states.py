@@ -117,18 +117,21 @@ def transition_rate(transitions_rows, states_rows, src, dst):
     return 100.0 * n / steps if steps else np.nan
 
 
+def _steps_in(states_rows, src):
+    return sum(int(r["steps"]) for r in states_rows if (int(r["S"]), int(r["H"])) == tuple(src))
+
+
 def time_in(states_rows, src):
     """The share of the run's steps spent in a state matching src ((S, H); O either), from the
     step counts (exact, where states.csv's frequency column is rounded)."""
     steps = sum(int(r["steps"]) for r in states_rows)
-    there = sum(int(r["steps"]) for r in states_rows if (int(r["S"]), int(r["H"])) == tuple(src))
-    return there / steps if steps else np.nan
+    return _steps_in(states_rows, src) / steps if steps else np.nan
 
 
 def leave_rate(transitions_rows, states_rows, src):
     """Changes out of a state matching src ((S, H); O either) per 100 steps spent in it: how
     quickly the hider leaves it once there."""
-    there = sum(int(r["steps"]) for r in states_rows if (int(r["S"]), int(r["H"])) == tuple(src))
+    there = _steps_in(states_rows, src)
     out_of = sum(int(r["count"]) for r in transitions_rows if _sh(r["from"]) == src and _sh(r["to"]) != src)
     return 100.0 * out_of / there if there else np.nan
 

@@ -7,6 +7,7 @@ import numpy as np
 
 from . import stats as st
 from .runs import read_csv
+from .states import transition_factors
 
 
 def write_rows(path, rows, fields=None):
@@ -197,7 +198,6 @@ def transition_factors_table(out, R, variants, seed, reps):
     """transitions_factors_seeds.md/.csv: each highlighted transition's rate split into its three
     factors (states.transition_factors), run by run, with the variant's mean rate over runs and its
     random hider."""
-    from .states import transition_factors
     rows, md = [], []
     for src, dst, name in TRANSITIONS:
         for v in variants:
