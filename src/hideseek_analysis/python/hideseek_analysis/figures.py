@@ -45,6 +45,11 @@ def runs_label(n):
     return "1 run" if n == 1 else "%d runs" % n
 
 
+def legend_outside(ax, fontsize=7):
+    """The legend to the right of the axes, where it can hide no point or curve."""
+    ax.legend(fontsize=fontsize, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+
+
 def save(fig, out, name, rows=None, rect=(0, 0, 1, 1)):
     """A figure as OUT/NAME.png and, with rows, its numbers as OUT/NAME.csv; rect: the part of the
     figure the panels fill (room for a legend below them)."""
@@ -125,7 +130,7 @@ def transitions_figure(out, R, variants, seed, reps):
 
 def distance_figure(out, R, variants):
     """Figure 6: the mean distance between the agents over the episode, the runs' range as a band."""
-    fig, ax = plt.subplots(figsize=(9, 4.5))
+    fig, ax = plt.subplots(figsize=(11, 4.5))
     for v in variants:
         analysed = R.analysed(v, "distance")
         if not analysed:
@@ -143,7 +148,7 @@ def distance_figure(out, R, variants):
     ax.set_xlabel("step of the episode")
     ax.set_ylabel("mean distance between the agents (m)")
     ax.set_title("Distance over the episode (seeds 10000-10099, greedy); band: the runs' range")
-    ax.legend(fontsize=7)
+    legend_outside(ax)
     save(fig, out, "distance_seeds")
 
 
@@ -160,7 +165,7 @@ def survival_figure(out, R, variants, paper_variants):
     pts = survival_points(R, variants)
     if not pts:
         return
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, ax = plt.subplots(figsize=(9.5, 5))
     for k, v in enumerate(variants):
         xs = [q["living_steps"] for q in pts if q["variant"] == v]
         ys = [q["probe_gain"] for q in pts if q["variant"] == v]
@@ -178,7 +183,7 @@ def survival_figure(out, R, variants, paper_variants):
     ax.set_xlabel("average living steps (evaluation seeds 0-99, greedy)")
     ax.set_ylabel("probe gain over random init (balanced accuracy, mean of S and H)")
     ax.set_title("Representation against survival, one point per run")
-    ax.legend(fontsize=7)
+    legend_outside(ax)
     save(fig, out, "survival_representation", pts)
 
 
