@@ -301,3 +301,36 @@ def test_plot_learning_curve_names_a_file_that_is_not_a_training_log(tmp_path):
         plc.main([str(bad), str(tmp_path / "out.png")])
     assert "bad.csv: not a training log" in str(e.value)
     assert not (tmp_path / "out.png").exists()
+
+
+def test_a_legend_beside_the_axes_hides_no_point_and_is_not_cut_off(tmp_path):
+    # The survival and distance figures fill their axes with points and curves: a legend inside
+    # hid a run's point on v3. Beside the axes, after the layout the figure is saved with, it
+    # overlaps no part of the axes and lies wholly inside the saved image.
+    import matplotlib.pyplot as plt
+    from hideseek_analysis import figures
+
+    fig, ax = plt.subplots(figsize=(9.5, 5))
+    grid = np.linspace(0, 1, 12)
+    for k in range(8):
+        ax.scatter(grid, (grid * (k + 1)) % 1.0, label="a variant with a long name %d (3 runs)" % k)
+    figures.legend_outside(ax)
+    seen = {}
+    real_savefig = plt.Figure.savefig
+
+    def spy(f, *args, **kwargs):
+        renderer = f.canvas.get_renderer()
+        seen["axes"] = ax.get_window_extent(renderer)
+        seen["legend"] = ax.get_legend().get_window_extent(renderer)
+        seen["figure"] = f.bbox
+        return real_savefig(f, *args, **kwargs)
+
+    plt.Figure.savefig = spy
+    try:
+        figures.save(fig, str(tmp_path), "legend")
+    finally:
+        plt.Figure.savefig = real_savefig
+    axes, legend, figure = seen["axes"], seen["legend"], seen["figure"]
+    assert legend.x0 > axes.x1, "the legend overlaps the axes"
+    assert figure.x0 <= legend.x0 and legend.x1 <= figure.x1 and figure.y0 <= legend.y0 and legend.y1 <= figure.y1
+    assert (tmp_path / "legend.png").stat().st_size > 0
