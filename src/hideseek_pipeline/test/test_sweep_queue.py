@@ -97,6 +97,35 @@ def test_status_lists_runs_seed_major_with_their_state(tmp_path):
     assert "greedy 515.00/0.5000" in r.stdout
 
 
+def test_status_shows_a_training_run_s_progress_and_the_time_left(tmp_path):
+    """While the queue trains a run, status says how far it is, how long it has trained and, at
+    its latest rate, how long it has left; a run that has logged nothing yet says so."""
+    import fcntl
+    rec = make_records(tmp_path, {})
+    state, runs = tmp_path / "sweep" / "state", tmp_path / "sweep" / "runs"
+    state.mkdir(parents=True)
+    header = ("update,steps,wall_s,steps_per_s,episodes,mean_length,mean_return,policy_loss,value_loss,entropy,"
+              "approx_kl,clip_fraction,learning_rate\n")
+    (runs / "basic_seed0").mkdir(parents=True)
+    (runs / "basic_seed0" / "training_log.csv").write_text(header + "489,500736,1200.4,450,900,60,-0.9,0,0,1.2,0,0,"
+                                                           "0.0003\n")
+    (runs / "slowerhider_seed0").mkdir()
+    (runs / "slowerhider_seed0" / "training_log.csv").write_text(header)
+    for name in ("basic_seed0", "slowerhider_seed0"):
+        (state / ("job." + name)).write_text("%d\n" % os.getpid())  # a live PID: this test's
+    (state / "queue.pid").write_text("%d\n" % os.getpid())
+    with open(state / "queue.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # held, as a running queue holds it
+        r = sweep(tmp_path, rec, "status")
+    assert r.returncode == 0, r.stderr
+    lines = {line.split()[0]: line for line in r.stdout.splitlines() if not line.startswith("sweep:")}
+    # 1,499,264 steps left at 450 steps/s: 55.5 min.
+    assert lines["basic_seed0"].split(None, 1)[1] == ("training  500,736 of 2,000,000 steps (25 %), 20 min of "
+                                                      "training, about 56 min left at 450 steps/s")
+    assert lines["slowerhider_seed0"].split(None, 1)[1] == "training  started, no update logged yet"
+    assert "queue running (pid %d)" % os.getpid() in r.stdout
+
+
 def test_partial_records_each_unfinished_run_s_log_and_curve_and_clears_a_done_run_s(tmp_path):
     """Before a machine goes: an unfinished run's training log and curve land in its records'
     partial/ (no weights); a done run's stale partial/ goes; a run that has not trained, or has

@@ -36,6 +36,25 @@ def status(sweep):
     return 0
 
 
+def progress(log, steps):
+    """A training's progress from its log's last row, for a person watching it: steps trained of
+    `steps`, the training's wall time so far and, at its latest rate, the time left; or that it
+    has logged nothing yet."""
+    last = last_line(log).split(",")
+    if len(last) < 4 or not last[1].isdigit():
+        return "started, no update logged yet"
+    done, wall_s = int(last[1]), float(last[2])
+    text = "{:,} of {:,} steps ({:.0f} %), {:.0f} min of training".format(done, steps, 100.0 * done / steps,
+                                                                          wall_s / 60.0)
+    try:
+        rate = float(last[3])
+    except ValueError:
+        rate = 0.0
+    if rate > 0 and done < steps:
+        text += ", about {:.0f} min left at {:.0f} steps/s".format((steps - done) / rate / 60.0, rate)
+    return text
+
+
 def _status_line(sweep, run, training):
     name, rec = run.name, sweep.records
     if training and run.phase.role == "selfplay":
@@ -43,10 +62,8 @@ def _status_line(sweep, run, training):
         return "%-34s training  %d of %d generations saved (both sides), then its cross-play" % (
             name, saved // 2, run.phase.generations)
     if training:
-        last = last_line(os.path.join(sweep.runs_dir, name, "training_log.csv")).split(",")
-        return "%-34s training  %s steps of %d, %s s%s" % (name, last[1] if len(last) > 2 else "?", run.phase.steps,
-                                                           last[2] if len(last) > 2 else "?",
-                                                           " (retraining)" if run.retrain else "")
+        return "%-34s training  %s%s" % (name, progress(os.path.join(sweep.runs_dir, name, "training_log.csv"),
+                                                        run.phase.steps), " (retraining)" if run.retrain else "")
     if rec.is_done(run) and run.phase.role == "selfplay":
         return "%-34s done      %d generations, cross-play and records in %s" % (
             name, run.phase.generations, rec.docs(name))
