@@ -80,19 +80,26 @@ def _state_bars(ax, k, v, variants, R, seed, reps, rows):
     ax.bar(x, means, width, yerr=err, capsize=2, label="%s (%s)" % (v, runs_label(len(runs))))
 
 
+def _any_two_runs(R, variants, part):
+    """Whether some variant has exactly two analysed runs: their bootstrap interval is their range,
+    which a figure's title then says."""
+    return any(len(R.analysed(v, part)) == 2 for v in variants)
+
+
 def states_figure(out, R, variants, seed, reps):
     """Figure 4: each state's frequency relative to the random hider of the same variant."""
     rows = []
-    fig, ax = plt.subplots(figsize=(11, 4.5))
+    fig, ax = plt.subplots(figsize=(13, 4.5))
     for k, v in enumerate(variants):
         _state_bars(ax, k, v, variants, R, seed, reps, rows)
     ax.axhline(0, color="k", lw=0.8)
     ax.set_xticks(np.arange(8))
     ax.set_xticklabels(STATE_NAMES)
     ax.set_ylabel("frequency, trained minus random hider")
-    ax.set_title("States (S: hider sees seeker, H: seeker sees hider, O: obstacle in view); bars: 95 % CI over runs\n"
-                 "(with 2 runs of a variant, the bootstrap gives their range)", fontsize=10)
-    ax.legend(fontsize=7, ncol=2)
+    ax.set_title("States (S: hider sees seeker, H: seeker sees hider, O: obstacle in view); bars: 95 % CI over runs"
+                 + ("\n(with 2 runs of a variant, the bootstrap gives their range)"
+                    if _any_two_runs(R, variants, "states") else ""), fontsize=10)
+    legend_outside(ax)
     save(fig, out, "state_frequencies_seeds", rows)
 
 
@@ -124,7 +131,8 @@ def transitions_figure(out, R, variants, seed, reps):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     for ax, (src, dst, title) in zip(axes, TRANSITIONS):
         _transition_panel(ax, src, dst, title, R, variants, seed, reps, rows)
-    fig.suptitle("Transitions, trained (95 % CI over runs; with 2 runs of a variant, their range) and random hider")
+    fig.suptitle("Transitions, trained (95 %% CI over runs%s) and random hider"
+                 % ("; with 2 runs of a variant, their range" if _any_two_runs(R, variants, "transitions") else ""))
     save(fig, out, "transitions_seeds", rows)
 
 
