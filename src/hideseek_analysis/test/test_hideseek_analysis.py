@@ -303,34 +303,47 @@ def test_plot_learning_curve_names_a_file_that_is_not_a_training_log(tmp_path):
     assert not (tmp_path / "out.png").exists()
 
 
-def test_a_legend_beside_the_axes_hides_no_point_and_is_not_cut_off(tmp_path):
-    # The survival and distance figures fill their axes with points and curves: a legend inside
-    # hid a run's point on v3. Beside the axes, after the layout the figure is saved with, it
-    # overlaps no part of the axes and lies wholly inside the saved image.
+def test_the_survival_figure_s_legend_hides_no_point_and_is_not_cut_off(tmp_path):
+    # Figure 7 draws one point per run over its whole axes: a legend inside hid a run's point on v3.
+    # Drawn by the report's own function, its legend overlaps no point and lies wholly inside the
+    # saved image, after the layout the image is saved with.
     import matplotlib.pyplot as plt
     from hideseek_analysis import figures
 
-    fig, ax = plt.subplots(figsize=(9.5, 5))
-    grid = np.linspace(0, 1, 12)
-    for k in range(8):
-        ax.scatter(grid, (grid * (k + 1)) % 1.0, label="a variant with a long name %d (3 runs)" % k)
-    figures.legend_outside(ax)
+    variants = ["variant_with_a_long_name_%d" % k for k in range(8)]
+    rng = np.random.default_rng(0)
+
+    class Records:  # the records the figure reads: each run's probes and its evaluation's episodes
+        def analysed(self, v, part):
+            return [("%s_seed%d" % (v, s), [{"target": t, "gain_over_random_init": str(rng.uniform(0.02, 0.06))}
+                                            for t in ("S", "H")]) for s in range(3)]
+
+        def path(self, name, what):
+            path = tmp_path / (name + ".csv")
+            living = rng.integers(40, 1000, size=20)
+            path.write_text("seed,living_steps,outcome\n" + "".join(
+                "%d,%d,%s\n" % (i, x, "survived" if x == 1000 else "captured") for i, x in enumerate(living)))
+            return str(path)
+
     seen = {}
     real_savefig = plt.Figure.savefig
 
     def spy(f, *args, **kwargs):
         renderer = f.canvas.get_renderer()
-        seen["axes"] = ax.get_window_extent(renderer)
+        ax = f.axes[0]
         seen["legend"] = ax.get_legend().get_window_extent(renderer)
+        seen["points"] = [ax.transData.transform(c.get_offsets()) for c in ax.collections]
         seen["figure"] = f.bbox
         return real_savefig(f, *args, **kwargs)
 
     plt.Figure.savefig = spy
     try:
-        figures.save(fig, str(tmp_path), "legend")
+        figures.survival_figure(str(tmp_path), Records(), variants, variants[:-1])
     finally:
         plt.Figure.savefig = real_savefig
-    axes, legend, figure = seen["axes"], seen["legend"], seen["figure"]
-    assert legend.x0 > axes.x1, "the legend overlaps the axes"
+    legend, figure = seen["legend"], seen["figure"]
+    points = np.concatenate(seen["points"])
+    assert len(points) == 24
+    assert not any(legend.contains(x, y) for x, y in points), "the legend hides a point"
     assert figure.x0 <= legend.x0 and legend.x1 <= figure.x1 and figure.y0 <= legend.y0 and legend.y1 <= figure.y1
-    assert (tmp_path / "legend.png").stat().st_size > 0
+    assert (tmp_path / "survival_representation.png").stat().st_size > 0

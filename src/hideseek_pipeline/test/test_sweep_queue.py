@@ -98,31 +98,42 @@ def test_status_lists_runs_seed_major_with_their_state(tmp_path):
 
 
 def test_status_shows_a_training_run_s_progress_and_the_time_left(tmp_path):
-    """While the queue trains a run, status says how far it is, how long it has trained and, at
-    its latest rate, how long it has left; a run that has logged nothing yet says so."""
+    """While the queue trains a run, status says how far it is, how long it has trained (less the
+    time the sweep held it paused) and, at its rate over the last two updates, how long it has
+    left, passing over a line the trainer is still writing; a run that has logged nothing yet, or
+    has trained all its steps, says so."""
     import fcntl
     rec = make_records(tmp_path, {})
     state, runs = tmp_path / "sweep" / "state", tmp_path / "sweep" / "runs"
     state.mkdir(parents=True)
     header = ("update,steps,wall_s,steps_per_s,episodes,mean_length,mean_return,policy_loss,value_loss,entropy,"
               "approx_kl,clip_fraction,learning_rate\n")
-    (runs / "basic_seed0").mkdir(parents=True)
-    (runs / "basic_seed0" / "training_log.csv").write_text(header + "489,500736,1200.4,450,900,60,-0.9,0,0,1.2,0,0,"
-                                                           "0.0003\n")
-    (runs / "slowerhider_seed0").mkdir()
-    (runs / "slowerhider_seed0" / "training_log.csv").write_text(header)
-    for name in ("basic_seed0", "slowerhider_seed0"):
+
+    def row(update, steps, wall_s):
+        return "%d,%d,%.1f,300,900,60,-0.9,0,0,1.2,0,0,0.0003\n" % (update, steps, wall_s)
+
+    logs = {
+        # 2,048 steps in 4 s between the last two updates: 512 steps/s; 1,497,216 steps left: 48.7 min.
+        "basic_seed0": header + row(488, 500736, 1796.0) + row(489, 502784, 1800.0) + "490,504832,18",
+        "slowerhider_seed0": header,
+        "basic_seed1": header + row(1953, 1999872, 4000.0) + row(1954, 2000896, 4002.0),
+    }
+    for name, text in logs.items():
+        (runs / name).mkdir(parents=True)
+        (runs / name / "training_log.csv").write_text(text)
         (state / ("job." + name)).write_text("%d\n" % os.getpid())  # a live PID: this test's
+    (runs / "basic_seed0" / "paused_s").write_text("600\n")
     (state / "queue.pid").write_text("%d\n" % os.getpid())
+    config = config_file(tmp_path, seeds="0 1")
     with open(state / "queue.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)  # held, as a running queue holds it
-        r = sweep(tmp_path, rec, "status")
+        r = sweep(tmp_path, rec, "status", config=config)
     assert r.returncode == 0, r.stderr
-    lines = {line.split()[0]: line for line in r.stdout.splitlines() if not line.startswith("sweep:")}
-    # 1,499,264 steps left at 450 steps/s: 55.5 min.
-    assert lines["basic_seed0"].split(None, 1)[1] == ("training  500,736 of 2,000,000 steps (25 %), 20 min of "
-                                                      "training, about 56 min left at 450 steps/s")
-    assert lines["slowerhider_seed0"].split(None, 1)[1] == "training  started, no update logged yet"
+    lines = {line.split()[0]: line.split(None, 1)[1] for line in r.stdout.splitlines() if not line.startswith("sweep:")}
+    assert lines["basic_seed0"] == ("training  502,784 of 2,000,000 steps (25 %), 20 min of training, about 49 min "
+                                    "left at 512 steps/s")
+    assert lines["slowerhider_seed0"] == "training  started, no update logged yet"
+    assert lines["basic_seed1"] == "training  all 2,000,896 steps trained in 67 min; being evaluated and recorded"
     assert "queue running (pid %d)" % os.getpid() in r.stdout
 
 

@@ -80,10 +80,10 @@ def _state_bars(ax, k, v, variants, R, seed, reps, rows):
     ax.bar(x, means, width, yerr=err, capsize=2, label="%s (%s)" % (v, runs_label(len(runs))))
 
 
-def _any_two_runs(R, variants, part):
-    """Whether some variant has exactly two analysed runs: their bootstrap interval is their range,
-    which a figure's title then says."""
-    return any(len(R.analysed(v, part)) == 2 for v in variants)
+def _any_two_runs(rows):
+    """Whether some variant is drawn from exactly two runs (the figure's rows say from how many):
+    their bootstrap interval is their range, which the figure's title then says."""
+    return any(r["runs"] == 2 for r in rows)
 
 
 def states_figure(out, R, variants, seed, reps):
@@ -98,7 +98,7 @@ def states_figure(out, R, variants, seed, reps):
     ax.set_ylabel("frequency, trained minus random hider")
     ax.set_title("States (S: hider sees seeker, H: seeker sees hider, O: obstacle in view); bars: 95 % CI over runs"
                  + ("\n(with 2 runs of a variant, the bootstrap gives their range)"
-                    if _any_two_runs(R, variants, "states") else ""), fontsize=10)
+                    if _any_two_runs(rows) else ""), fontsize=10)
     legend_outside(ax)
     save(fig, out, "state_frequencies_seeds", rows)
 
@@ -132,7 +132,7 @@ def transitions_figure(out, R, variants, seed, reps):
     for ax, (src, dst, title) in zip(axes, TRANSITIONS):
         _transition_panel(ax, src, dst, title, R, variants, seed, reps, rows)
     fig.suptitle("Transitions, trained (95 %% CI over runs%s) and random hider"
-                 % ("; with 2 runs of a variant, their range" if _any_two_runs(R, variants, "transitions") else ""))
+                 % ("; with 2 runs of a variant, their range" if _any_two_runs(rows) else ""))
     save(fig, out, "transitions_seeds", rows)
 
 

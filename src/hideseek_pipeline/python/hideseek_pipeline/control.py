@@ -36,21 +36,41 @@ def status(sweep):
     return 0
 
 
-def progress(log, steps):
-    """A training's progress from its log's last row, for a person watching it: steps trained of
-    `steps`, the training's wall time so far and, at its latest rate, the time left; or that it
-    has logged nothing yet."""
-    last = last_line(log).split(",")
-    if len(last) < 4 or not last[1].isdigit():
+def logged_rows(log, count=2):
+    """The last `count` complete rows of a training log, as (steps, wall_s) pairs, oldest first: a
+    row counts when it has the header's fields and numbers where they belong, so a line the trainer
+    is still writing is passed over."""
+    lines = read_lines(log)
+    if not lines:
+        return []
+    width, rows = len(lines[0].split(",")), []
+    for line in reversed(lines[1:]):
+        fields = line.split(",")
+        try:
+            if len(fields) == width:
+                rows.append((int(fields[1]), float(fields[2])))
+        except ValueError:
+            continue
+        if len(rows) == count:
+            break
+    return rows[::-1]
+
+
+def progress(log, steps, paused_s=0):
+    """A training's progress, for a person watching it: steps trained of `steps`, its training time
+    so far (less `paused_s`, the time the sweep held it paused) and the time left at its rate over
+    the last two updates; or that it has logged nothing yet, or trained all its steps."""
+    rows = logged_rows(log)
+    if not rows:
         return "started, no update logged yet"
-    done, wall_s = int(last[1]), float(last[2])
-    text = "{:,} of {:,} steps ({:.0f} %), {:.0f} min of training".format(done, steps, 100.0 * done / steps,
-                                                                          wall_s / 60.0)
-    try:
-        rate = float(last[3])
-    except ValueError:
-        rate = 0.0
-    if rate > 0 and done < steps:
+    done, wall_s = rows[-1]
+    minutes = max(wall_s - paused_s, 0.0) / 60.0
+    if done >= steps:
+        return "all {:,} steps trained in {:.0f} min; being evaluated and recorded".format(done, minutes)
+    text = "{:,} of {:,} steps ({:d} %), {:.0f} min of training".format(done, steps, 100 * done // max(steps, 1),
+                                                                       minutes)
+    if len(rows) == 2 and rows[1][0] > rows[0][0] and rows[1][1] > rows[0][1]:
+        rate = (rows[1][0] - rows[0][0]) / (rows[1][1] - rows[0][1])
         text += ", about {:.0f} min left at {:.0f} steps/s".format((steps - done) / rate / 60.0, rate)
     return text
 
@@ -62,8 +82,10 @@ def _status_line(sweep, run, training):
         return "%-34s training  %d of %d generations saved (both sides), then its cross-play" % (
             name, saved // 2, run.phase.generations)
     if training:
+        held = last_line(os.path.join(sweep.runs_dir, name, "paused_s")).split(".")[0]
         return "%-34s training  %s%s" % (name, progress(os.path.join(sweep.runs_dir, name, "training_log.csv"),
-                                                        run.phase.steps), " (retraining)" if run.retrain else "")
+                                                        run.phase.steps, int(held) if held.isdigit() else 0),
+                                         " (retraining)" if run.retrain else "")
     if rec.is_done(run) and run.phase.role == "selfplay":
         return "%-34s done      %d generations, cross-play and records in %s" % (
             name, run.phase.generations, rec.docs(name))
@@ -108,20 +130,21 @@ def partial(sweep):
                       % (run.name, os.path.join(sweep.runs_dir, run.name)))
             continue
         log = os.path.join(sweep.runs_dir, run.name, "training_log.csv")
-        last = last_line(log).split(",")
-        if len(last) < 3 or not last[1].isdigit():
+        rows = logged_rows(log, 1)
+        if not rows:
             continue  # nothing trained yet (or only the header)
-        if int(last[1]) >= run.phase.steps:
+        done, wall_s = rows[-1]
+        if done >= run.phase.steps:
             print("sweep: %s: trained all its steps; the queue is evaluating and recording it (or its records "
                   "failed: %s)" % (run.name, os.path.join(sweep.logs, run.name + ".log")))
             continue
         os.makedirs(dest, exist_ok=True)
         shutil.copyfile(log, os.path.join(dest, "training_log.csv"))
-        progress = "%s: %s of %s steps" % (run.name, "{:,}".format(int(last[1])), "{:,}".format(run.phase.steps))
+        so_far = "{}: {:,} of {:,} steps".format(run.name, done, run.phase.steps)
         ws.python("plot_learning_curve.py", os.path.join(dest, "training_log.csv"),
-                  os.path.join(dest, "learning_curve.png"), progress.replace(":", ", unfinished:", 1))
+                  os.path.join(dest, "learning_curve.png"), so_far.replace(":", ", unfinished:", 1))
         written += 1
-        print("sweep: %s, %s s of training: log and curve in %s" % (progress, last[2].split(".")[0], dest))
+        print("sweep: %s, %d s of training: log and curve in %s" % (so_far, int(wall_s), dest))
     print("sweep: %d unfinished runs recorded, %d done runs' partial records removed%s" % (
         written, removed, " (commit docs/runs/*/partial)" if written or removed else ""))
     return 0
