@@ -642,6 +642,38 @@ def test_a_self_play_phase_trains_both_sides_in_turn_then_records_its_cross_play
     assert r.returncode == 0 and calls.read_text().count("train.launch") == 4
 
 
+def test_partial_records_an_unfinished_self_play_s_generations_and_both_sides_logs_and_curves(tmp_path):
+    """Before a machine goes, a self-play cut off mid-way leaves what it has learned so far in its
+    records' partial/: its generations.yaml and each side's training log and curve, no weights."""
+    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000000, [30], [30])})
+    header = ("update,steps,wall_s,steps_per_s,episodes,mean_length,mean_return,policy_loss,value_loss,entropy,"
+              "approx_kl,clip_fraction,learning_rate\n")
+    out = tmp_path / "sweep" / "runs" / "basic_selfplay_seed0"
+    logs = {}
+    for role, updates in (("seeker", 40), ("hider", 12)):
+        (out / role).mkdir(parents=True)
+        logs[role] = header + "".join("%d,%d,%.1f,450,%d,%d,-0.9,0,0,1.6,0,0,0.0003\n" % (
+            u, 1024 * u, 2.3 * u, 10 * u, 40 + u) for u in range(1, updates + 1))
+        (out / role / "training_log.csv").write_text(logs[role])
+        (out / role / "checkpoint.pt").write_bytes(b"x")
+    (out / "generations").mkdir()
+    (out / "generations" / "seeker_g001.pt").write_bytes(b"x")
+    generations = "generations:\n- {role: seeker, generation: 1, checkpoint: generations/seeker_g001.pt}\n"
+    (out / "generations.yaml").write_text(generations)
+    r = sweep(tmp_path, rec, "partial", config=config_file(tmp_path, SELFPLAY_PHASE))
+    assert r.returncode == 0, r.stdout + r.stderr
+    partial = rec / "docs" / "runs" / "basic_selfplay_seed0" / "partial"
+    assert (partial / "generations.yaml").read_text() == generations
+    for role in ("seeker", "hider"):
+        assert (partial / ("%s_training_log.csv" % role)).read_text() == logs[role]
+        assert (partial / ("%s_learning_curve.png" % role)).read_bytes()[:4] == b"\x89PNG"
+    assert sorted(os.listdir(partial)) == ["generations.yaml", "hider_learning_curve.png", "hider_training_log.csv",
+                                           "seeker_learning_curve.png", "seeker_training_log.csv"]
+    assert "basic_selfplay_seed0 (seeker): 40,960 of 2,000,000 steps, 92 s of training" in r.stdout
+    assert "0 of 2 generations saved (both sides)" in r.stdout and "resume only on this machine" in r.stdout
+    assert r.stdout.strip().splitlines()[-1].startswith("sweep: 1 unfinished runs recorded")
+
+
 def test_a_self_play_phase_is_named_apart_and_refuses_what_it_cannot_do():
     config = sweep_config.load(_write(SELFPLAY_PHASE.replace("game: v2", "game: v3")), ["basic"], ["basic"], "v2")
     assert [r.name for r in config.runs()] == ["basic_selfplay_v3_seed0"]

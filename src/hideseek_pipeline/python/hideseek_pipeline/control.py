@@ -75,6 +75,31 @@ def progress(log, steps, paused_s=0):
     return text
 
 
+def _partial_selfplay(ws, sweep, run, dest):
+    """An unfinished self-play's records: its generations.yaml and each side's training log and curve
+    so far (no weights). Its saved generations and checkpoints resume only on this machine."""
+    out = os.path.join(sweep.runs_dir, run.name)
+    logs = [(role, os.path.join(out, role, "training_log.csv")) for role in selfplay.ROLES]
+    logs = [(role, log, logged_rows(log, 1)) for role, log in logs]
+    logs = [(role, log, rows[-1]) for role, log, rows in logs if rows]
+    if not logs:
+        return 0
+    os.makedirs(dest, exist_ok=True)
+    generations = os.path.join(out, "generations.yaml")
+    if os.path.isfile(generations):
+        shutil.copyfile(generations, os.path.join(dest, "generations.yaml"))
+    saved = len(_generations(generations))
+    for role, log, (done, wall_s) in logs:
+        shutil.copyfile(log, os.path.join(dest, "%s_training_log.csv" % role))
+        so_far = "{} ({}): {:,} of {:,} steps".format(run.name, role, done, run.phase.steps)
+        ws.python("plot_learning_curve.py", log, os.path.join(dest, "%s_learning_curve.png" % role),
+                  so_far.replace(":", ", unfinished:", 1))
+        print("sweep: %s, %d s of training: log and curve in %s" % (so_far, int(wall_s), dest))
+    print("sweep: %s: %d of %d generations saved (both sides), listed in %s; they and the checkpoints "
+          "resume only on this machine (%s)" % (run.name, saved // 2, run.phase.generations, dest, out))
+    return 1
+
+
 def _status_line(sweep, run, training):
     name, rec = run.name, sweep.records
     if training and run.phase.role == "selfplay":
@@ -112,9 +137,9 @@ def partial(sweep):
     """Brings the records of every unfinished run up to date, for a machine that may not come back:
     the training log of each run that has trained but is not done, copied into the records'
     docs/runs/<run>/partial/ with its learning curve (no weights: a run is recorded only whole); and
-    the partial/ of every done run removed (the queue removes it as it records a run). A self-play
-    run's partial state is its saved generations, which only this machine can resume: it is named,
-    not copied."""
+    the partial/ of every done run removed (the queue removes it as it records a run). An unfinished
+    self-play gives its generations.yaml and each side's log and curve; its saved generations and
+    checkpoints, which only this machine can resume, are named, not copied."""
     ws = Workspace(sweep.checkout)
     written = removed = 0
     for run in sweep.all_runs():
@@ -125,9 +150,7 @@ def partial(sweep):
                 print("sweep: %s is done: removed its partial records %s" % (run.name, dest))
             continue
         if run.phase.role == "selfplay":
-            if os.path.isfile(os.path.join(sweep.runs_dir, run.name, "generations.yaml")):
-                print("sweep: %s: unfinished self-play; its saved generations in %s resume only on this machine"
-                      % (run.name, os.path.join(sweep.runs_dir, run.name)))
+            written += _partial_selfplay(ws, sweep, run, dest)
             continue
         log = os.path.join(sweep.runs_dir, run.name, "training_log.csv")
         rows = logged_rows(log, 1)

@@ -160,6 +160,8 @@ def _selfplay_job(sweep, run, port, tree, log):
     if _logged(record, env, log):
         say("%s: its cross-play or records failed; see %s (the next start plays the pairs left)" % (run.name, log))
         return 1
+    if sweep.records.clear_partial(run.name):
+        say("%s: its partial records %s removed" % (run.name, sweep.records.partial(run.name)))
     say("%s: done: %s" % (run.name, sweep.records.docs(run.name, "selfplay.md")))
     return 0
 
