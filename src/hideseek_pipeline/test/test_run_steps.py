@@ -203,7 +203,9 @@ def test_a_seeker_s_run_trains_against_the_shipped_hider_and_is_evaluated_as_a_s
     assert [row.split(",")[:2] for row in table[1:3]] == [["basic", "learned"], ["basic", "scripted"]]
     assert [row.split(",")[0] for row in table[3::2]] == ["scripted/backpedal", "scripted/flee", "scripted/hide",
                                                           "scripted/lap"]
-    assert str(tmp_path) not in (rec / "docs" / "runs" / "basic_seeker_4096_seed0" / "seeker_evaluation.md").read_text()
+    summary = (rec / "docs" / "runs" / "basic_seeker_4096_seed0" / "seeker_evaluation.md").read_text()
+    assert str(tmp_path) not in summary
+    assert summary.startswith("# Seeker evaluation: basic_seeker_4096_seed0 (variant basic, game v2)")
     assert not (rec / "docs" / "runs" / "basic_seeker_4096_seed0" / "evaluation.csv").exists()
     r = pipeline(w, rec, calls, "train", "basic", "--role", "seeker", "--ship", "--runs-dir", str(tmp_path / "runs"))
     assert r.returncode == 1 and "a seeker's run is not shipped" in r.stderr
@@ -240,3 +242,15 @@ def test_a_trainer_writes_the_records_with_the_records_own_registry_reader(ws, t
     r = pipeline(w, rec, calls, "train", "basic", "--steps", "4096", "--runs-dir", str(tmp_path / "runs"))
     assert r.returncode == 0, r.stdout + r.stderr
     assert entries(rec)["basic_seed9"]["field_of_tomorrow"] == 1 and entries(rec)["basic_4096_seed0"]["steps"] == 4096
+
+
+def test_a_seeker_evaluation_without_a_capture_shows_no_mean_time_to_capture(tmp_path):
+    from hideseek_pipeline import seeker
+    rows = [dict(hider="scripted/lap", seeker="learned", episodes=100, captures=0, capture_rate=0.0,
+                 mean_time_to_capture=float("nan")),
+            dict(hider="scripted/lap", seeker="scripted", episodes=100, captures=73, capture_rate=0.73,
+                 mean_time_to_capture=484.5)]
+    seeker.write_table(rows, str(tmp_path), "basic_seeker_v3_seed0")
+    table = (tmp_path / "seeker_evaluation.md").read_text()
+    assert "| scripted/lap | learned | 100 | 0 | 0.0 % | - |" in table and "nan" not in table
+    assert "| scripted/lap | scripted | 100 | 73 | 73.0 % | 484.5 |" in table

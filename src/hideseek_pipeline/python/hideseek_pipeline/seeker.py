@@ -54,8 +54,9 @@ def label(policy):
 
 
 def evaluate_seeker(ws, variant, game, seeker, hiders, out, episodes=100, first_seed=0, port=11489, say=print,
-                    variant_config=None):
-    """The learned `seeker` and the scripted seeker against every hider of `hiders`."""
+                    variant_config=None, name=None):
+    """The learned `seeker` and the scripted seeker against every hider of `hiders`; the table is
+    titled `name` (a run's), or the seeker's file name."""
     game = game or ws.resolve("basic" if variant_config else variant, "game")
     rows = []
     # The launch files take a relative path from the workspace's root, where the tools run: absolute here.
@@ -70,7 +71,7 @@ def evaluate_seeker(ws, variant, game, seeker, hiders, out, episodes=100, first_
             say("evaluate-seeker: %s seeker against %s: %d of %d captured, mean time to capture %.1f steps (%d s)"
                 % (who, hider, s["captures"], s["episodes"], s["mean_time_to_capture"], time.time() - start))
     write_table(rows, out, "%s (variant %s, game %s), seeds %d-%d, greedy" % (
-        label(seeker), variant, game, first_seed, first_seed + episodes - 1))
+        name or label(seeker), variant, game, first_seed, first_seed + episodes - 1))
     return rows
 
 
@@ -84,11 +85,13 @@ def write_table(rows, out, title):
                             mean_time_to_capture="%.1f" % r["mean_time_to_capture"]))
     lines = ["# Seeker evaluation: %s" % title, "",
              "Capture rate over the episodes, and the mean time to capture in decision steps (0.12 s each) over "
-             "the captures; the learned seeker beside the scripted one, against the same hider.", "",
+             "the captures (- without one); the learned seeker beside the scripted one, against the same hider.", "",
              "| hider | seeker | episodes | captures | capture rate | mean time to capture |",
              "| --- | --- | --- | --- | --- | --- |"]
     for r in rows:
-        lines.append("| %s | %s | %d | %d | %.1f %% | %.1f |" % (r["hider"], r["seeker"], r["episodes"], r["captures"],
-                                                              100 * r["capture_rate"], r["mean_time_to_capture"]))
+        mean = r["mean_time_to_capture"]
+        lines.append("| %s | %s | %d | %d | %.1f %% | %s |" % (r["hider"], r["seeker"], r["episodes"], r["captures"],
+                                                            100 * r["capture_rate"],
+                                                            "-" if mean != mean else "%.1f" % mean))
     with open(os.path.join(out, "seeker_evaluation.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

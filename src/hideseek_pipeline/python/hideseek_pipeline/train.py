@@ -137,7 +137,7 @@ def train(ws, records, o, say=print):
     if o.role == "seeker":
         seeker_evaluation.evaluate_seeker(ws, o.variant, game, os.path.join(run, "policy.pt"),
                                           [opponent] + [e for e in EVADERS if e != opponent], docs,
-                                          port=o.eval_port or port + 1000, say=say)
+                                          port=o.eval_port or port + 1000, say=say, name=name)
         return name
     evaluate(ws, records, name, os.path.join(run, "policy.pt"), o.eval_modes, o.eval_port or port + 1000, say)
     if o.ship:
