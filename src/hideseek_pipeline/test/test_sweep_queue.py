@@ -670,7 +670,7 @@ def test_partial_records_an_unfinished_self_play_s_generations_and_both_sides_lo
     assert sorted(os.listdir(partial)) == ["generations.yaml", "hider_learning_curve.png", "hider_training_log.csv",
                                            "seeker_learning_curve.png", "seeker_training_log.csv"]
     assert "basic_selfplay_seed0 (seeker): 40,960 of 2,000,000 steps, 92 s of training" in r.stdout
-    assert "0 of 2 generations saved (both sides)" in r.stdout and "resume only on this machine" in r.stdout
+    assert "generations saved: seeker_g001 (of 2 a side)" in r.stdout and "resume only on this machine" in r.stdout
     assert r.stdout.strip().splitlines()[-1].startswith("sweep: 1 unfinished runs recorded")
 
 

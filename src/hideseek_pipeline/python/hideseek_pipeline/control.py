@@ -75,29 +75,37 @@ def progress(log, steps, paused_s=0):
     return text
 
 
+def _record_log(ws, log, dest, prefix, so_far, wall_s):
+    """A training log and its learning curve, unfinished, into `dest` as <prefix>training_log.csv
+    and <prefix>learning_curve.png."""
+    os.makedirs(dest, exist_ok=True)
+    shutil.copyfile(log, os.path.join(dest, prefix + "training_log.csv"))
+    ws.python("plot_learning_curve.py", log, os.path.join(dest, prefix + "learning_curve.png"),
+              so_far.replace(":", ", unfinished:", 1))
+    print("sweep: %s, %d s of training: log and curve in %s" % (so_far, int(wall_s), dest))
+
+
 def _partial_selfplay(ws, sweep, run, dest):
     """An unfinished self-play's records: its generations.yaml and each side's training log and curve
-    so far (no weights). Its saved generations and checkpoints resume only on this machine."""
+    so far (no weights); whether there was anything to record."""
     out = os.path.join(sweep.runs_dir, run.name)
-    logs = [(role, os.path.join(out, role, "training_log.csv")) for role in selfplay.ROLES]
-    logs = [(role, log, logged_rows(log, 1)) for role, log in logs]
-    logs = [(role, log, rows[-1]) for role, log, rows in logs if rows]
-    if not logs:
-        return 0
-    os.makedirs(dest, exist_ok=True)
+    recorded = False
+    for role in selfplay.ROLES:
+        log = os.path.join(out, role, "training_log.csv")
+        rows = logged_rows(log, 1)
+        if rows:
+            done, wall_s = rows[-1]
+            _record_log(ws, log, dest, role + "_", "{} ({}): {:,} of {:,} steps".format(
+                run.name, role, done, run.phase.steps), wall_s)
+            recorded = True
     generations = os.path.join(out, "generations.yaml")
-    if os.path.isfile(generations):
+    if recorded and os.path.isfile(generations):
         shutil.copyfile(generations, os.path.join(dest, "generations.yaml"))
-    saved = len(_generations(generations))
-    for role, log, (done, wall_s) in logs:
-        shutil.copyfile(log, os.path.join(dest, "%s_training_log.csv" % role))
-        so_far = "{} ({}): {:,} of {:,} steps".format(run.name, role, done, run.phase.steps)
-        ws.python("plot_learning_curve.py", log, os.path.join(dest, "%s_learning_curve.png" % role),
-                  so_far.replace(":", ", unfinished:", 1))
-        print("sweep: %s, %d s of training: log and curve in %s" % (so_far, int(wall_s), dest))
-    print("sweep: %s: %d of %d generations saved (both sides), listed in %s; they and the checkpoints "
-          "resume only on this machine (%s)" % (run.name, saved // 2, run.phase.generations, dest, out))
-    return 1
+    if recorded:
+        saved = ["%s_g%03d" % (g["role"], g["generation"]) for g in _generations(generations)]
+        print("sweep: %s: generations saved: %s (of %d a side); they and the checkpoints resume only on this "
+              "machine (%s)" % (run.name, ", ".join(saved) or "none", run.phase.generations, out))
+    return int(recorded)
 
 
 def _status_line(sweep, run, training):
@@ -161,13 +169,8 @@ def partial(sweep):
             print("sweep: %s: trained all its steps; the queue is evaluating and recording it (or its records "
                   "failed: %s)" % (run.name, os.path.join(sweep.logs, run.name + ".log")))
             continue
-        os.makedirs(dest, exist_ok=True)
-        shutil.copyfile(log, os.path.join(dest, "training_log.csv"))
-        so_far = "{}: {:,} of {:,} steps".format(run.name, done, run.phase.steps)
-        ws.python("plot_learning_curve.py", os.path.join(dest, "training_log.csv"),
-                  os.path.join(dest, "learning_curve.png"), so_far.replace(":", ", unfinished:", 1))
+        _record_log(ws, log, dest, "", "{}: {:,} of {:,} steps".format(run.name, done, run.phase.steps), wall_s)
         written += 1
-        print("sweep: %s, %d s of training: log and curve in %s" % (so_far, int(wall_s), dest))
     print("sweep: %d unfinished runs recorded, %d done runs' partial records removed%s" % (
         written, removed, " (commit docs/runs/*/partial)" if written or removed else ""))
     return 0
