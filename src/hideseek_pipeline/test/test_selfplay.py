@@ -107,3 +107,29 @@ def test_the_records_of_a_self_play_wait_for_every_generation(tmp_path):
         selfplay.require_generations(o)
     selfplay.write_generations(str(tmp_path), [gen("seeker", 1), gen("hider", 1), gen("seeker", 2), gen("hider", 2)])
     selfplay.require_generations(o)
+
+
+def _analysis(folder, living, probe_s):
+    os.makedirs(folder)
+    with open(os.path.join(folder, "behaviour.csv"), "w") as f:
+        f.write("run,episodes,steps,mean_living_steps,success_rate,backward_share,sees_seeker_share,seen_share,"
+                "line_of_sight_breaks_per_100,seeker_lost_per_100,distance_turns_per_100,distance_swings_per_100\n"
+                "r,100,1,%s,0.21,0.84,0.07,0.09,0.25,0.67,2.9,1.03\n" % living)
+    with open(os.path.join(folder, "states.csv"), "w") as f:
+        f.write("run,state,S,H,O,steps,frequency\nr,S1 H1 O0,1,1,0,1,0.25\nr,S1 H1 O1,1,1,1,1,0.5\n"
+                "r,S0 H0 O1,0,0,1,1,0.25\n")
+    with open(os.path.join(folder, "probes.csv"), "w") as f:
+        f.write("run,representation,target,gain_over_random_init\nr,trained,S,%s\nr,trained,H,0.07\n" % probe_s)
+
+
+def test_the_last_hider_s_analysis_is_set_beside_the_hiders_trained_only_against_the_scripted_seeker(tmp_path):
+    _analysis(str(tmp_path / "last"), 600.5, 0.1)
+    _analysis(str(tmp_path / "basic_v3_seed0"), 255.7, 0.02)
+    text = selfplay.behaviour_beside("hider_g004", str(tmp_path / "last"),
+                                     {"basic_v3_seed0": str(tmp_path / "basic_v3_seed0"),
+                                      "basic_v3_seed1": str(tmp_path / "absent")})
+    assert "| measure | hider_g004 (self-play) | basic_v3_seed0 | basic_v3_seed1 |" in text
+    assert "| mean living steps | 600.5 | 255.7 | - |" in text
+    # S1 H1 sums both O states; a probe is its gain over the random-init networks
+    assert "| share of steps in S1 H1 (each sees the other) | 0.75 | 0.75 | - |" in text
+    assert "| probe S: balanced accuracy over random init | +0.100 | +0.020 | - |" in text

@@ -306,7 +306,11 @@ def record(ws, records, o, name, episodes=100, say=print):
         if g is hiders[-1]:
             analyze_run(ws, records, "%s_%s" % (name, label), weights, say=say, entry=entry,
                         out=os.path.join(folder, "analysis"))
-    text = summary(name, o, game, generations, against_scripted, _scripted_only(records, o.variant, game), episodes)
+    scripted_only = _scripted_only(records, o.variant, game)
+    last = seeker_evaluation.label(hiders[-1]["checkpoint"])
+    beside = behaviour_beside(last, os.path.join(dest, last, "analysis"),
+                              {run: records.docs(run, "analysis") for run in scripted_only})
+    text = summary(name, o, game, generations, against_scripted, scripted_only, episodes) + beside
     with open(os.path.join(dest, "selfplay.md"), "w") as f:
         f.write(text)
     say("selfplay: recorded into %s" % dest)
@@ -317,6 +321,69 @@ def _scripted_only(records, variant, game):
     first draws of 2M steps, feed-forward, and their greedy living steps on seeds 0-99."""
     return dict(sorted(records.registry.first_draws(variant, "ff", game, records.registry_path, records.root,
                                                     records.note, 2_000_000).items()))
+
+
+# The paper's analysis of a hider, as the per-run step writes it into analysis/: (label, file, how to
+# read the value, format).
+MEASURES = (
+    ("mean living steps", "behaviour", "mean_living_steps", "%.1f"),
+    ("success rate", "behaviour", "success_rate", "%.2f"),
+    ("share of steps walking backward", "behaviour", "backward_share", "%.2f"),
+    ("share of steps seeing the seeker (S = 1)", "behaviour", "sees_seeker_share", "%.2f"),
+    ("share of steps seen by it (H = 1)", "behaviour", "seen_share", "%.2f"),
+    ("share of steps in S1 H1 (each sees the other)", "states", (1, 1), "%.2f"),
+    ("share of steps in S0 H0 (neither sees the other)", "states", (0, 0), "%.2f"),
+    ("line-of-sight breaks per 100 steps", "behaviour", "line_of_sight_breaks_per_100", "%.2f"),
+    ("distance swings of 1 m or more per 100 steps", "behaviour", "distance_swings_per_100", "%.2f"),
+    ("probe S: balanced accuracy over random init", "probes", "S", "%+.3f"),
+    ("probe H: balanced accuracy over random init", "probes", "H", "%+.3f"),
+)
+
+
+def analysis_measures(folder):
+    """MEASURES' values from a hider's analysis folder (behaviour.csv, states.csv, probes.csv), None
+    for each one whose file is missing or lacks it."""
+    def rows(kind):
+        try:
+            with open(os.path.join(folder, kind + ".csv")) as f:
+                return list(csv.DictReader(f))
+        except OSError:
+            return []
+    tables = {kind: rows(kind) for kind in ("behaviour", "states", "probes")}
+    values = {}
+    for label, kind, key, _ in MEASURES:
+        t = tables[kind]
+        try:
+            if kind == "behaviour":
+                values[label] = float(t[0][key])
+            elif kind == "states":
+                values[label] = (sum(float(r["frequency"]) for r in t if (int(r["S"]), int(r["H"])) == key)
+                                 if t else None)
+            else:
+                values[label] = float(next(r["gain_over_random_init"] for r in t
+                                           if r["representation"] == "trained" and r["target"] == key))
+        except (IndexError, KeyError, ValueError, StopIteration):
+            values[label] = None
+    return values
+
+
+def behaviour_beside(last, last_folder, others):
+    """The paper's analysis of the last self-play hider (label `last`, its analysis folder) beside
+    that of each hider trained only against the scripted seeker (run -> analysis folder): a section
+    of selfplay.md."""
+    columns = [(last + " (self-play)", analysis_measures(last_folder))]
+    columns += [(run, analysis_measures(folder)) for run, folder in others.items()]
+    lines = ["", "## The paper's analysis of the last hider", "",
+             "The per-run analysis (100 greedy rollouts against the scripted seeker on seeds 10000-10099, and the "
+             "probes on the probe set; [%s/analysis/](%s/analysis/)) of the last self-play hider, beside the same "
+             "analysis of the hiders trained only against the scripted seeker. A probe's figure is its balanced "
+             "accuracy minus that of five randomly initialised networks; `-`: not in that run's analysis."
+             % (last, last), "",
+             "| measure | " + " | ".join(c for c, _ in columns) + " |", "| --- |" + " --- |" * len(columns)]
+    for label, _, _, fmt in MEASURES:
+        lines.append("| %s | " % label + " | ".join("-" if v[label] is None else fmt % v[label]
+                                                    for _, v in columns) + " |")
+    return "\n".join(lines) + "\n"
 
 
 def summary(name, o, game, generations, against_scripted, scripted_only, episodes):
