@@ -631,6 +631,7 @@ def test_a_self_play_phase_trains_both_sides_in_turn_then_records_its_cross_play
     summary = (docs / "selfplay.md").read_text()
     assert "| basic_seed0 | against the scripted seeker only | 450.0 |" in summary
     assert "lives 321.0 steps against the scripted seeker: within their range of the 2 hiders" in summary
+    assert "| measure | hider_g002 (self-play) | basic_seed0 | basic_seed1 |" in summary
     assert str(tmp_path) not in summary
     # nothing entered the registry, nothing shipped
     assert set(yaml.safe_load((rec / "policies" / "policies.yaml").read_text())) == {"basic_seed0", "basic_seed1"}
@@ -672,6 +673,9 @@ def test_partial_records_an_unfinished_self_play_s_generations_and_both_sides_lo
     assert "basic_selfplay_seed0 (seeker): 40,960 of 2,000,000 steps, 92 s of training" in r.stdout
     assert "generations saved: seeker_g001 (of 2 a side)" in r.stdout and "resume only on this machine" in r.stdout
     assert r.stdout.strip().splitlines()[-1].startswith("sweep: 1 unfinished runs recorded")
+    status = sweep(tmp_path, rec, "status", config=config_file(tmp_path, SELFPLAY_PHASE),
+                   SWEEP_DIR=str(tmp_path / "sweep"))
+    assert "partial   generations saved: seeker_g001 (of 2 a side)" in status.stdout, status.stdout
 
 
 def test_a_self_play_phase_is_named_apart_and_refuses_what_it_cannot_do():

@@ -102,18 +102,21 @@ def _partial_selfplay(ws, sweep, run, dest):
     if recorded and os.path.isfile(generations):
         shutil.copyfile(generations, os.path.join(dest, "generations.yaml"))
     if recorded:
-        saved = ["%s_g%03d" % (g["role"], g["generation"]) for g in _generations(generations)]
         print("sweep: %s: generations saved: %s (of %d a side); they and the checkpoints resume only on this "
-              "machine (%s)" % (run.name, ", ".join(saved) or "none", run.phase.generations, out))
+              "machine (%s)" % (run.name, _saved(generations), run.phase.generations, out))
     return int(recorded)
+
+
+def _saved(generations):
+    """A self-play's saved generations, as generations.yaml lists them: 'seeker_g001, hider_g001'."""
+    return ", ".join("%s_g%03d" % (g["role"], g["generation"]) for g in _generations(generations)) or "none"
 
 
 def _status_line(sweep, run, training):
     name, rec = run.name, sweep.records
     if training and run.phase.role == "selfplay":
-        saved = len(_generations(os.path.join(sweep.runs_dir, name, "generations.yaml")))
-        return "%-34s training  %d of %d generations saved (both sides), then its cross-play" % (
-            name, saved // 2, run.phase.generations)
+        return "%-34s training  generations saved: %s (of %d a side), then its cross-play" % (
+            name, _saved(os.path.join(sweep.runs_dir, name, "generations.yaml")), run.phase.generations)
     if training:
         held = last_line(os.path.join(sweep.runs_dir, name, "paused_s")).split(".")[0]
         return "%-34s training  %s%s" % (name, progress(os.path.join(sweep.runs_dir, name, "training_log.csv"),
@@ -133,8 +136,9 @@ def _status_line(sweep, run, training):
     saved = _generations(os.path.join(sweep.runs_dir, name, "generations.yaml"))
     if run.phase.role == "selfplay" and (saved or os.path.isfile(os.path.join(sweep.runs_dir, name, "seeker",
                                                                               "checkpoint.pt"))):
-        return "%-34s partial   %d of %d generations saved in %s (resumes at the next start)" % (
-            name, len(saved) // 2, run.phase.generations, os.path.join(sweep.runs_dir, name))
+        return "%-34s partial   generations saved: %s (of %d a side) in %s (resumes at the next start)" % (
+            name, _saved(os.path.join(sweep.runs_dir, name, "generations.yaml")), run.phase.generations,
+            os.path.join(sweep.runs_dir, name))
     if os.path.isfile(os.path.join(sweep.runs_dir, name, "checkpoint.pt")):
         return "%-34s partial   checkpoint in %s (resumes at the next start)" % (
             name, os.path.join(sweep.runs_dir, name))
