@@ -133,3 +133,33 @@ def test_the_last_hider_s_analysis_is_set_beside_the_hiders_trained_only_against
     # S1 H1 sums both O states; a probe is its gain over the random-init networks
     assert "| share of steps in S1 H1 (each sees the other) | 0.75 | 0.75 | - |" in text
     assert "| probe S: balanced accuracy over random init | +0.100 | +0.020 | - |" in text
+
+
+def test_the_latest_share_draws_the_other_side_s_latest_generation_that_often():
+    pool = ["random"] + ["generations/hider_g%03d.pt" % k for k in range(1, 9)]
+    draws = [selfplay.draw(pool, seed, 5, "seeker", 0.5) for seed in range(2000)]
+    # half the draws by the share, and a ninth of the uniform other half: 0.5 + 0.5 / 9
+    assert abs(draws.count(pool[-1]) / 2000 - (0.5 + 0.5 / 9)) < 0.04
+    assert set(draws) == set(pool)  # the older generations and the random policy are still met
+    # share 0 is the uniform draw alone, draw for draw: a self-play saved before the share replays
+    uniform = [selfplay.draw(pool, seed, 5, "seeker") for seed in range(200)]
+    assert uniform == [selfplay.draw(pool, seed, 5, "seeker", 0.0) for seed in range(200)]
+    assert selfplay.draw(["random"], 0, 1, "seeker", 1.0) == "random"
+
+
+def test_a_self_play_resumes_only_with_the_latest_share_it_drew_with(tmp_path):
+    # generations saved before the share existed drew uniformly: they resume with share 0 only
+    selfplay.write_generations(str(tmp_path), [gen("seeker", 1), gen("hider", 1)])
+    o = selfplay.SelfPlayOptions(out=str(tmp_path), generations=1, game="v3")  # default share 0.5
+    with pytest.raises(selfplay.ToolError, match="latest share 0.0: resume it with --latest-share 0.0"):
+        selfplay.selfplay(None, o)
+    o.latest_share = 0.0
+    assert len(selfplay.selfplay(None, o)) == 2  # both saved: nothing left to train
+
+
+def test_the_command_line_refuses_a_share_outside_0_to_1():
+    from hideseek_pipeline import cli
+    for bad in ("1.5", "-0.1", "half"):
+        with pytest.raises(SystemExit):
+            cli.parser().parse_args(["selfplay", "out", "--latest-share", bad])
+    assert cli.parser().parse_args(["selfplay", "out"]).latest_share == 0.5

@@ -606,8 +606,11 @@ def test_a_self_play_phase_trains_both_sides_in_turn_then_records_its_cross_play
                                   "basic_seed1": ("basic", 1, 2000000, [100, 200], [300])})
     fake_analysis(rec)
     calls = tmp_path / "calls.txt"
-    code, env, r = queue_in(tmp_path, repo, rec, SELFPLAY_PHASE, calls)
+    phase = SELFPLAY_PHASE.replace("generations: 2", "generations: 2, latest_share: 0")
+    code, env, r = queue_in(tmp_path, repo, rec, phase, calls)
     assert r.returncode == 0, r.stdout + r.stderr
+    saved = yaml.safe_load((tmp_path / "sweep" / "runs" / "basic_selfplay_seed0" / "generations.yaml").read_text())
+    assert [g["latest_share"] for g in saved["generations"]] == [0.0] * 4  # the phase's share reached the draws
     launched = [line for line in calls.read_text().splitlines() if line.startswith("roslaunch")]
     trained = [line for line in launched if "train.launch" in line]
     # seeker, hider, seeker, hider: 1M steps a side and generation, 2M in all
@@ -681,10 +684,15 @@ def test_partial_records_an_unfinished_self_play_s_generations_and_both_sides_lo
 def test_a_self_play_phase_is_named_apart_and_refuses_what_it_cannot_do():
     config = sweep_config.load(_write(SELFPLAY_PHASE.replace("game: v2", "game: v3")), ["basic"], ["basic"], "v2")
     assert [r.name for r in config.runs()] == ["basic_selfplay_v3_seed0"]
-    assert (config.phases[0].ship, config.phases[0].generations) == (False, 2)
+    assert (config.phases[0].ship, config.phases[0].generations, config.phases[0].latest_share) == (False, 2, None)
+    config = sweep_config.load(_write(SELFPLAY_PHASE.replace("generations: 2", "generations: 2, latest_share: 0")),
+                               ["basic"], ["basic"], "v2")
+    assert config.phases[0].latest_share == 0.0
     for change, message in (("generations: 2", "generations: 3"), "2000000 is not a whole number of generations (3)"), \
             (("role: selfplay", "role: selfplay, ship: true"), "a self-play phase ships nothing"), \
-            (("role: selfplay", "role: selfplay, network: gru"), "a self-play phase trains feed-forward learners"):
+            (("role: selfplay", "role: selfplay, network: gru"), "a self-play phase trains feed-forward learners"), \
+            (("role: selfplay", "role: selfplay, latest_share: 1.5"), "latest_share: '1.5' is not a number from 0 to 1"), \
+            (("role: selfplay", "role: seeker, latest_share: 0.5"), "only a self-play phase draws its opponents"):
         try:
             sweep_config.load(_write(SELFPLAY_PHASE.replace(*change)), ["basic"], ["basic"], "v2")
             assert False, change

@@ -49,6 +49,17 @@ SWEEP_COMMANDS = {
 }
 
 
+def share(text):
+    """A probability, for argparse: a number from 0 to 1, or an error naming it."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not 0.0 <= value <= 1.0:
+        raise argparse.ArgumentTypeError("'%s' is not a number from 0 to 1" % text)
+    return value
+
+
 def repository_root():
     """The checkout this package belongs to (src/hideseek_pipeline/python/hideseek_pipeline/..)."""
     env = os.environ.get("HIDESEEK_ROOT")
@@ -152,6 +163,9 @@ def _seeker_parsers(sub, common):
     p.add_argument("--generations", type=int, default=4)
     p.add_argument("--steps", type=int, default=250_000, help="steps per side and generation (default 250000)")
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--latest-share", type=share, default=0.5,
+                   help="the chance that a generation's opponent is the other side's latest generation; otherwise "
+                   "uniform over its pool, the random policy included (0: uniform alone; default 0.5)")
     p.add_argument("--num-arenas", type=int, help="default: train.launch's")
     p.add_argument("--hider-threads", type=int, help="the learners' intra-op threads (default: train.launch's)")
     p.add_argument("--precision", choices=["auto", "fp32", "bf16"], default="auto")
@@ -258,7 +272,7 @@ def run_command(args):
     elif args.command == "selfplay":
         o = selfplay.SelfPlayOptions(
             out=args.output, variant=args.variant, game=args.game, generations=args.generations, steps=args.steps,
-            seed=args.seed, num_arenas=args.num_arenas, hider_threads=args.hider_threads, precision=args.precision,
+            seed=args.seed, latest_share=args.latest_share, num_arenas=args.num_arenas, hider_threads=args.hider_threads, precision=args.precision,
             ppo_config=args.ppo_config and os.path.realpath(args.ppo_config),
             variant_config=args.variant_config and os.path.realpath(args.variant_config), port=args.port)
         if args.record:

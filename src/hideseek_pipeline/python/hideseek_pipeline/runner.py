@@ -150,6 +150,8 @@ def _selfplay_job(sweep, run, port, tree, log):
               "--steps", str(phase.steps // phase.generations), "--seed", str(run.seed), "--precision",
               phase.precision, "--hider-threads", str(phase.hider_threads), "--port", str(port), "--record-root",
               sweep.records.root]
+    if phase.latest_share is not None:  # unset: the pin's default (a pin from before the share: uniform)
+        common += ["--latest-share", repr(phase.latest_share)]
     train = [sys.executable, "-m", "hideseek_pipeline"] + common + ["--workspace", tree]
     if _logged(train, _pinned_env(tree), log, "w"):
         say("%s: its self-play stopped; see %s (it resumes from its saved generations)" % (run.name, log))

@@ -2,7 +2,10 @@
 k the seeker trains `steps` more steps against a hider drawn from the hider pool (every hider
 generation before k, and the random hider), then the hider trains `steps` more against a seeker
 drawn from the seeker pool (every seeker generation up to k, and the random seeker): a pool, as
-fictitious self-play keeps one, so that the two do not chase each other in a cycle. Each side
+fictitious self-play keeps one, so that the two do not chase each other in a cycle. The draw is
+the other side's latest generation with probability `latest_share`, otherwise uniform over the
+whole pool (0: uniform alone, as the sweep's first demonstration drew; with few generations a
+uniform draw meets the random policy often: 6 of its 8 draws). Each side
 resumes its own run (OUT/<role>/checkpoint.pt) with a constant learning rate (OUT/ppo.yaml: the
 PPO file with its annealing off, so that no generation's schedule depends on how many follow).
 The opponent samples its actions, as it did in training (a draw that depends only on the episode
@@ -42,6 +45,7 @@ class SelfPlayOptions:
     generations: int = 4
     steps: int = 250_000      # per side and generation
     seed: int = 0
+    latest_share: float = 0.5  # the draw's chance of the other side's latest generation (draw())
     num_arenas: Optional[int] = None
     hider_threads: Optional[int] = None
     precision: str = "auto"
@@ -56,10 +60,13 @@ def world_seed(seed, generation):
     return seed + GENERATION_SEEDS * (generation - 1)
 
 
-def draw(pool, seed, generation, role):
-    """The opponent of `role` in `generation`: uniform over its pool, a pure function of the
-    seed, the generation and the role."""
+def draw(pool, seed, generation, role, latest_share=0.0):
+    """The opponent of `role` in `generation`, a pure function of the seed, the generation and the
+    role: the pool's last (latest) entry with probability `latest_share`, otherwise uniform over the
+    pool (with 0, the draw is the uniform one alone, as it was before the share existed)."""
     rng = random.Random("%d/%d/%s" % (seed, generation, role))
+    if latest_share > 0 and len(pool) > 1 and rng.random() < latest_share:
+        return pool[-1]
     return pool[rng.randrange(len(pool))]
 
 
@@ -116,7 +123,7 @@ def save_generation(ws, o, game, role, generation, opponent, steps, wall_s):
     commit = subprocess.run(["git", "describe", "--always", "--dirty", "--abbrev=12"], cwd=ws.root,
                             capture_output=True, text=True).stdout.strip() or "unknown"
     return {"role": role, "generation": generation, "checkpoint": name, "variant": o.variant, "game": game,
-            "training_seed": o.seed, "steps": steps, "wall_s": round(wall_s), "opponent": opponent, "commit": commit,
+            "training_seed": o.seed, "latest_share": o.latest_share, "steps": steps, "wall_s": round(wall_s), "opponent": opponent, "commit": commit,
             "log": "%s/training_log.csv" % role}
 
 
@@ -163,6 +170,11 @@ def selfplay(ws, o, say=print):
     o.out = os.path.realpath(o.out)
     game = o.game or (ws.resolve(o.variant, "game") if not o.variant_config else ws.resolve("basic", "game"))
     generations = load_generations(o.out)
+    drawn = {float(g.get("latest_share", 0.0)) for g in generations}  # saved before the share: uniform
+    if drawn - {o.latest_share}:
+        raise ToolError("selfplay: %s drew its generations with latest share %s: resume it with --latest-share "
+                        "%s (latest_share:=%s), not %s" % (o.out, ", ".join(map(str, sorted(drawn))),
+                                                           min(drawn), min(drawn), o.latest_share))
     done = {(g["role"], g["generation"]) for g in generations}
     ppo = None  # written once a generation is left to train
     for generation in range(1, o.generations + 1):
@@ -170,7 +182,7 @@ def selfplay(ws, o, say=print):
             if (role, generation) in done:
                 continue
             ppo = ppo or constant_rate_ppo(o.ppo_config or os.path.join(ws.root, "config", "ppo.yaml"), o.out)
-            opponent = draw(pools(generations, role, generation), o.seed, generation, role)
+            opponent = draw(pools(generations, role, generation), o.seed, generation, role, o.latest_share)
             say("selfplay: generation %d: the %s trains to %d steps against %s" % (
                 generation, role, generation * o.steps, opponent))
             steps, wall_s = train_generation(ws, o, game, role, generation, opponent, ppo)

@@ -10,19 +10,20 @@ phase; SWEEP_PHASES="a b" keeps only the phases named.
 A phase's `role` is who learns: hider (the default) or seeker. A seeker's phase trains seekers
 against `opponent` (default: each variant's hider shipped on the phase's game), evaluates each as a
 seeker and ships nothing; its runs are named <variant>_seeker[_<game>]..._seed<S>. A self-play
-phase (role: selfplay) trains both sides in `generations` generations, `steps` per side in all, then
+phase (role: selfplay) trains both sides in `generations` generations, `steps` per side in all (each
+generation's opponent drawn with the latest generation's `latest_share`, unset: the pin's default), then
 plays their cross-play and records it (hideseek_pipeline selfplay --record); it ships nothing, and
 its runs are named <variant>_selfplay[_<game>]_seed<S>.
 """
 import os
 from dataclasses import dataclass, field
-from typing import List
+from typing import List, Optional
 
 import yaml
 
 TWO_MILLION = 2_000_000
 PHASE_KEYS = ("commit", "game", "variants", "seeds", "network", "steps", "precision", "jobs", "hider_threads", "ship",
-              "role", "opponent", "generations")
+              "role", "opponent", "generations", "latest_share")
 TOP_KEYS = PHASE_KEYS + ("port", "phases")
 NETWORKS = ("ff", "gru")
 ROLES = ("hider", "seeker", "selfplay")
@@ -48,6 +49,7 @@ class Phase:
     role: str = "hider"  # who learns: hider or seeker
     opponent: str = ""   # the fixed other side ('': the default, a seeker's: the shipped hider)
     generations: int = 4  # self-play: generations of each side (steps / generations each)
+    latest_share: Optional[float] = None  # self-play: the draw's share of the latest opponent (None: the pin's default)
 
 
 @dataclass
@@ -202,6 +204,16 @@ def _phase(m, where, known_variants, paper_order, default_game):
         raise ConfigError("%s: ship: a %s phase ships nothing (set ship: false)"
                           % (where, "seeker's" if role == "seeker" else "self-play"))
     generations = _whole(m.get("generations", 4), "generations", where, 1)
+    latest_share = m.get("latest_share")
+    if latest_share is not None:
+        if role != "selfplay":
+            raise ConfigError("%s: latest_share: only a self-play phase draws its opponents" % where)
+        try:
+            latest_share = float(latest_share)
+        except (TypeError, ValueError):
+            latest_share = float("nan")
+        if not 0.0 <= latest_share <= 1.0:
+            raise ConfigError("%s: latest_share: '%s' is not a number from 0 to 1" % (where, m["latest_share"]))
     if role == "selfplay":
         if network != "ff" or m.get("opponent"):
             raise ConfigError("%s: a self-play phase trains feed-forward learners against each other's pools "
@@ -214,7 +226,7 @@ def _phase(m, where, known_variants, paper_order, default_game):
                  steps=_whole(m["steps"], "steps", where, 1), precision=str(m["precision"]),
                  jobs=_whole(m["jobs"], "jobs", where, 1),
                  hider_threads=_whole(m["hider_threads"], "hider_threads", where, 1), ship=ship, role=role,
-                 opponent=str(m.get("opponent") or ""), generations=generations)
+                 opponent=str(m.get("opponent") or ""), generations=generations, latest_share=latest_share)
 
 
 def _flag(value, key, where):
