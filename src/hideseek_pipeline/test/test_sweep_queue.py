@@ -687,7 +687,12 @@ def test_a_self_play_phase_is_named_apart_and_refuses_what_it_cannot_do():
     assert (config.phases[0].ship, config.phases[0].generations, config.phases[0].latest_share) == (False, 2, None)
     config = sweep_config.load(_write(SELFPLAY_PHASE.replace("generations: 2", "generations: 2, latest_share: 0")),
                                ["basic"], ["basic"], "v2")
-    assert config.phases[0].latest_share == 0.0
+    assert config.phases[0].latest_share == 0.0 and [r.name for r in config.runs()] == ["basic_selfplay_seed0"]
+    # a share in the name: two self-plays that draw differently never share a folder or records
+    both = SELFPLAY_PHASE + "  - {name: latest, commit: \"0123456789ab\", game: v3, role: selfplay, latest_share: 0.5, " \
+                            "variants: [basic], seeds: [0]}\n"
+    config = sweep_config.load(_write(both), ["basic"], ["basic"], "v2")
+    assert [r.name for r in config.runs()] == ["basic_selfplay_seed0", "basic_selfplay_v3_latest50_seed0"]
     for change, message in (("generations: 2", "generations: 3"), "2000000 is not a whole number of generations (3)"), \
             (("role: selfplay", "role: selfplay, ship: true"), "a self-play phase ships nothing"), \
             (("role: selfplay", "role: selfplay, network: gru"), "a self-play phase trains feed-forward learners"), \

@@ -13,7 +13,7 @@ seeker and ships nothing; its runs are named <variant>_seeker[_<game>]..._seed<S
 phase (role: selfplay) trains both sides in `generations` generations, `steps` per side in all (each
 generation's opponent drawn with the latest generation's `latest_share`, unset: the pin's default), then
 plays their cross-play and records it (hideseek_pipeline selfplay --record); it ships nothing, and
-its runs are named <variant>_selfplay[_<game>]_seed<S>.
+its runs are named <variant>_selfplay[_<game>][_latest<percent>]_seed<S>.
 """
 import os
 from dataclasses import dataclass, field
@@ -85,15 +85,19 @@ def budget_label(steps):
     return str(steps)
 
 
-def run_name(variant, seed, game, network, steps, role="hider"):
+def run_name(variant, seed, game, network, steps, role="hider", latest_share=None):
     """The run's name: what tells it apart. v2's feed-forward 2M runs keep their names
     (basic_seed0, basic_gru_seed1); a seeker, another game, network or budget adds itself:
-    basic_v3_seed0, basic_v3_gru_seed0, basic_v3_8m_seed0, basic_seeker_v3_seed0, basic_selfplay_v3_seed0."""
+    basic_v3_seed0, basic_v3_gru_seed0, basic_v3_8m_seed0, basic_seeker_v3_seed0, basic_selfplay_v3_seed0;
+    a self-play that draws its latest opponent with a share adds it in percent (basic_selfplay_v3_latest50_seed0;
+    the uniform draw, share 0 or unset, adds nothing)."""
     parts = [variant]
     if role != "hider":
         parts.append(role)
     if game != "v2":
         parts.append(game)
+    if role == "selfplay" and latest_share:
+        parts.append("latest%g" % round(100 * latest_share, 1))
     if network != "ff":
         parts.append(network)
     if budget_label(steps):
@@ -102,7 +106,7 @@ def run_name(variant, seed, game, network, steps, role="hider"):
 
 
 def phase_runs(phase):
-    return [Run(run_name(v, s, phase.game, phase.network, phase.steps, phase.role), v, s, phase)
+    return [Run(run_name(v, s, phase.game, phase.network, phase.steps, phase.role, phase.latest_share), v, s, phase)
             for s in phase.seeds for v in phase.variants]
 
 
