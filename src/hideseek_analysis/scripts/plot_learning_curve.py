@@ -3,7 +3,10 @@
 
 usage: rosrun hideseek_analysis plot_learning_curve.py RUN_DIR/training_log.csv [OUTPUT.png] [TITLE]
        rosrun hideseek_analysis plot_learning_curve.py --run LABEL LOG.csv --run LABEL LOG.csv ... \\
-           --output OUTPUT.png [--title TITLE]
+           --output OUTPUT.png [--title TITLE] [--mark STEPS ...]
+
+--mark draws a dashed vertical line at that step in every panel (self-play: where a generation ends
+and both learners meet new opponents).
 
 A row whose episode window is empty (mean_length 0: no episode has ended since the run started,
 or since a resume from a checkpoint written before checkpoints kept the window) is left as a gap
@@ -45,14 +48,17 @@ def read_log(path):
     return steps, columns
 
 
-def plot(runs, output, title):
-    """runs: [(label or None, path)]; one line per run in each panel, a legend when labelled."""
+def plot(runs, output, title, marks=()):
+    """runs: [(label or None, path)]; one line per run in each panel, a legend when labelled; a
+    dashed vertical line at each step of `marks`."""
     fig, axes = plt.subplots(1, len(PANELS), figsize=(13, 3.6))
     for label, path in runs:
         steps, columns = read_log(path)
         for ax, (key, _) in zip(axes, PANELS):
             ax.plot(steps, columns[key], lw=1.2, label=label)
     for ax, (_, name) in zip(axes, PANELS):
+        for step in marks:
+            ax.axvline(step, color="0.4", lw=0.8, ls="--")
         ax.set_xlabel("environment steps")
         ax.ticklabel_format(axis="x", style="sci", scilimits=(0, 0))  # 1e5 or 1e6 below the axis, never long labels that collide
         ax.set_title(name)
@@ -76,8 +82,10 @@ def main(argv=None):
                             help="a run's label and its training_log.csv; repeat for each run")
         parser.add_argument("--output", required=True, help="the PNG to write")
         parser.add_argument("--title", default="", help="the figure's title")
+        parser.add_argument("--mark", type=int, action="append", default=[], metavar="STEPS",
+                            help="a dashed vertical line at this step; repeat for each")
         args = parser.parse_args(argv)
-        plot([(label, path) for label, path in args.run], args.output, args.title)
+        plot([(label, path) for label, path in args.run], args.output, args.title, args.mark)
         return
     path = argv[0]
     output = argv[1] if len(argv) > 1 else path.rsplit(".", 1)[0] + ".png"

@@ -285,11 +285,14 @@ def test_plot_learning_curve_draws_several_labelled_runs_on_one_figure(tmp_path)
     try:
         plc.main(["--run", "before", str(before), "--run", "after", str(after), "--output", str(tmp_path / "both.png"),
                   "--title", "before and after"])
+        # self-play's: a dashed line in every panel where a generation ends
+        plc.main(["--run", "before", str(before), "--mark", "2048", "--output", str(tmp_path / "marked.png")])
     finally:
         plt.Figure.savefig = real_savefig
     assert (tmp_path / "both.png").stat().st_size > 0
     # Every panel holds both runs, each with all its updates, under its label.
-    assert drawn == [[[("before", 4), ("after", 5)]] * 3]
+    assert drawn[0] == [[("before", 4), ("after", 5)]] * 3
+    assert [len(panel) for panel in drawn[1]] == [2] * 3  # the run and the mark
 
 
 def test_plot_learning_curve_names_a_file_that_is_not_a_training_log(tmp_path):

@@ -225,13 +225,27 @@ def crossplay(ws, o, episodes=100, first_seed=0, say=print):
     ws.python("plot_crossplay.py", os.path.join(dest, "crossplay.csv"), os.path.join(dest, "crossplay.png"),
               "cross-play: " + title)
     copy_logs(o, dest)
+    plot_curves(ws, dest, generations, o.variant, game)
+    say("crossplay: %s" % os.path.join(dest, "crossplay.md"))
+    return rows
+
+
+def plot_curves(ws, dest, generations, variant, game):
+    """Both learners' curves (DEST/<role>_training_log.csv) into DEST/learning_curves.png, a dashed
+    line where each generation but the last ends, and each side's opponents in the title."""
     curves = []
     for role in ROLES:
         curves += ["--run", role, os.path.join(dest, "%s_training_log.csv" % role)]
-    ws.python("plot_learning_curve.py", *curves, "--output", os.path.join(dest, "learning_curves.png"), "--title",
-              "self-play, %s (game %s): both learners, generations: %d" % (o.variant, game, len(generations) // 2))
-    say("crossplay: %s" % os.path.join(dest, "crossplay.md"))
-    return rows
+    hiders = [g for g in generations if g["role"] == "hider"]
+    marks = []
+    for g in hiders[:-1]:
+        marks += ["--mark", str(g["steps"])]
+    opponents = "; ".join("the %s's opponents: %s" % (role, ", ".join(
+        seeker_evaluation.label(g["opponent"]) for g in generations if g["role"] == role and "opponent" in g))
+        for role in ROLES)
+    ws.python("plot_learning_curve.py", *curves, *marks, "--output", os.path.join(dest, "learning_curves.png"),
+              "--title", "self-play, %s (game %s): both learners, %d generations (dashed: where one ends)\n%s"
+              % (variant, game, len(hiders), opponents))
 
 
 def _played(table, episodes, first_seed=0):
