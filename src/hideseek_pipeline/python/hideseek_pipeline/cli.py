@@ -51,11 +51,8 @@ SWEEP_COMMANDS = {
 
 def share(text):
     """A probability, for argparse: a number from 0 to 1, or an error naming it."""
-    try:
-        value = float(text)
-    except ValueError:
-        value = float("nan")
-    if not 0.0 <= value <= 1.0:
+    value = sweep_config.probability(text)
+    if value is None:
         raise argparse.ArgumentTypeError("'%s' is not a number from 0 to 1" % text)
     return value
 
@@ -272,7 +269,8 @@ def run_command(args):
     elif args.command == "selfplay":
         o = selfplay.SelfPlayOptions(
             out=args.output, variant=args.variant, game=args.game, generations=args.generations, steps=args.steps,
-            seed=args.seed, latest_share=args.latest_share, num_arenas=args.num_arenas, hider_threads=args.hider_threads, precision=args.precision,
+            seed=args.seed, latest_share=args.latest_share, num_arenas=args.num_arenas,
+            hider_threads=args.hider_threads, precision=args.precision,
             ppo_config=args.ppo_config and os.path.realpath(args.ppo_config),
             variant_config=args.variant_config and os.path.realpath(args.variant_config), port=args.port)
         if args.record:

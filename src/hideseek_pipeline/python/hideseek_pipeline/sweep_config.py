@@ -85,6 +85,16 @@ def budget_label(steps):
     return str(steps)
 
 
+def probability(value):
+    """`value` as a number from 0 to 1, or None where it is not one (the config's and the command
+    line's check of a share)."""
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        return None
+    return value if 0.0 <= value <= 1.0 else None
+
+
 def run_name(variant, seed, game, network, steps, role="hider", latest_share=None):
     """The run's name: what tells it apart. v2's feed-forward 2M runs keep their names
     (basic_seed0, basic_gru_seed1); a seeker, another game, network or budget adds itself:
@@ -212,11 +222,8 @@ def _phase(m, where, known_variants, paper_order, default_game):
     if latest_share is not None:
         if role != "selfplay":
             raise ConfigError("%s: latest_share: only a self-play phase draws its opponents" % where)
-        try:
-            latest_share = float(latest_share)
-        except (TypeError, ValueError):
-            latest_share = float("nan")
-        if not 0.0 <= latest_share <= 1.0:
+        latest_share = probability(latest_share)
+        if latest_share is None:
             raise ConfigError("%s: latest_share: '%s' is not a number from 0 to 1" % (where, m["latest_share"]))
     if role == "selfplay":
         if network != "ff" or m.get("opponent"):
