@@ -463,7 +463,7 @@ def pinned_repo(repo):
     git = ["git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t"]
     subprocess.run(["git", "init", "-q", str(repo)], check=True)
     subprocess.run(git + ["add", "-A"], check=True)
-    subprocess.run(git + ["commit", "-qm", "trainer"], check=True)
+    subprocess.run(git + ["commit", "-qm", "trainer", "--allow-empty"], check=True)
     return subprocess.check_output(git + ["rev-parse", "HEAD"], text=True).strip()
 
 
@@ -554,6 +554,35 @@ def test_a_pin_without_the_shell_trainer_trains_through_hideseek_pipeline_train_
     assert e["command"].startswith("hideseek_pipeline train basic --seed 0 --steps 2000000")
     assert e["note"].startswith("sweep run (config/sweep.yaml), phase first, pinned at ")
     assert e["weights"] == "basic.pt" and (rec / "docs" / "runs" / "basic_seed0" / "analysis" / "behaviour.csv").exists()
+
+
+def test_a_later_phase_s_tree_is_built_only_when_its_first_run_is_next_and_a_failed_build_fails_only_its_runs(
+        tmp_path):
+    """A later phase's pin is built once the queue reaches it, not before the first phase trains
+    (a session that never reaches it spends nothing); when its build fails, the queue names the
+    phase and its runs, and what the first phase trained is recorded."""
+    repo = tmp_path / "repo"
+    (repo / "scripts").mkdir(parents=True)
+    (repo / "scripts" / "train_variant.sh").write_text(FAKE_TRAIN)
+    (repo / "scripts" / "train_variant.sh").chmod(0o755)
+    (repo / "scripts" / "helper.py").write_text("VALUE = 1\n")
+    unbuildable = pinned_repo(repo)  # no scripts/env.sh, no catkin workspace: its build fails
+    rec = make_records(tmp_path, {})
+    fake_analysis(rec)
+    calls = tmp_path / "calls.txt"
+    text = TWO_PHASES.replace("seeds: [0, 1]", "seeds: [0]").replace(
+        "variants: [basic, slowerhider]", "variants: [basic]").replace(
+        'name: later, commit: "0123456789ab"', 'name: later, commit: "%s"' % unbuildable)
+    _, _, r = queue_in(tmp_path, repo, rec, text, calls)  # the first phase: a commit after it, marked built
+    assert r.returncode == 0, r.stdout + r.stderr
+    out = r.stdout
+    assert out.index("basic_seed0: training") < out.index("building the worktree at %s" % unbuildable[:12])
+    assert "basic_seed0: done" in out
+    assert re.search(r"phase later: the worktree's build failed: \S+; "
+                     r"its runs are not started \(basic_v3_gru_8m_seed0\)", out), out
+    assert "nothing left to start: 1 runs failed" in out
+    entries = yaml.safe_load((rec / "policies" / "policies.yaml").read_text())
+    assert "basic_seed0" in entries and "basic_v3_gru_8m_seed0" not in entries
 
 
 SEEKER_PHASE = """

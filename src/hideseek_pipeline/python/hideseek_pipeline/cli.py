@@ -28,8 +28,8 @@ from hideseek_pipeline.records import Records
 from hideseek_pipeline.workspace import ToolError, Workspace
 
 SWEEP_COMMANDS = {
-    "start": "start the queue in the background (it builds each phase's worktree first) and return; a queue "
-             "already running is left alone",
+    "start": "start the queue in the background and return (it builds the first phase's worktree first, a later "
+             "phase's when its first run is next); a queue already running is left alone",
     "run": "the queue in the foreground (what start runs)",
     "build": "create and build each phase's worktree at its commit, and nothing else",
     "status": "every phase, and every run in queue order: done (its evaluations, whether it is analysed and "

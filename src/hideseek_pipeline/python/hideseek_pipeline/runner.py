@@ -249,11 +249,14 @@ def _run_locked(sweep):
         remove_file(sweep.state_file("paused"))
     if not proc.native_bf16() and any(p.precision == "bf16" for p in sweep.config.phases):
         raise SweepError(NO_BF16)
-    # Only the trees of phases with runs left: a finished phase's old tree never blocks the queue.
-    left = {r.phase.name for r in sweep.to_train()}
-    for phase in sweep.config.phases:
-        if phase.name in left:
-            prepare_tree(sweep, phase)
+    # The first phase with runs left is built now, so that a broken pin stops the queue at once; a
+    # later phase's tree is built when its first run is next (_prepare_next), so that a session
+    # that never reaches it spends no time on its build. A finished phase's tree is never built.
+    prepared = set()
+    first = next(iter(sweep.to_train()), None)
+    if first:
+        prepare_tree(sweep, first.phase)
+        prepared.add(first.phase.name)
     say("queue: %d runs in %d phases (%s) from %s" % (
         len(sweep.config.runs()), len(sweep.config.phases), ", ".join(p.name for p in sweep.config.phases), sweep.dir))
     running, failed = {}, set()  # name -> (process, slot, phase jobs)
@@ -272,6 +275,7 @@ def _run_locked(sweep):
     while not os.path.exists(sweep.state_file("stop")):
         started = False
         if not os.path.exists(sweep.state_file("paused")):
+            _prepare_next(sweep, running, failed, prepared)
             with proc.FileLock(sweep.state_file("launch.lock")):
                 started = not os.path.exists(sweep.state_file("paused")) and _start_next(sweep, running, failed, ctx)
         if started:
@@ -289,6 +293,22 @@ def _run_locked(sweep):
                     failed.add(name)
                 remove_file(sweep.state_file("job." + name))
                 del running[name]
+
+
+def _prepare_next(sweep, running, failed, prepared):
+    """Builds the worktree of the next run's phase if it is not built yet, outside the launch lock
+    (a pause need not wait for a build). A tree that cannot be built fails its phase's runs, by
+    name, and the queue goes on with the phases after it."""
+    run = next((r for r in sweep.to_train() if r.name not in running and r.name not in failed), None)
+    if run is None or run.phase.name in prepared:
+        return
+    try:
+        prepare_tree(sweep, run.phase)
+    except SweepError as e:
+        names = [r.name for r in sweep.to_train() if r.phase.name == run.phase.name]
+        say("phase %s: %s; its runs are not started (%s)" % (run.phase.name, e, ", ".join(names)))
+        failed.update(names)
+    prepared.add(run.phase.name)
 
 
 def _start_next(sweep, running, failed, ctx):
