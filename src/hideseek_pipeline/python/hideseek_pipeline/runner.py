@@ -240,6 +240,7 @@ def run(sweep):
 
 
 def _run_locked(sweep):
+    since = time.time()  # a phase's start_within_min counts from here
     open(sweep.state_file("queue.pid"), "w").write("%d\n" % os.getpid())
     for f in os.listdir(sweep.state):
         if f.startswith("job.") or f == "stop":
@@ -259,7 +260,7 @@ def _run_locked(sweep):
         prepared.add(first.phase.name)
     say("queue: %d runs in %d phases (%s) from %s" % (
         len(sweep.config.runs()), len(sweep.config.phases), ", ".join(p.name for p in sweep.config.phases), sweep.dir))
-    running, failed = {}, set()  # name -> (process, slot, phase jobs)
+    running, failed, waiting = {}, set(), set()  # running: name -> (process, slot, phase jobs)
     ctx = multiprocessing.get_context("fork")
 
     def stop_runs(*_):
@@ -275,15 +276,23 @@ def _run_locked(sweep):
     while not os.path.exists(sweep.state_file("stop")):
         started = False
         if not os.path.exists(sweep.state_file("paused")):
-            _prepare_next(sweep, running, failed, prepared)
+            _prepare_next(sweep, running, failed, _late(sweep, since, running, waiting), prepared)
             with proc.FileLock(sweep.state_file("launch.lock")):
-                started = not os.path.exists(sweep.state_file("paused")) and _start_next(sweep, running, failed, ctx)
+                started = not os.path.exists(sweep.state_file("paused")) and _start_next(
+                    sweep, running, failed | _late(sweep, since, running, waiting), ctx)
         if started:
             continue
         if not running and not os.path.exists(sweep.state_file("paused")):
-            left = [r.name for r in sweep.to_train()]
-            say("every run of the queue is done" if not left else
-                "nothing left to start: %d runs failed (see the logs); start again to retry them" % len(left))
+            left = [r for r in sweep.to_train()]
+            late = [r for r in left if r.name in waiting and r.name not in failed]
+            if not left:
+                say("every run of the queue is done")
+            if len(left) > len(late):
+                say("nothing left to start: %d runs failed (see the logs); start again to retry them"
+                    % (len(left) - len(late)))
+            if late:
+                say("nothing left to start now: %s %s for the queue's next start (%s)" % (
+                    ", ".join(r.name for r in late), "waits" if len(late) == 1 else "wait", _window_text(late[0].phase)))
             return
         time.sleep(5)
         for name, (process, _, _) in list(running.items()):
@@ -295,11 +304,28 @@ def _run_locked(sweep):
                 del running[name]
 
 
-def _prepare_next(sweep, running, failed, prepared):
+def _window_text(phase):
+    return ("phase %s starts a run only within %g min of the queue's start: start the queue at a session's "
+            "beginning" % (phase.name, phase.start_within_min))
+
+
+def _late(sweep, since, running, waiting):
+    """The runs left whose phase's start_within_min has passed since the queue's start, each said
+    once when it first waits; the queue starts the runs after them meanwhile."""
+    late = {r.name for r in sweep.to_train() if r.name not in running
+            and r.phase.start_within_min and time.time() - since > 60.0 * r.phase.start_within_min}
+    for name in sorted(late - waiting):
+        say("%s: not started (%s); the queue goes on with the runs after it"
+            % (name, _window_text(next(r.phase for r in sweep.to_train() if r.name == name))))
+    waiting |= late
+    return late
+
+
+def _prepare_next(sweep, running, failed, late, prepared):
     """Builds the worktree of the next run's phase if it is not built yet, outside the launch lock
     (a pause need not wait for a build). A tree that cannot be built fails its phase's runs, by
     name, and the queue goes on with the phases after it."""
-    run = next((r for r in sweep.to_train() if r.name not in running and r.name not in failed), None)
+    run = next((r for r in sweep.to_train() if r.name not in running and r.name not in failed | late), None)
     if run is None or run.phase.name in prepared:
         return
     try:

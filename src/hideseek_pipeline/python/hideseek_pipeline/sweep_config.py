@@ -14,6 +14,10 @@ phase (role: selfplay) trains both sides in `generations` generations, `steps` p
 generation's opponent drawn with the latest generation's `latest_share`, unset: the pin's default), then
 plays their cross-play and records it (hideseek_pipeline selfplay --record); it ships nothing, and
 its runs are named <variant>_selfplay[_<game>][_latest<percent>]_seed<S>.
+
+A phase's `start_within_min` keeps a long run for a session's beginning: its runs start only within
+that many minutes of the queue's start (0, the default: any time); past it the queue goes on with
+the phases after it, and the run waits for the queue's next start.
 """
 import os
 from dataclasses import dataclass, field
@@ -23,7 +27,7 @@ import yaml
 
 TWO_MILLION = 2_000_000
 PHASE_KEYS = ("commit", "game", "variants", "seeds", "network", "steps", "precision", "jobs", "hider_threads", "ship",
-              "role", "opponent", "generations", "latest_share")
+              "role", "opponent", "generations", "latest_share", "start_within_min")
 TOP_KEYS = PHASE_KEYS + ("port", "phases")
 NETWORKS = ("ff", "gru")
 ROLES = ("hider", "seeker", "selfplay")
@@ -50,6 +54,7 @@ class Phase:
     opponent: str = ""   # the fixed other side ('': the default, a seeker's: the shipped hider)
     generations: int = 4  # self-play: generations of each side (steps / generations each)
     latest_share: Optional[float] = None  # self-play: the draw's share of the latest opponent (None: the pin's default)
+    start_within_min: float = 0  # a run of it starts only this soon after the queue's start (0: any time)
 
 
 @dataclass
@@ -225,6 +230,13 @@ def _phase(m, where, known_variants, paper_order, default_game):
         latest_share = probability(latest_share)
         if latest_share is None:
             raise ConfigError("%s: latest_share: '%s' is not a number from 0 to 1" % (where, m["latest_share"]))
+    try:
+        start_within_min = float(m.get("start_within_min", 0))
+    except (TypeError, ValueError):
+        start_within_min = -1.0
+    if not start_within_min >= 0:
+        raise ConfigError("%s: start_within_min: '%s' is not a number of minutes >= 0 (0: any time)"
+                          % (where, m["start_within_min"]))
     if role == "selfplay":
         if network != "ff" or m.get("opponent"):
             raise ConfigError("%s: a self-play phase trains feed-forward learners against each other's pools "
@@ -237,7 +249,8 @@ def _phase(m, where, known_variants, paper_order, default_game):
                  steps=_whole(m["steps"], "steps", where, 1), precision=str(m["precision"]),
                  jobs=_whole(m["jobs"], "jobs", where, 1),
                  hider_threads=_whole(m["hider_threads"], "hider_threads", where, 1), ship=ship, role=role,
-                 opponent=str(m.get("opponent") or ""), generations=generations, latest_share=latest_share)
+                 opponent=str(m.get("opponent") or ""), generations=generations, latest_share=latest_share,
+                 start_within_min=start_within_min)
 
 
 def _flag(value, key, where):
