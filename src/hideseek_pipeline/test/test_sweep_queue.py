@@ -460,6 +460,16 @@ echo "end $name $(date +%s.%N)" >> "$CALLS"
 """
 
 
+def shell_trainer_repo(tmp_path):
+    """A folder with the stand-in shell trainer (and a module it imports), to commit as a pin."""
+    repo = tmp_path / "repo"
+    (repo / "scripts").mkdir(parents=True)
+    (repo / "scripts" / "train_variant.sh").write_text(FAKE_TRAIN)
+    (repo / "scripts" / "train_variant.sh").chmod(0o755)
+    (repo / "scripts" / "helper.py").write_text("VALUE = 1\n")
+    return repo
+
+
 def pinned_repo(repo):
     """Commits the folder `repo` as a small git repository and returns the commit."""
     git = ["git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t"]
@@ -496,11 +506,7 @@ def test_the_queue_trains_phase_by_phase_records_ships_and_keeps_each_phase_s_ru
     """The queue itself, with a stand-in trainer in a worktree of a small repository: every run
     trained once, in order; two at once in the first phase, the later phase's run alone with its
     own threads; each recorded as a sweep run of its phase, analysed, and the median shipped."""
-    repo = tmp_path / "repo"
-    (repo / "scripts").mkdir(parents=True)
-    (repo / "scripts" / "train_variant.sh").write_text(FAKE_TRAIN)
-    (repo / "scripts" / "train_variant.sh").chmod(0o755)
-    (repo / "scripts" / "helper.py").write_text("VALUE = 1\n")
+    repo = shell_trainer_repo(tmp_path)
     rec = make_records(tmp_path, {})
     fake_analysis(rec)
     # what `sweep partial` recorded of basic_seed0 before a machine went: gone once the run is recorded
@@ -563,11 +569,7 @@ def test_a_later_phase_s_tree_is_built_only_when_its_first_run_is_next_and_a_fai
     """A later phase's pin is built once the queue reaches it, not before the first phase trains
     (a session that never reaches it spends nothing); when its build fails, the queue names the
     phase and its runs, and what the first phase trained is recorded."""
-    repo = tmp_path / "repo"
-    (repo / "scripts").mkdir(parents=True)
-    (repo / "scripts" / "train_variant.sh").write_text(FAKE_TRAIN)
-    (repo / "scripts" / "train_variant.sh").chmod(0o755)
-    (repo / "scripts" / "helper.py").write_text("VALUE = 1\n")
+    repo = shell_trainer_repo(tmp_path)
     unbuildable = pinned_repo(repo)  # no scripts/env.sh, no catkin workspace: its build fails
     rec = make_records(tmp_path, {})
     fake_analysis(rec)
@@ -591,11 +593,7 @@ def test_a_phase_kept_for_a_session_s_beginning_waits_for_the_next_start_while_t
     """start_within_min: once the queue has run longer than that, the phase's run is not started
     (said by name) and the phase after it trains meanwhile; the next start, within the window
     (here SWEEP_START_WITHIN_MIN, every phase's override), trains it."""
-    repo = tmp_path / "repo"
-    (repo / "scripts").mkdir(parents=True)
-    (repo / "scripts" / "train_variant.sh").write_text(FAKE_TRAIN)
-    (repo / "scripts" / "train_variant.sh").chmod(0o755)
-    (repo / "scripts" / "helper.py").write_text("VALUE = 1\n")
+    repo = shell_trainer_repo(tmp_path)
     rec = make_records(tmp_path, {})
     fake_analysis(rec)
     calls = tmp_path / "calls.txt"
