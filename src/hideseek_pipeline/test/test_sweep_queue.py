@@ -186,15 +186,24 @@ def test_hours_sums_each_phase_s_recorded_training_time_per_machine(tmp_path):
                        ("basic_v3_gru_8m_seed0", 7200), ("basic_seed1", 99999)):
         entries[name]["wall_s"] = wall
     registry.write_text(yaml.safe_dump(entries, sort_keys=False))
-    r = sweep(tmp_path, rec, "hours", config=config_file(tmp_path, TWO_PHASES))
+    three = TWO_PHASES + (
+        '  - {name: longer, commit: "0123456789ab", game: v2, variants: [basic], seeds: [0], steps: 4000000}\n'
+        '  - {name: seeker, commit: "0123456789ab", role: seeker, variants: [basic], seeds: [0]}\n')
+    r = sweep(tmp_path, rec, "hours", config=config_file(tmp_path, three))
     assert r.returncode == 0, r.stderr
     table = {line.split("|")[1].strip(): [c.strip() for c in line.split("|")[2:-1]]
-             for line in r.stdout.splitlines() if line.startswith("| first") or line.startswith("| later")}
-    # first: two of four runs, 2.6 run-hours, two at once: 1.3 machine-hours, 39 min a run; a retrain of 0.6 h
-    assert table["first"] == ["v2", "2 of 4", "2.6", "2", "1.3", "39", "1, 0.3"]
+             for line in r.stdout.splitlines() if line.startswith("| ") and not line.startswith("| phase")}
+    # first: two of four runs, 2.6 run-hours, two at once: 1.3 machine-hours, 39 min a run; a retrain of
+    # 0.6 h; its two runs left at its own 39 min a run
+    assert table["first"] == ["v2", "2 of 4", "2.6", "2", "1.3", "39", "1, 0.3", "2, 1.3 (its runs)"]
     # later: one run alone (jobs 1): its run-hours are machine-hours
-    assert table["later"] == ["v3", "1 of 1", "2.0", "1", "2.0", "120", "-"]
+    assert table["later"] == ["v3", "1 of 1", "2.0", "1", "2.0", "120", "-", "-"]
+    # a phase with no run done: at the machine time per step of the earlier phase of its kind (ff, the
+    # same game: first, not the GRU's later), over its own steps; a seeker's phase has no phase of its kind
+    assert table["longer"][-1] == "1, 1.3 (first)"
+    assert table["seeker"][-1] == "1, - (no run of its kind done)"
     assert "In all: 3.6 machine-hours" in r.stdout
+    assert "Left: about 2.6 machine-hours of training, estimated" in r.stdout
 
 
 def test_phases_run_in_order_each_seed_major_and_names_tell_the_runs_apart(tmp_path):

@@ -188,11 +188,14 @@ def hours(sweep):
     summed as run-hours (a self-play's: its generations' in all). A phase trains `jobs` runs at once,
     which share the machine, so its machine-hours are its run-hours / jobs. Retrains
     (<run>_retrain) are counted apart, as if trained `jobs` at once too; evaluations and analyses are
-    not counted."""
+    not counted. The runs left are estimated at the machine time per step of the phase's own done
+    runs or, where it has none, of the nearest earlier phase with the same role and network (the
+    same game first)."""
     entries = sweep.records.entries()
     out = ["| phase | game | runs done | run-hours | jobs | machine-hours | machine minutes per run "
-           "| retrains: runs, machine-hours |", "| --- | --- | --- | --- | --- | --- | --- | --- |"]
-    total = 0.0
+           "| retrains: runs, machine-hours | left: runs, machine-hours (estimated from) |",
+           "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    total, left_h, per_step = 0.0, 0.0, {}  # per_step: phase name -> machine seconds per step
     for phase in sweep.config.phases:
         runs = [r for r in sweep.config.runs() if r.phase is phase]
         done = [r for r in runs if sweep.records.is_done(r)]
@@ -202,14 +205,37 @@ def hours(sweep):
         machine_h = first_s / 3600.0 / phase.jobs
         retrain_h = sum(_wall_s(entries[n]) for n in retrains) / 3600.0 / phase.jobs
         total += machine_h + retrain_h
-        out.append("| %s | %s | %d of %d | %.1f | %d | %.1f | %s | %s |" % (
+        if done and first_s > 0:
+            per_step[phase.name] = machine_h * 3600.0 / (len(done) * phase.steps)
+        left, estimate = len(runs) - len(done), "-"
+        source = _rate_source(sweep.config.phases, phase, per_step)
+        if left and source:
+            h = left * phase.steps * per_step[source.name] / 3600.0
+            left_h += h
+            estimate = "%d, %.1f (%s)" % (left, h, "its runs" if source is phase else source.name)
+        elif left:
+            estimate = "%d, - (no run of its kind done)" % left
+        out.append("| %s | %s | %d of %d | %.1f | %d | %.1f | %s | %s | %s |" % (
             phase.name, phase.game, len(done), len(runs), first_s / 3600.0, phase.jobs, machine_h,
             "%.0f" % (machine_h * 60 / len(done)) if done else "-",
-            "%d, %.1f" % (len(retrains), retrain_h) if retrains else "-"))
+            "%d, %.1f" % (len(retrains), retrain_h) if retrains else "-", estimate))
     out.append("")
     out.append("In all: %.1f machine-hours of training recorded (evaluations and analyses not counted)." % total)
+    out.append("Left: about %.1f machine-hours of training, estimated (a run under way counts whole; a phase "
+               "estimated from another is taken to train as fast per step, rough where the two train a different "
+               "number of runs at once)." % left_h)
     print("\n".join(out))
     return 0
+
+
+def _rate_source(phases, phase, per_step):
+    """The phase whose machine time per step estimates `phase`'s runs left: its own, else the nearest
+    earlier phase of the same role and network with done runs, one of the same game first."""
+    if phase.name in per_step:
+        return phase
+    earlier = [p for p in phases[:phases.index(phase)][::-1]
+               if p.name in per_step and p.role == phase.role and p.network == phase.network]
+    return next((p for p in earlier if p.game == phase.game), earlier[0] if earlier else None)
 
 
 def _run_s(sweep, run, entries):
