@@ -177,17 +177,20 @@ def test_hours_sums_each_phase_s_recorded_training_time_per_machine(tmp_path):
         "slowerhider_seed0": ("slowerhider", 0, 2000000, [30], [30]),
         "basic_seed0_retrain": ("basic", 0, 2000000, [30], [30]),
         "basic_v3_gru_8m_seed0": ("basic", 0, 8000000, [30], [30]),
+        "basic_v3_seed0": ("basic", 0, 2000000, [30], [30]),
         # short of its steps: not done, not counted
         "basic_seed1": ("basic", 1, 1000000, [30], [30]),
     })
     registry = rec / "policies" / "policies.yaml"
     entries = yaml.safe_load(registry.read_text())
     for name, wall in (("basic_seed0", 3600), ("slowerhider_seed0", 5760), ("basic_seed0_retrain", 2160),
-                       ("basic_v3_gru_8m_seed0", 7200), ("basic_seed1", 99999)):
+                       ("basic_v3_gru_8m_seed0", 7200), ("basic_v3_seed0", 2160), ("basic_seed1", 99999)):
         entries[name]["wall_s"] = wall
     registry.write_text(yaml.safe_dump(entries, sort_keys=False))
     three = TWO_PHASES + (
+        '  - {name: v3ff, commit: "0123456789ab", game: v3, variants: [basic], seeds: [0]}\n'
         '  - {name: longer, commit: "0123456789ab", game: v2, variants: [basic], seeds: [0], steps: 4000000}\n'
+        '  - {name: longer3, commit: "0123456789ab", game: v3, variants: [basic], seeds: [1], steps: 4000000}\n'
         '  - {name: seeker, commit: "0123456789ab", role: seeker, variants: [basic], seeds: [0]}\n')
     r = sweep(tmp_path, rec, "hours", config=config_file(tmp_path, three))
     assert r.returncode == 0, r.stderr
@@ -198,12 +201,15 @@ def test_hours_sums_each_phase_s_recorded_training_time_per_machine(tmp_path):
     assert table["first"] == ["v2", "2 of 4", "2.6", "2", "1.3", "39", "1, 0.3", "2, 1.3 (its runs)"]
     # later: one run alone (jobs 1): its run-hours are machine-hours
     assert table["later"] == ["v3", "1 of 1", "2.0", "1", "2.0", "120", "-", "-"]
-    # a phase with no run done: at the machine time per step of the earlier phase of its kind (ff, the
-    # same game: first, not the GRU's later), over its own steps; a seeker's phase has no phase of its kind
+    # a phase with no run done: at the machine time per step of the nearest earlier phase of its kind
+    # (the same role and network, the same game first: v2's first for longer, though v3ff is nearer;
+    # v3ff for longer3), over its own steps; a seeker's phase has no phase of its kind
+    assert table["v3ff"][-1] == "-" and table["v3ff"][4] == "0.3"
     assert table["longer"][-1] == "1, 1.3 (first)"
+    assert table["longer3"][-1] == "1, 0.6 (v3ff)"
     assert table["seeker"][-1] == "1, - (no run of its kind done)"
-    assert "In all: 3.6 machine-hours" in r.stdout
-    assert "Left: about 2.6 machine-hours of training, estimated" in r.stdout
+    assert "In all: 3.9 machine-hours" in r.stdout
+    assert "Left: about 3.2 machine-hours of training, estimated" in r.stdout
 
 
 def test_phases_run_in_order_each_seed_major_and_names_tell_the_runs_apart(tmp_path):
@@ -573,11 +579,12 @@ def test_a_pin_without_the_shell_trainer_trains_through_hideseek_pipeline_train_
     assert e["weights"] == "basic.pt" and (rec / "docs" / "runs" / "basic_seed0" / "analysis" / "behaviour.csv").exists()
 
 
-def test_a_later_phase_s_tree_is_built_only_when_its_first_run_is_next_and_a_failed_build_fails_only_its_runs(
+def test_a_later_phase_s_tree_is_built_only_when_its_first_run_could_start_and_a_failed_build_fails_only_its_runs(
         tmp_path):
-    """A later phase's pin is built once the queue reaches it, not before the first phase trains
-    (a session that never reaches it spends nothing); when its build fails, the queue names the
-    phase and its runs, and what the first phase trained is recorded."""
+    """A later phase's pin is built once its first run could start (here, once the first phase's
+    run is done: the later phase trains alone), not before the first phase trains (a session that
+    never reaches it spends nothing); when its build fails, the queue names the phase and its runs,
+    goes on with the phase after it, and records what trained."""
     repo = shell_trainer_repo(tmp_path)
     unbuildable = pinned_repo(repo)  # no scripts/env.sh, no catkin workspace: its build fails
     rec = make_records(tmp_path, {})
@@ -585,17 +592,19 @@ def test_a_later_phase_s_tree_is_built_only_when_its_first_run_is_next_and_a_fai
     calls = tmp_path / "calls.txt"
     text = TWO_PHASES.replace("seeds: [0, 1]", "seeds: [0]").replace(
         "variants: [basic, slowerhider]", "variants: [basic]").replace(
-        'name: later, commit: "0123456789ab"', 'name: later, commit: "%s"' % unbuildable)
+        'name: later, commit: "0123456789ab"', 'name: later, commit: "%s"' % unbuildable) + (
+        '  - {name: after, commit: "0123456789ab", game: v3, variants: [basic], seeds: [0], ship: false}\n')
     _, _, r = queue_in(tmp_path, repo, rec, text, calls)  # the first phase: a commit after it, marked built
     assert r.returncode == 0, r.stdout + r.stderr
     out = r.stdout
-    assert out.index("basic_seed0: training") < out.index("building the worktree at %s" % unbuildable[:12])
-    assert "basic_seed0: done" in out
-    assert re.search(r"phase later: the worktree's build failed: \S+; "
-                     r"its runs are not started \(basic_v3_gru_8m_seed0\)", out), out
+    assert out.index("basic_seed0: done") < out.index("building the worktree at %s" % unbuildable[:12])
+    assert re.search(r"phase later: the worktree's build failed: \S+\n", out), out
+    assert ("phase later: its tree at %s did not build; its runs are not started (basic_v3_gru_8m_seed0)"
+            % unbuildable[:12]) in out
+    assert out.index("did not build") < out.index("basic_v3_seed0: training") < out.index("basic_v3_seed0: done")
     assert "nothing left to start: 1 runs failed" in out
     entries = yaml.safe_load((rec / "policies" / "policies.yaml").read_text())
-    assert "basic_seed0" in entries and "basic_v3_gru_8m_seed0" not in entries
+    assert "basic_seed0" in entries and "basic_v3_seed0" in entries and "basic_v3_gru_8m_seed0" not in entries
 
 
 def test_a_phase_kept_for_a_session_s_beginning_waits_for_the_next_start_while_the_phases_after_it_train(tmp_path):

@@ -29,7 +29,7 @@ from hideseek_pipeline.workspace import ToolError, Workspace
 
 SWEEP_COMMANDS = {
     "start": "start the queue in the background and return (it builds the first phase's worktree first, a later "
-             "phase's when its first run is next); a queue already running is left alone",
+             "phase's when its first run could start); a queue already running is left alone",
     "run": "the queue in the foreground (what start runs)",
     "build": "create and build each phase's worktree at its commit, and nothing else",
     "status": "every phase, and every run in queue order: done (its evaluations, whether it is analysed and "

@@ -251,13 +251,13 @@ def _run_locked(sweep):
     if not proc.native_bf16() and any(p.precision == "bf16" for p in sweep.config.phases):
         raise SweepError(NO_BF16)
     # The first phase with runs left is built now, so that a broken pin stops the queue at once; a
-    # later phase's tree is built when its first run is next (_prepare_next), so that a session
+    # later phase's tree is built when its first run could start (_build_next), so that a session
     # that never reaches it spends no time on its build. A finished phase's tree is never built.
-    prepared = set()
+    prepared = {}  # commit -> whether its tree built
     first = next(iter(sweep.to_train()), None)
     if first:
         prepare_tree(sweep, first.phase)
-        prepared.add(first.phase.name)
+        prepared[sweep.commit(first.phase)] = True
     say("queue: %d runs in %d phases (%s) from %s" % (
         len(sweep.config.runs()), len(sweep.config.phases), ", ".join(p.name for p in sweep.config.phases), sweep.dir))
     running, failed, waiting = {}, set(), set()  # running: name -> (process, slot, phase jobs)
@@ -276,10 +276,11 @@ def _run_locked(sweep):
     while not os.path.exists(sweep.state_file("stop")):
         started = False
         if not os.path.exists(sweep.state_file("paused")):
-            _prepare_next(sweep, running, failed, _late(sweep, since, running, waiting), prepared)
+            skip = failed | _late(sweep, since, running, failed, waiting)
+            if _build_next(sweep, running, skip, prepared, failed):
+                continue  # a tree was built (or failed to build): look again
             with proc.FileLock(sweep.state_file("launch.lock")):
-                started = not os.path.exists(sweep.state_file("paused")) and _start_next(
-                    sweep, running, failed | _late(sweep, since, running, waiting), ctx)
+                started = not os.path.exists(sweep.state_file("paused")) and _start_next(sweep, running, skip, ctx)
         if started:
             continue
         if not running and not os.path.exists(sweep.state_file("paused")):
@@ -309,10 +310,10 @@ def _window_text(phase):
             "beginning" % (phase.name, phase.start_within_min))
 
 
-def _late(sweep, since, running, waiting):
-    """The runs left whose phase's start_within_min has passed since the queue's start, each said
-    once when it first waits; the queue starts the runs after them meanwhile."""
-    late = {r.name for r in sweep.to_train() if r.name not in running
+def _late(sweep, since, running, failed, waiting):
+    """The runs left (not under way, not failed) whose phase's start_within_min has passed since the
+    queue's start, each said once when it first waits; the queue starts the runs after them meanwhile."""
+    late = {r.name for r in sweep.to_train() if r.name not in running and r.name not in failed
             and r.phase.start_within_min and time.time() - since > 60.0 * r.phase.start_within_min}
     for name in sorted(late - waiting):
         say("%s: not started (%s); the queue goes on with the runs after it"
@@ -321,32 +322,49 @@ def _late(sweep, since, running, waiting):
     return late
 
 
-def _prepare_next(sweep, running, failed, late, prepared):
-    """Builds the worktree of the next run's phase if it is not built yet, outside the launch lock
-    (a pause need not wait for a build). A tree that cannot be built fails its phase's runs, by
-    name, and the queue goes on with the phases after it."""
-    run = next((r for r in sweep.to_train() if r.name not in running and r.name not in failed | late), None)
-    if run is None or run.phase.name in prepared:
-        return
-    try:
-        prepare_tree(sweep, run.phase)
-    except SweepError as e:
-        names = [r.name for r in sweep.to_train() if r.phase.name == run.phase.name]
-        say("phase %s: %s; its runs are not started (%s)" % (run.phase.name, e, ", ".join(names)))
-        failed.update(names)
-    prepared.add(run.phase.name)
-
-
-def _start_next(sweep, running, failed, ctx):
-    """Starts the first run left in order, if its phase's number of runs at once allows it."""
+def _next_run(sweep, running, skip):
+    """The first run left in order, not under way and not in `skip`, if its phase's number of runs
+    at once allows it to start now; else None."""
     # No free slot for any run while a running run's phase allows no more: the list is not even read.
     if running and len(running) >= min(jobs for _, _, jobs in running.values()):
-        return False
+        return None
     for run in sweep.to_train():
-        if run.name in running or run.name in failed:
+        if run.name in running or run.name in skip:
             continue
         if len(running) >= run.phase.jobs or any(jobs < len(running) + 1 for _, _, jobs in running.values()):
-            return False
+            return None
+        return run
+    return None
+
+
+def _build_next(sweep, running, skip, prepared, failed):
+    """Builds the worktree of the run that could start now if its commit is not built yet, outside
+    the launch lock (a pause need not wait for a build; the build runs beside the runs under way).
+    A commit that cannot be built fails its phases' runs, by name, and the queue goes on with the
+    phases after them. Returns whether it built or failed anything."""
+    run = _next_run(sweep, running, skip)
+    if run is None or prepared.get(sweep.commit(run.phase)):
+        return False
+    commit = sweep.commit(run.phase)
+    if commit not in prepared:
+        try:
+            prepare_tree(sweep, run.phase)
+            prepared[commit] = True
+            return True
+        except SweepError as e:
+            say("phase %s: %s" % (run.phase.name, e))
+            prepared[commit] = False
+    names = [r.name for r in sweep.to_train() if r.phase.name == run.phase.name]
+    say("phase %s: its tree at %s did not build; its runs are not started (%s)" % (
+        run.phase.name, commit[:12], ", ".join(names)))
+    failed.update(names)
+    return True
+
+
+def _start_next(sweep, running, skip, ctx):
+    """Starts the first run left in order, if its phase's number of runs at once allows it."""
+    run = _next_run(sweep, running, skip)
+    if run is not None:
         used = {slot for _, slot, _ in running.values()}
         slot = min(s for s in range(len(running) + 1) if s not in used)
         process = ctx.Process(target=_job_process, args=(sweep, run, slot), name=run.name)
