@@ -13,6 +13,7 @@ from hideseek_pipeline import processes as proc
 from hideseek_pipeline import selfplay
 from hideseek_pipeline.workspace import Workspace
 from hideseek_pipeline.queue import RETRAIN_SUFFIX, SweepError, last_line, read_lines, remove_file
+from hideseek_pipeline.sweep_config import start_window
 
 
 def status(sweep):
@@ -21,9 +22,8 @@ def status(sweep):
     if os.path.exists(sweep.state_file("paused")):
         queue += ", PAUSED since %s" % time.strftime("%H:%M:%S", time.localtime(paused_since(sweep)))
     out.append("sweep: %d phases (%s), runs %s; queue %s" % (
-        len(sweep.config.phases), ", ".join("%s at %s%s" % (p.name, sweep.commit(p)[:12], (
-            " (starts a run only within %g min of the queue's start)" % p.start_within_min) if p.start_within_min
-            else "") for p in sweep.config.phases),
+        len(sweep.config.phases), ", ".join("%s at %s" % (p.name, sweep.commit(p)[:12]) + (
+            " (%s)" % start_window(p) if p.start_within_min else "") for p in sweep.config.phases),
         sweep.runs_dir, queue))
     if not proc.native_bf16():
         out.append("sweep: this CPU has no native bf16: the queue will not train bf16 phases here")

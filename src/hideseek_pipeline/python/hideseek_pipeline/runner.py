@@ -13,6 +13,7 @@ import time
 from hideseek_pipeline import analyze as analysis
 from hideseek_pipeline import processes as proc
 from hideseek_pipeline.queue import NO_BF16, RETRAIN_SUFFIX, SweepError, last_line, package_path, remove_file, say
+from hideseek_pipeline.sweep_config import start_window
 
 
 def prepare_tree(sweep, phase):
@@ -284,7 +285,7 @@ def _run_locked(sweep):
         if started:
             continue
         if not running and not os.path.exists(sweep.state_file("paused")):
-            left = [r for r in sweep.to_train()]
+            left = list(sweep.to_train())
             late = [r for r in left if r.name in waiting and r.name not in failed]
             if not left:
                 say("every run of the queue is done")
@@ -306,20 +307,18 @@ def _run_locked(sweep):
 
 
 def _window_text(phase):
-    return ("phase %s starts a run only within %g min of the queue's start: start the queue at a session's "
-            "beginning" % (phase.name, phase.start_within_min))
+    return "phase %s %s: start the queue at a session's beginning" % (phase.name, start_window(phase))
 
 
 def _late(sweep, since, running, failed, waiting):
     """The runs left (not under way, not failed) whose phase's start_within_min has passed since the
     queue's start, each said once when it first waits; the queue starts the runs after them meanwhile."""
-    late = {r.name for r in sweep.to_train() if r.name not in running and r.name not in failed
+    late = {r.name: r for r in sweep.to_train() if r.name not in running and r.name not in failed
             and r.phase.start_within_min and time.time() - since > 60.0 * r.phase.start_within_min}
-    for name in sorted(late - waiting):
-        say("%s: not started (%s); the queue goes on with the runs after it"
-            % (name, _window_text(next(r.phase for r in sweep.to_train() if r.name == name))))
-    waiting |= late
-    return late
+    for name in sorted(set(late) - waiting):
+        say("%s: not started (%s); the queue goes on with the runs after it" % (name, _window_text(late[name].phase)))
+    waiting |= set(late)
+    return set(late)
 
 
 def _next_run(sweep, running, skip):

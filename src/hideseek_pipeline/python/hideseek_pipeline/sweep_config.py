@@ -100,6 +100,13 @@ def probability(value):
     return value if 0.0 <= value <= 1.0 else None
 
 
+def start_window(phase):
+    """What the phase's start_within_min means, for a person ('' where it has none)."""
+    if not phase.start_within_min:
+        return ""
+    return "starts a run only within %g min of the queue's start" % phase.start_within_min
+
+
 def run_name(variant, seed, game, network, steps, role="hider", latest_share=None):
     """The run's name: what tells it apart. v2's feed-forward 2M runs keep their names
     (basic_seed0, basic_gru_seed1); a seeker, another game, network or budget adds itself:
