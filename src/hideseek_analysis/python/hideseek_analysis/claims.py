@@ -721,7 +721,8 @@ def budget_check(c, rows, big):
     per = {"basic %s" % label: long_runs, "basic 2M": short_runs}
     if not long_runs or not short_runs:
         return claim(name, paper, "living steps, basic at %s minus basic at 2M" % label, runs=runs_text(per),
-                     note="needs basic's %s runs (config/sweep.yaml's last phase) and its 2M runs" % label,
+                     note="needs basic's %s runs (config/sweep.yaml's phase of basic at %s steps) and its 2M runs"
+                     % (label, label.upper()),
                      practical=PRACTICAL["living"][1])
     d, ci = st.mean_difference(long_runs, short_runs, c.rng("budget", label), c.reps)
     res, size = decide(ci, min(len(long_runs), len(short_runs)), d, "living")
