@@ -312,13 +312,20 @@ def _window_text(phase):
 
 def _late(sweep, since, running, failed, waiting):
     """The runs left (not under way, not failed) whose phase's start_within_min has passed since the
-    queue's start, each said once when it first waits; the queue starts the runs after them meanwhile."""
-    late = {r.name: r for r in sweep.to_train() if r.name not in running and r.name not in failed
-            and r.phase.start_within_min and time.time() - since > 60.0 * r.phase.start_within_min}
-    for name in sorted(set(late) - waiting):
-        say("%s: not started (%s); the queue goes on with the runs after it" % (name, _window_text(late[name].phase)))
-    waiting |= set(late)
-    return set(late)
+    queue's start; the queue starts the runs after them meanwhile. Each is said once, when the queue
+    reaches it: when no run before it in the order is still waiting to start."""
+    late, reached = set(), True
+    for r in sweep.to_train():
+        if r.name in running or r.name in failed:
+            continue
+        if not (r.phase.start_within_min and time.time() - since > 60.0 * r.phase.start_within_min):
+            reached = False
+            continue
+        late.add(r.name)
+        if reached and r.name not in waiting:
+            say("%s: not started (%s); the queue goes on with the runs after it" % (r.name, _window_text(r.phase)))
+            waiting.add(r.name)
+    return late
 
 
 def _next_run(sweep, running, skip):
