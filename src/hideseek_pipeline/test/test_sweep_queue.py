@@ -617,26 +617,27 @@ def test_a_phase_kept_for_a_session_s_beginning_waits_for_the_next_start_while_t
     fake_analysis(rec)
     calls = tmp_path / "calls.txt"
     # the first phase's runs, one at a time, take a second at least each (the stand-in sleeps 1 s): the
-    # window, 0.3 s, has passed while basic_seed1 still waits for basic_seed0
-    text = TWO_PHASES.replace('seeds: [0, 1]}', 'seeds: [0, 1], jobs: 1}').replace(
+    # window, 0.3 s, has passed while basic_seed1 and basic_seed2 still wait; the late run is reached
+    # once basic_seed2 has started, after basic_seed1 is done (its process says so before it ends)
+    text = TWO_PHASES.replace('seeds: [0, 1]}', 'seeds: [0, 1, 2], jobs: 1}').replace(
         "variants: [basic, slowerhider]", "variants: [basic]").replace(
         "jobs: 1, hider_threads: 2, ship: false}", "jobs: 1, hider_threads: 2, ship: false, start_within_min: 0.005}\n"
         '  - {name: after, commit: "0123456789ab", game: v3, variants: [basic], seeds: [0], ship: false}')
     code, env, r = queue_in(tmp_path, repo, rec, text, calls)
     assert r.returncode == 0, r.stdout + r.stderr
     starts = [line.split()[1] for line in calls.read_text().splitlines() if line.startswith("start ")]
-    assert starts == ["basic_seed0", "basic_seed1", "basic_v3_seed0"]
+    assert starts == ["basic_seed0", "basic_seed1", "basic_seed2", "basic_v3_seed0"]
     said = ("basic_v3_gru_8m_seed0: not started (phase later starts a run only within 0.005 min of the queue's "
             "start: start the queue at a session's beginning); the queue goes on with the runs after it")
     assert r.stdout.count(said) == 1
-    assert r.stdout.index("basic_seed1: training") < r.stdout.index(said), r.stdout
+    assert r.stdout.index("basic_seed1: done") < r.stdout.index(said), r.stdout
     assert "nothing left to start now: basic_v3_gru_8m_seed0 waits for the queue's next start" in r.stdout
     assert "failed" not in r.stdout
     r = subprocess.run([sys.executable, "-c", code], env=dict(env, SWEEP_START_WITHIN_MIN="5"), capture_output=True,
                        text=True, timeout=120)
     assert r.returncode == 0 and "every run of the queue is done" in r.stdout, r.stdout + r.stderr
     starts = [line.split()[1] for line in calls.read_text().splitlines() if line.startswith("start ")]
-    assert starts == ["basic_seed0", "basic_seed1", "basic_v3_seed0", "basic_v3_gru_8m_seed0"]
+    assert starts == ["basic_seed0", "basic_seed1", "basic_seed2", "basic_v3_seed0", "basic_v3_gru_8m_seed0"]
 
 
 SEEKER_PHASE = """
