@@ -1,11 +1,13 @@
 """hideseek_pipeline sweep: the queue's phases and order, what counts as done, retrain, pause and
 resume with the paused time kept apart, hold and analyze, on small made-up registries and configs:
 no training, no ROS master."""
+import io
 import os
 import re
 import subprocess
 import sys
 import time
+import zipfile
 
 import numpy as np
 import yaml
@@ -577,6 +579,82 @@ def test_a_pin_without_the_shell_trainer_trains_through_hideseek_pipeline_train_
     assert e["command"].startswith("hideseek_pipeline train basic --seed 0 --steps 2000000")
     assert e["note"].startswith("sweep run (config/sweep.yaml), phase first, pinned at ")
     assert e["weights"] == "basic.pt" and (rec / "docs" / "runs" / "basic_seed0" / "analysis" / "behaviour.csv").exists()
+
+
+def torch_archive(tag):
+    """Bytes shaped as torch.jit.save writes an exported policy (a zip of data.pkl and code)."""
+    out = io.BytesIO()
+    with zipfile.ZipFile(out, "w") as z:
+        for name, text in (("archive/data.pkl", tag), ("archive/code/__torch__.py", "")):
+            z.writestr(zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0)), text)  # the same bytes every time
+    return out.getvalue()
+
+
+def test_ship_takes_the_median_run_s_weights_from_git_history_only_where_they_replay_its_episodes(tmp_path):
+    """The median run's weights left the machine, but it once shipped: `ship` takes the weights the
+    newest commit shipping it holds, evaluates them again in the phase's pinned tree, and ships them
+    only where every recorded episode replays. Weights that replay fewer stay aside, the shipped run
+    stays, and the message says how many replayed; a run that never shipped has nothing to recover."""
+    repo = stand_in_workspace(tmp_path / "repo")  # the pin: its evaluate.launch replays 321 living steps
+    pinned_repo(repo)
+    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000000, [321], [300]),
+                                  "basic_seed1": ("basic", 1, 2000000, [100], [90]),
+                                  "basic_seed2": ("basic", 2, 2000000, [500], [400])})
+    episodes = rec / "docs" / "runs" / "basic_seed0" / "episodes.csv"
+    git = ["git", "-C", str(rec), "-c", "user.name=t", "-c", "user.email=t@t"]
+    subprocess.run(["git", "init", "-q", str(rec)], check=True)
+    registry = str(rec / "policies" / "policies.yaml")
+    sys.path.insert(0, os.path.join(ROOT, "src", "hideseek_analysis", "python"))
+    from hideseek_analysis import registry as reg
+    for name in ("basic_seed0", "basic_seed2"):  # seed 0 shipped once, then seed 2 in its place
+        (tmp_path / name).write_bytes(torch_archive(name))
+        reg.ship(name, str(tmp_path / name), registry)
+        subprocess.run(git + ["add", "-A"], check=True)
+        subprocess.run(git + ["commit", "-qm", "ship " + name], check=True)
+    shipped_seed0 = subprocess.check_output(git + ["rev-parse", "HEAD~1"], text=True).strip()
+    assert reg.weights_in_history("basic_seed1", registry) is None
+    assert reg.weights_in_history("basic_seed0", registry) == (shipped_seed0, torch_archive("basic_seed0"))
+    commit = subprocess.check_output(["git", "-C", str(repo), "rev-parse", "HEAD"], text=True).strip()
+    config = config_file(tmp_path, "precision: fp32\njobs: 1\nhider_threads: 1\nsteps: 2000000\nnetwork: ff\n"
+                         "port: 12950\nphases:\n"
+                         "  - {name: only, commit: '%s', game: v2, variants: [basic], seeds: [0, 1, 2]}\n" % commit)
+    (tmp_path / "sweep" / "state").mkdir(parents=True)
+    (tmp_path / "sweep" / "state" / ("built." + commit[:12])).write_text(commit)  # the stand-ins need no build
+    env = dict(os.environ, SWEEP_DIR=str(tmp_path / "sweep"), SWEEP_RECORD_ROOT=str(rec), PYTHONPATH=PACKAGE,
+               CALLS=str(tmp_path / "calls.txt"), PATH="/usr/bin:" + os.environ["PATH"])
+    code = ("import sys; from hideseek_pipeline import cli, runner\n"
+            "sweep = cli.make_sweep(%r, %r); sweep.checkout = %r\nsys.exit(runner.ship_all(sweep) or 0)"
+            % (ROOT, str(config), str(repo)))
+    weights = tmp_path / "sweep" / "runs" / "basic_seed0"
+
+    def ship():
+        r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+        assert r.returncode == 0, r.stdout + r.stderr
+        return r.stdout
+    # another machine's evaluation, one episode off: not recovered, nothing shipped in its place
+    episodes.write_text("seed,living_steps,outcome\n0,322,captured\n")
+    said = ship()
+    assert "basic_seed0: its weights are not here but are in git commit %s" % shipped_seed0[:12] in said, said
+    assert "replay 0 of its 1 recorded episodes: not recovered" in said, said
+    assert "basic_seed0, but its weights" in said and "basic_seed2 stays shipped" in said, said
+    assert reg.shipped("basic", game="v2", registry=registry)[0] == "basic_seed2"
+    assert (weights / "policy.recovered.pt").read_bytes() == torch_archive("basic_seed0")
+    assert not (weights / "policy.pt").exists()
+    assert "roslaunch -p 13040 hideseek_world evaluate.launch variant:=basic game:=v2" in (
+        tmp_path / "calls.txt").read_text()
+    # the recorded evaluation: every episode replays, and the weights ship as the run's
+    episodes.write_text("seed,living_steps,outcome\n0,321,captured\n")
+    said = ship()
+    assert "basic_seed0: weights recovered from git commit %s; they replay all 1 recorded episodes" % (
+        shipped_seed0[:12]) in said, said
+    assert "shipped basic_seed0 as the median run of basic (was basic_seed2)" in said, said
+    name, path = reg.shipped("basic", game="v2", registry=registry)
+    assert name == "basic_seed0" and open(path, "rb").read() == torch_archive("basic_seed0")
+    assert (weights / "policy.pt").read_bytes() == torch_archive("basic_seed0")
+    assert (weights / "recovered_from").read_text().strip() == shipped_seed0
+    # the records' own evaluation is untouched: the check played into a scratch folder
+    assert episodes.read_text() == "seed,living_steps,outcome\n0,321,captured\n"
+    assert "already shipped" in ship()
 
 
 def test_a_later_phase_s_tree_is_built_only_when_its_first_run_could_start_and_a_failed_build_fails_only_its_runs(

@@ -34,7 +34,9 @@ usage:
                                                       ships the sweep run whose greedy evaluation is its
                                                       variant's median (the lower of the middle two for an
                                                       even count) from DIR/<run>/policy.pt; exit 1 where its
-                                                      weights are not in DIR (the shipped run stays)
+                                                      weights are not in DIR (the shipped run stays; the
+                                                      sweep's ship step then looks in git history,
+                                                      weights_in_history, and checks what it finds)
   hideseek_registry.py check                          exit 1, naming the problem, where the
                                                       registries disagree with each other or the tree
 """
@@ -43,9 +45,12 @@ import contextlib
 import csv
 import fcntl
 import glob
+import io
 import os
 import shutil
+import subprocess
 import sys
+import zipfile
 
 import yaml
 
@@ -91,7 +96,12 @@ class RegistryError(Exception):
 
 
 class WeightsMissing(RegistryError):
-    """The run to ship has no weights on this machine."""
+    """The run to ship has no weights on this machine. `runs`: the runs whose weights would do (the
+    median first draw, then its retrain where there is one), in that order."""
+
+    def __init__(self, message, runs=()):
+        super().__init__(message)
+        self.runs = list(runs)
 
 
 def variants(variants_dir=VARIANTS_DIR):
@@ -371,7 +381,52 @@ def ship_median(variant, weights_dir, network="ff", game=None, registry=REGISTRY
     raise WeightsMissing("the median run of %s is %s, but its weights %s are not on this machine; %s "
                          "(hideseek_pipeline sweep retrain %s to ship it)" % (
                              variant, name, " or ".join(os.path.join(weights_dir, r, "policy.pt") for r in candidates),
-                             "%s stays shipped" % current if current else "no run is shipped", name))
+                             "%s stays shipped" % current if current else "no run is shipped", name), candidates)
+
+
+def _git(folder, *args):
+    return subprocess.run(["git", "-C", folder] + list(args), capture_output=True)
+
+
+def is_torch_archive(data):
+    """Whether `data` is an exported policy's file as torch.jit.save writes it: a zip archive with
+    its pickled data and its code."""
+    try:
+        with zipfile.ZipFile(io.BytesIO(data)) as z:
+            names = z.namelist()
+    except zipfile.BadZipFile:
+        return False
+    return any(n.endswith("/data.pkl") for n in names) and any("/code/" in n for n in names)
+
+
+def weights_in_history(name, registry=REGISTRY):
+    """The weights a run shipped with once, from the git history of the registry's checkout:
+    (commit, the file's bytes) at the newest commit whose registry names the run's `weights` and
+    holds that file as an exported policy; None where the checkout is no git repository or the run
+    never shipped. A run whose weights left the machine (a sweep's run folder on another machine)
+    keeps them there while it ships, since its weights are committed with the registry."""
+    folder = os.path.dirname(os.path.realpath(registry))
+    top = _git(folder, "rev-parse", "--show-toplevel")
+    if top.returncode != 0:
+        return None
+    folder = top.stdout.decode().strip()  # paths below are the repository's
+    rel = os.path.relpath(os.path.realpath(registry), folder)
+    log = _git(folder, "log", "--format=%H", "--", rel)
+    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+    for commit in log.stdout.decode().split():
+        shown = _git(folder, "show", "%s:%s" % (commit, rel))
+        if shown.returncode != 0 or (name + ":").encode() not in shown.stdout:
+            continue
+        try:
+            entry = (yaml.load(shown.stdout, Loader=loader) or {}).get(name)
+        except yaml.YAMLError:
+            continue
+        if not isinstance(entry, dict) or not entry.get("weights"):
+            continue
+        blob = _git(folder, "show", "%s:%s" % (commit, os.path.join(os.path.dirname(rel), str(entry["weights"]))))
+        if blob.returncode == 0 and is_torch_archive(blob.stdout):
+            return commit, blob.stdout
+    return None
 
 
 def problems(registry=REGISTRY, variants_dir=VARIANTS_DIR):

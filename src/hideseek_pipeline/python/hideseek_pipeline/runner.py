@@ -3,17 +3,21 @@ built at the phase's commit, evaluates each run the moment it finishes (seeds 0-
 sampled), records it into the checkout (docs/runs/<run>/ and policies/policies.yaml), analyses it
 and ships each variant's median run. Runs resume from their checkpoints.
 """
+import csv
 import multiprocessing
 import os
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 
 from hideseek_pipeline import analyze as analysis
+from hideseek_pipeline import evaluate
 from hideseek_pipeline import processes as proc
 from hideseek_pipeline.queue import NO_BF16, RETRAIN_SUFFIX, SweepError, last_line, package_path, remove_file, say
 from hideseek_pipeline.sweep_config import start_window
+from hideseek_pipeline.workspace import ToolError, Workspace
 
 
 def prepare_tree(sweep, phase):
@@ -112,7 +116,7 @@ def job(sweep, run, slot):
         return 0  # a seeker's run: no hider analysis, nothing shipped
     analyze(sweep, run.name)
     baseline(sweep, run.variant, phase.game)
-    ship(sweep, run.variant, phase)
+    ship(sweep, run.variant, phase, port + 1)
     say("%s: done: greedy %s, sampled %s (living steps/success)" % (
         run.name, sweep.records.evaluation(run.name), sweep.records.evaluation(run.name, "sampled")))
     return 0
@@ -206,18 +210,84 @@ def baseline(sweep, variant, game):
     return ok
 
 
-def ship(sweep, variant, phase):
+def ship(sweep, variant, phase, port=None):
     """Ships the variant's median sweep run of the phase's game, network and budget, from its
-    weights here; where they are not, the shipped run stays and the message names the run to
-    retrain. A phase with `ship: false` (a longer budget's check) ships nothing."""
+    weights here, or else from git history where they replay its recorded evaluation (recover);
+    where neither holds them, the shipped run stays and the message names the run to retrain. A
+    phase with `ship: false` (a longer budget's check) ships nothing. `port`: the ROS master port of
+    a recovery's evaluation (default: the sweep's port + 90, beside every slot's)."""
     if not phase.ship:
         return
     reg = sweep.records.registry
+
+    def ship_median():
+        return reg.ship_median(variant, sweep.runs_dir, phase.network, phase.game, sweep.records.registry_path,
+                               sweep.records.root, sweep.records.note, phase.steps)
     try:
-        say(reg.ship_median(variant, sweep.runs_dir, phase.network, phase.game, sweep.records.registry_path,
-                            sweep.records.root, sweep.records.note, phase.steps))
-    except (reg.WeightsMissing, reg.RegistryError) as e:
+        say(ship_median())
+    except reg.WeightsMissing as e:
+        port = port or sweep.config.port + 90
+        if any(recover(sweep, name, phase, port) for name in e.runs):
+            say(ship_median())
+        else:
+            say(str(e))
+    except reg.RegistryError as e:
         say(str(e))
+
+
+def recover(sweep, name, phase, port):
+    """A run's weights from git history, where they left this machine but the run once shipped:
+    the weights the newest commit shipping it holds, checked by evaluating them again (greedy,
+    seeds 0-99, the phase's pinned tree, into a scratch folder) against the run's recorded
+    episodes.csv. Only weights that give every episode's recorded living steps go where the queue
+    keeps weights (<runs>/<run>/policy.pt, beside recovered_from, the commit); others stay in
+    <runs>/<run>/policy.recovered.pt, and the message says how many episodes they replayed.
+    Returns whether the run's weights are now here."""
+    reg = sweep.records.registry
+    found = reg.weights_in_history(name, sweep.records.registry_path)
+    if not found:
+        return False
+    commit, data = found
+    recorded = sweep.records.docs(name, "episodes.csv")
+    if not os.path.isfile(recorded):
+        say("%s: its weights are in git commit %s, but %s is missing to check them against; not recovered" % (
+            name, commit[:12], recorded))
+        return False
+    folder = os.path.join(sweep.runs_dir, name)
+    os.makedirs(folder, exist_ok=True)
+    staged = os.path.join(folder, "policy.recovered.pt")
+    with open(staged, "wb") as f:
+        f.write(data)
+    say("%s: its weights are not here but are in git commit %s; evaluating them again (port %d) to check that "
+        "they replay its recorded episodes" % (name, commit[:12], port))
+    with tempfile.TemporaryDirectory(prefix="hideseek_recover_") as scratch:
+        try:
+            evaluate.evaluate(Workspace(prepare_tree(sweep, phase)), sweep.records, name, staged, ("greedy",), port,
+                              say, docs=scratch)
+        except (ToolError, SweepError) as e:
+            say("%s: the check of its recovered weights failed (%s); not recovered" % (name, e))
+            return False
+        same, total = _same_episodes(recorded, os.path.join(scratch, "episodes.csv"))
+    if total == 0 or same != total:
+        say("%s: the weights of git commit %s replay %d of its %d recorded episodes: not recovered (they stay in "
+            "%s; retrain the run, or ship them by hand with hideseek_registry.py ship)" % (
+                name, commit[:12], same, total, staged))
+        return False
+    os.replace(staged, sweep.weights(name))
+    with open(os.path.join(folder, "recovered_from"), "w") as f:
+        f.write(commit + "\n")
+    say("%s: weights recovered from git commit %s; they replay all %d recorded episodes" % (name, commit[:12], total))
+    return True
+
+
+def _same_episodes(recorded, again):
+    """(episodes whose living steps and outcome agree, episodes recorded): two episodes.csv files
+    (seed,living_steps,outcome) compared seed by seed."""
+    def rows(path):
+        with open(path) as f:
+            return {r["seed"]: (r["living_steps"], r["outcome"]) for r in csv.DictReader(f)}
+    first, second = rows(recorded), rows(again) if os.path.isfile(again) else {}
+    return sum(second.get(seed) == row for seed, row in first.items()), len(first)
 
 # ---- commands -------------------------------------------------------------------------------
 
