@@ -631,6 +631,10 @@ def test_ship_takes_the_median_run_s_weights_from_git_history_only_where_they_re
         r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
         assert r.returncode == 0, r.stdout + r.stderr
         return r.stdout
+    # no retrain while history holds weights that were never checked
+    r = sweep(tmp_path, rec, "retrain", "basic_seed0", config=config)
+    assert r.returncode == 0 and "basic_seed0: not queued: its weights are in git commit %s" % shipped_seed0[:12] in (
+        r.stdout), r.stdout + r.stderr
     # another machine's evaluation, one episode off: not recovered, nothing shipped in its place
     episodes.write_text("seed,living_steps,outcome\n0,322,captured\n")
     said = ship()
@@ -642,6 +646,10 @@ def test_ship_takes_the_median_run_s_weights_from_git_history_only_where_they_re
     assert not (weights / "policy.pt").exists()
     assert "roslaunch -p 13040 hideseek_world evaluate.launch variant:=basic game:=v2" in (
         tmp_path / "calls.txt").read_text()
+    # once the check has failed, a retrain may be queued
+    r = sweep(tmp_path, rec, "retrain", "basic_seed0", config=config)
+    assert r.returncode == 0 and "basic_seed0 queued for retraining" in r.stdout, r.stdout + r.stderr
+    (tmp_path / "sweep" / "state" / "retrain").unlink()
     # the recorded evaluation: every episode replays, and the weights ship as the run's
     episodes.write_text("seed,living_steps,outcome\n0,321,captured\n")
     said = ship()

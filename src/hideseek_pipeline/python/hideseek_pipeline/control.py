@@ -282,6 +282,14 @@ def retrain(sweep, names):
         if sweep.has_weights(name):
             print("sweep: %s: its weights are here (%s); nothing to retrain" % (name, sweep.weights(name)))
             continue
+        checked = os.path.join(sweep.runs_dir, name, "policy.recovered.pt")  # runner.recover's failed check
+        found = None if os.path.isfile(checked) else sweep.records.registry.weights_in_history(
+            name, sweep.records.registry_path)
+        if found:
+            print("sweep: %s: not queued: its weights are in git commit %s, where it shipped; 'hideseek_pipeline "
+                  "sweep ship' recovers them where they replay its recorded episodes (a retrain is queued only "
+                  "after that check fails)" % (name, found[0][:12]))
+            continue
         if name not in sweep.retrain_list():
             with open(sweep.state_file("retrain"), "a") as f:
                 f.write(name + "\n")
