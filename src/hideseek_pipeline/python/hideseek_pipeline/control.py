@@ -271,6 +271,7 @@ def retrain(sweep, names):
         raise SweepError("retrain: name the runs to train again (sweep ship names the ones a variant needs)")
     by_name = {r.name: r for r in sweep.config.runs()}
     sweep.make_dirs()
+    queued = 0
     for name in names:
         if name not in by_name:
             raise SweepError("retrain: '%s' is not a run of the queue (sweep status lists them)" % name)
@@ -295,7 +296,8 @@ def retrain(sweep, names):
                 f.write(name + "\n")
         print("sweep: %s queued for retraining, after every other run of the queue, as %s%s beside its "
               "first draw" % (name, name, RETRAIN_SUFFIX))
-    if sweep.queue_pid():
+        queued += 1
+    if queued and sweep.queue_pid():
         print("sweep: the running queue takes it up when a slot frees")
     return 0
 
