@@ -14,6 +14,8 @@ case " $* " in
     echo ckpt > "$output_dir/checkpoint.pt" ;;
   *" evaluate.launch "*)
     [ "$variant" = "${FAIL_VARIANT:-}" ] && exit 0  # a required node died: no evaluation, roslaunch exits 0
+    # the sweep held the run EVAL_HELD seconds more while it was evaluated, booked as 'sweep resume' books it
+    [ -z "${EVAL_HELD:-}" ] || echo "$(( $(head -n 1 "$EVAL_HELD_FILE") + EVAL_HELD ))" > "$EVAL_HELD_FILE"
     printf 'variant,policy,episodes,avg_living_steps,success_rate\n%s,%s,100,321.00,0.2500\n' "$variant" "$policy" \
       > "$output_dir/evaluation.csv"
     printf 'seed,living_steps,outcome\n0,321,captured\n' > "$output_dir/episodes.csv"

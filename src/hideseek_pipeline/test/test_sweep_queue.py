@@ -581,6 +581,31 @@ def test_a_pin_without_the_shell_trainer_trains_through_hideseek_pipeline_train_
     assert e["weights"] == "basic.pt" and (rec / "docs" / "runs" / "basic_seed0" / "analysis" / "behaviour.csv").exists()
 
 
+def test_a_pause_while_a_run_is_evaluated_stays_out_of_its_recorded_paused_s(tmp_path):
+    """The sweep held the run 20 s in training and 60 s more in its evaluation after (two pauses
+    booked into its paused_s file): the registry keeps wall_s and paused_s as the training gave them
+    (the log's 123 s: 103 trained, 20 held), and the queue's log names the 60 s held in evaluation."""
+    repo = stand_in_workspace(tmp_path / "repo")
+    rec = make_records(tmp_path, {})
+    fake_analysis(rec)
+    held = tmp_path / "sweep" / "runs" / "basic_seed0" / "paused_s"
+    held.parent.mkdir(parents=True)
+    held.write_text("20\n")
+    os.environ.update(EVAL_HELD="60", EVAL_HELD_FILE=str(held))
+    try:
+        one = TWO_PHASES.split("  - {name: later")[0].replace("seeds: [0, 1]", "seeds: [0]").replace(
+            "variants: [basic, slowerhider]", "variants: [basic]")
+        _, _, r = queue_in(tmp_path, repo, rec, one, tmp_path / "calls.txt")
+    finally:
+        del os.environ["EVAL_HELD"], os.environ["EVAL_HELD_FILE"]
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert held.read_text().split()[0] == str(20 + 60 * 2)  # both evaluations (greedy, sampled) were held
+    e = yaml.safe_load((rec / "policies" / "policies.yaml").read_text())["basic_seed0"]
+    assert (e["wall_s"], e["paused_s"]) == (103, 20)
+    assert "basic_seed0: held 120 s while it was evaluated after training (not in its paused_s, 20 s, nor in its " \
+        "wall_s)" in r.stdout, r.stdout
+
+
 def torch_archive(tag):
     """Bytes shaped as torch.jit.save writes an exported policy (a zip of data.pkl and code)."""
     out = io.BytesIO()
@@ -631,12 +656,24 @@ def test_ship_takes_the_median_run_s_weights_from_git_history_only_where_they_re
         r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
         assert r.returncode == 0, r.stdout + r.stderr
         return r.stdout
+    # its recorded evaluation, of another machine: one episode off from what the pin replays
+    episodes.write_text("seed,living_steps,outcome\n0,322,captured\n")
     # no retrain while history holds weights that were never checked
     r = sweep(tmp_path, rec, "retrain", "basic_seed0", config=config)
     assert r.returncode == 0 and "basic_seed0: not queued: its weights are in git commit %s" % shipped_seed0[:12] in (
         r.stdout), r.stdout + r.stderr
-    # another machine's evaluation, one episode off: not recovered, nothing shipped in its place
-    episodes.write_text("seed,living_steps,outcome\n0,322,captured\n")
+    # ... unless its recorded episodes are missing: nothing to check the weights against, so a retrain is queued
+    recorded = episodes.read_text()
+    episodes.unlink()
+    said = ship()
+    assert "episodes.csv is missing to check them against; not recovered ('hideseek_pipeline sweep retrain " \
+        "basic_seed0' trains it again)" in said, said
+    assert not (weights / "policy.recovered.pt").exists() and not (weights / "policy.pt").exists()
+    r = sweep(tmp_path, rec, "retrain", "basic_seed0", config=config)
+    assert r.returncode == 0 and "basic_seed0 queued for retraining" in r.stdout, r.stdout + r.stderr
+    (tmp_path / "sweep" / "state" / "retrain").unlink()
+    episodes.write_text(recorded)
+    # the episode off: not recovered, nothing shipped in its place
     said = ship()
     assert "basic_seed0: its weights are not here but are in git commit %s" % shipped_seed0[:12] in said, said
     assert "replay 0 of its 1 recorded episodes: not recovered" in said, said

@@ -283,9 +283,11 @@ def retrain(sweep, names):
         if sweep.has_weights(name):
             print("sweep: %s: its weights are here (%s); nothing to retrain" % (name, sweep.weights(name)))
             continue
-        checked = os.path.join(sweep.runs_dir, name, "policy.recovered.pt")  # runner.recover's failed check
-        found = None if os.path.isfile(checked) else sweep.records.registry.weights_in_history(
-            name, sweep.records.registry_path)
+        # Refused only while runner.recover could still check history's weights: not after its check
+        # failed (policy.recovered.pt), nor where the recorded episodes to check them against are missing.
+        checked = os.path.join(sweep.runs_dir, name, "policy.recovered.pt")
+        checkable = not os.path.isfile(checked) and os.path.isfile(sweep.records.docs(name, "episodes.csv"))
+        found = checkable and sweep.records.registry.weights_in_history(name, sweep.records.registry_path)
         if found:
             print("sweep: %s: not queued: its weights are in git commit %s, where it shipped; 'hideseek_pipeline "
                   "sweep ship' recovers them where they replay its recorded episodes (a retrain is queued only "

@@ -15,6 +15,7 @@ import time
 from hideseek_pipeline import analyze as analysis
 from hideseek_pipeline import evaluate
 from hideseek_pipeline import processes as proc
+from hideseek_pipeline.control import logged_rows
 from hideseek_pipeline.queue import NO_BF16, RETRAIN_SUFFIX, SweepError, last_line, package_path, remove_file, say
 from hideseek_pipeline.sweep_config import start_window
 from hideseek_pipeline.workspace import ToolError, Workspace
@@ -101,11 +102,16 @@ def job(sweep, run, slot):
     if rc != 0:
         say("%s: failed (exit %d); see %s" % (run.name, rc, log))
         return rc
-    # paused_s again, as the trainer records it (none when 0): a trainer of an older pin kept an
-    # earlier training's paused time in an entry of the same name.
+    # paused_s again, the training's part of the held time (none when 0): a trainer of an older pin
+    # kept an earlier training's paused time in an entry of the same name when it read none.
     held = last_line(paused).split(".")[0]
+    held = int(held) if held.isdigit() else 0
+    in_training = held_in_training(sweep, run.name, held)
+    if held > in_training:
+        say("%s: held %d s while it was evaluated after training (not in its paused_s, %d s, nor in its wall_s)"
+            % (run.name, held - in_training, in_training))
     fields = {"note": "%s, phase %s, pinned at %s" % (sweep.records.note, phase.name, sweep.commit(phase)[:12]),
-              "paused_s": int(held) if held.isdigit() and int(held) > 0 else None}
+              "paused_s": in_training or None}
     if run.retrain:
         fields.update(draw="retrain", retrain_of=run.name[:-len(RETRAIN_SUFFIX)])
     sweep.records.registry.record(run.name, fields, sweep.records.registry_path)
@@ -120,6 +126,17 @@ def job(sweep, run, slot):
     say("%s: done: greedy %s, sampled %s (living steps/success)" % (
         run.name, sweep.records.evaluation(run.name), sweep.records.evaluation(run.name, "sampled")))
     return 0
+
+
+def held_in_training(sweep, name, held):
+    """The part of `held` (the seconds the sweep held a run, in training and in its evaluation after)
+    that fell in its training: its training log's last wall time less the wall_s its trainer
+    recorded, which left out the held time it read as training ended. `held` where either is missing."""
+    entry = sweep.records.registry.runs(sweep.records.registry_path).get(name) or {}
+    rows = logged_rows(sweep.records.docs(name, "training_log.csv"), 1)
+    if not rows or not isinstance(entry.get("wall_s"), (int, float)):
+        return held
+    return min(max(int(rows[-1][1]) - int(entry["wall_s"]), 0), held)
 
 
 def _pinned_env(tree):
@@ -250,8 +267,8 @@ def recover(sweep, name, phase, port):
     commit, data = found
     recorded = sweep.records.docs(name, "episodes.csv")
     if not os.path.isfile(recorded):
-        say("%s: its weights are in git commit %s, but %s is missing to check them against; not recovered" % (
-            name, commit[:12], recorded))
+        say("%s: its weights are in git commit %s, but %s is missing to check them against; not recovered ('hideseek_pipeline sweep retrain %s' trains "
+            "it again)" % (name, commit[:12], recorded, name))
         return False
     folder = os.path.join(sweep.runs_dir, name)
     os.makedirs(folder, exist_ok=True)
