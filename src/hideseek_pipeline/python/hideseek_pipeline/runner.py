@@ -134,9 +134,10 @@ def held_in_training(sweep, name, held):
     recorded, which left out the held time it read as training ended. `held` where either is missing."""
     entry = sweep.records.registry.runs(sweep.records.registry_path).get(name) or {}
     rows = logged_rows(sweep.records.docs(name, "training_log.csv"), 1)
-    if not rows or not isinstance(entry.get("wall_s"), (int, float)):
+    try:  # the shell trainer of an older pin records wall_s as text
+        return min(max(int(rows[-1][1]) - int(float(entry["wall_s"])), 0), held)
+    except (IndexError, KeyError, TypeError, ValueError):
         return held
-    return min(max(int(rows[-1][1]) - int(entry["wall_s"]), 0), held)
 
 
 def _pinned_env(tree):
