@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Integration tests of evaluate.launch. usage: evaluate_test.sh XUNIT_OUTPUT
 # 1. On the shipped basic policy (policy:=shipped): evaluation.md, evaluation.csv and episodes.csv
-#    appear, with the documented columns and 100 episodes, and name the registry's file.
+#    appear, with the documented columns and 100 episodes, and name the registry's file; the
+#    shipped basic policies of games v3 (ff and GRU) and v2 replay their runs' recorded episodes.
 # 2. The random hider through the ROS graph (4 arenas) plays exactly the episodes that the
 #    in-process calibration table plays (calibration_table): the calibration is the real game,
 #    and an episode's draws do not depend on the number of arenas.
@@ -36,6 +37,36 @@ write_xunit "$out" evaluate EvaluateLaunchWritesItsFilesFor100Episodes "${failur
 cat "$dir/evaluation.md" 2>/dev/null
 printf 'failure: %s\n' "${failures[@]}"
 shipped_failed=${#failures[@]}
+
+# 1b. What a user reproduces: a shipped policy, evaluated here (fp32, greedy, seeds 0-99), plays the
+#     episodes its run recorded when it was trained (another commit, often another kind of CPU) seed
+#     for seed: game v3's basic (part 1's evaluation) and its GRU, and game v2's basic, which the
+#     later games must leave as it was. A change to the game, the renderer or the network that moves
+#     one episode fails here; one meant to change a game must be a new game.
+failures=()
+replays() {  # NETWORK GAME EPISODES_CSV: the shipped basic run's recorded episodes.csv against EPISODES_CSV
+  local run
+  run=$(/usr/bin/python3 -c "import sys; sys.path.insert(0, '$root/../hideseek_analysis/python')
+from hideseek_analysis import registry; print(registry.shipped('basic', network='$1', game='$2')[0] or '')")
+  local recorded="$root/../../docs/runs/$run/episodes.csv"
+  if [ -z "$run" ] || [ ! -s "$recorded" ]; then
+    failures+=("basic ($1, $2): no shipped run with recorded episodes ('$run', $recorded)")
+  elif ! diff "$recorded" "$3" > "$3.diff"; then
+    failures+=("$run: $(grep -c '^<' "$3.diff") of its 100 recorded episodes differ: $(head -c 300 "$3.diff" | tr '\n' ' ')")
+  fi
+}
+replays ff v3 "$dir/episodes.csv"
+for network_game in gru:v3 ff:v2; do
+  mkdir -p "$dir/${network_game/:/_}"
+  timeout 600 roslaunch -p "$port" hideseek_world evaluate.launch variant:=basic game:="${network_game#*:}" \
+    policy:="$(/usr/bin/python3 "$root/../hideseek_analysis/scripts/hideseek_registry.py" shipped basic \
+    --network "${network_game%:*}" --game "${network_game#*:}")" output_dir:="$dir/${network_game/:/_}" \
+    > "$dir/${network_game/:/_}/launch.log" 2>&1
+  replays "${network_game%:*}" "${network_game#*:}" "$dir/${network_game/:/_}/episodes.csv"
+done
+write_xunit "${out%.xml}-replay.xml" evaluate ShippedPoliciesReplayTheirRecordedEpisodes "${failures[@]}"
+printf 'failure: %s\n' "${failures[@]}"
+replay_failed=${#failures[@]}
 
 failures=()
 mkdir -p "$dir/random"
@@ -80,4 +111,4 @@ grep -q "no policy is shipped for variant 'basic' on game v1" "$dir/unshipped/la
 write_xunit "${out%.xml}-scripted.xml" evaluate ScriptedEvaderAndGameV1ThroughTheGraphPlayTheCalibratedEpisodes "${failures[@]}"
 printf 'failure: %s\n' "${failures[@]}"
 rm -rf "$dir"
-[ "$shipped_failed" -eq 0 ] && [ "$random_failed" -eq 0 ] && [ ${#failures[@]} -eq 0 ]
+[ "$shipped_failed" -eq 0 ] && [ "$replay_failed" -eq 0 ] && [ "$random_failed" -eq 0 ] && [ ${#failures[@]} -eq 0 ]
