@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The run registry and the variants (hideseek_analysis.registry): src/hideseek_analysis/scripts/hideseek_registry.py --help."""
 import os
+import signal
 import sys
 
 # In a checkout the package lies beside this folder; in an install space it is on the Python path.
@@ -10,4 +11,5 @@ if os.path.isdir(PACKAGE):
 from hideseek_analysis import registry  # noqa: E402
 
 if __name__ == "__main__":
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `... runs | head` ends quietly, as a shell tool does
     sys.exit(registry.main())

@@ -172,6 +172,17 @@ def test_shipped_exits_1_where_nothing_is_shipped(tree):
     assert "no ff policy is shipped for variant slowerhider on game %s" % reg.default_game() in result.stderr
 
 
+def test_a_listing_whose_reader_has_gone_ends_without_a_traceback():
+    """`hideseek_registry.py runs | head -n 1`: the reader closes the pipe before the listing ends;
+    the tool ends quietly by SIGPIPE, as ls does, not with a Python traceback. (Here the reader is
+    gone before the first write, so every run sees it, whatever the timing.)"""
+    read, write = os.pipe()
+    os.close(read)
+    r = subprocess.run([sys.executable, SCRIPT, "runs"], stdout=write, stderr=subprocess.PIPE, text=True)
+    os.close(write)
+    assert r.returncode == -13 and r.stderr == "", (r.returncode, r.stderr)
+
+
 def test_ship_median_ships_the_median_sweep_run_and_keeps_the_shipped_one_without_its_weights(tree, tmp_path):
     """The sweep ships the run whose greedy evaluation is its variant's median; a pilot run (no sweep
     note) does not count; where the median run's weights are gone, the shipped run stays and the
