@@ -582,9 +582,10 @@ def test_a_pin_without_the_shell_trainer_trains_through_hideseek_pipeline_train_
 
 
 def test_a_pause_while_a_run_is_evaluated_stays_out_of_its_recorded_paused_s(tmp_path):
-    """The sweep held the run 20 s in training and 60 s more in its evaluation after (two pauses
-    booked into its paused_s file): the registry keeps wall_s and paused_s as the training gave them
-    (the log's 123 s: 103 trained, 20 held), and the queue's log names the 60 s held in evaluation."""
+    """The sweep held the run 20 s in training and 60 s in each of its two evaluations after (three
+    pauses booked into its paused_s file): the registry keeps wall_s and paused_s as the training
+    gave them (the log's 123 s: 103 trained, 20 held), and the queue's log names the 120 s held in
+    evaluation."""
     repo = stand_in_workspace(tmp_path / "repo")
     rec = make_records(tmp_path, {})
     fake_analysis(rec)
@@ -602,8 +603,35 @@ def test_a_pause_while_a_run_is_evaluated_stays_out_of_its_recorded_paused_s(tmp
     assert held.read_text().split()[0] == str(20 + 60 * 2)  # both evaluations (greedy, sampled) were held
     e = yaml.safe_load((rec / "policies" / "policies.yaml").read_text())["basic_seed0"]
     assert (e["wall_s"], e["paused_s"]) == (103, 20)
-    assert "basic_seed0: held 120 s while it was evaluated after training (not in its paused_s, 20 s, nor in its " \
-        "wall_s)" in r.stdout, r.stdout
+    assert "basic_seed0: held 120 s more while it was evaluated after training: left out of its wall_s and of its " \
+        "paused_s (20 s, held in training)" in r.stdout, r.stdout
+
+
+def test_the_held_time_in_training_is_read_from_an_older_pin_s_wall_s_recorded_as_text(tmp_path):
+    """The shell trainer of an older pin records wall_s as text ('103'): the training's part of the
+    held time is read from it all the same; without a log or a wall_s, all the held time counts."""
+    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000000, [100], [90])})
+    sys.path.insert(0, os.path.join(ROOT, "src", "hideseek_analysis", "python"))
+    from hideseek_analysis import registry as reg
+    from hideseek_pipeline import runner
+    registry = str(rec / "policies" / "policies.yaml")
+
+    class Records:
+        registry_path = registry
+
+        def __init__(self):
+            self.registry = reg
+
+        def docs(self, name, *parts):
+            return os.path.join(str(rec), "docs", "runs", name, *parts)
+    stand_in = type("Sweep", (), {"records": Records()})()
+    assert runner.held_in_training(stand_in, "basic_seed0", 140) == 140  # no log yet: all of it
+    (rec / "docs" / "runs" / "basic_seed0" / "training_log.csv").write_text(
+        "update,steps,wall_s,x\n1,1024,60.2,0\n2,2048,123.7,0\n")
+    assert runner.held_in_training(stand_in, "basic_seed0", 140) == 140  # no wall_s recorded: all of it
+    reg.record("basic_seed0", {"wall_s": "103"}, registry)
+    assert runner.held_in_training(stand_in, "basic_seed0", 140) == 20
+    assert runner.held_in_training(stand_in, "basic_seed0", 15) == 15  # never more than was held
 
 
 def torch_archive(tag):

@@ -51,6 +51,8 @@ from hideseek_analysis import registry; print(registry.shipped('basic', network=
   local recorded="$root/../../docs/runs/$run/episodes.csv"
   if [ -z "$run" ] || [ ! -s "$recorded" ]; then
     failures+=("basic ($1, $2): no shipped run with recorded episodes ('$run', $recorded)")
+  elif [ ! -s "$3" ]; then
+    failures+=("$run: the evaluation wrote no $3")
   elif ! diff "$recorded" "$3" > "$3.diff"; then
     failures+=("$run: $(grep -c '^<' "$3.diff") of its 100 recorded episodes differ: $(head -c 300 "$3.diff" | tr '\n' ' ')")
   fi

@@ -108,8 +108,8 @@ def job(sweep, run, slot):
     held = int(held) if held.isdigit() else 0
     in_training = held_in_training(sweep, run.name, held)
     if held > in_training:
-        say("%s: held %d s while it was evaluated after training (not in its paused_s, %d s, nor in its wall_s)"
-            % (run.name, held - in_training, in_training))
+        say("%s: held %d s more while it was evaluated after training: left out of its wall_s and of its "
+            "paused_s (%d s, held in training)" % (run.name, held - in_training, in_training))
     fields = {"note": "%s, phase %s, pinned at %s" % (sweep.records.note, phase.name, sweep.commit(phase)[:12]),
               "paused_s": in_training or None}
     if run.retrain:
@@ -268,8 +268,8 @@ def recover(sweep, name, phase, port):
     commit, data = found
     recorded = sweep.records.docs(name, "episodes.csv")
     if not os.path.isfile(recorded):
-        say("%s: its weights are in git commit %s, but %s is missing to check them against; not recovered ('hideseek_pipeline sweep retrain %s' trains "
-            "it again)" % (name, commit[:12], recorded, name))
+        say("%s: its weights are in git commit %s, but %s is missing to check them against; not recovered "
+            "('hideseek_pipeline sweep retrain %s' trains it again)" % (name, commit[:12], recorded, name))
         return False
     folder = os.path.join(sweep.runs_dir, name)
     os.makedirs(folder, exist_ok=True)
