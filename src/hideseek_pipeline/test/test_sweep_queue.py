@@ -7,6 +7,7 @@ import re
 import subprocess
 import sys
 import time
+import types
 import zipfile
 
 import numpy as np
@@ -581,7 +582,7 @@ def test_a_pin_without_the_shell_trainer_trains_through_hideseek_pipeline_train_
     assert e["weights"] == "basic.pt" and (rec / "docs" / "runs" / "basic_seed0" / "analysis" / "behaviour.csv").exists()
 
 
-def test_a_pause_while_a_run_is_evaluated_stays_out_of_its_recorded_paused_s(tmp_path):
+def test_a_pause_while_a_run_is_evaluated_stays_out_of_its_recorded_paused_s(tmp_path, monkeypatch):
     """The sweep held the run 20 s in training and 60 s in each of its two evaluations after (three
     pauses booked into its paused_s file): the registry keeps wall_s and paused_s as the training
     gave them (the log's 123 s: 103 trained, 20 held), and the queue's log names the 120 s held in
@@ -592,13 +593,11 @@ def test_a_pause_while_a_run_is_evaluated_stays_out_of_its_recorded_paused_s(tmp
     held = tmp_path / "sweep" / "runs" / "basic_seed0" / "paused_s"
     held.parent.mkdir(parents=True)
     held.write_text("20\n")
-    os.environ.update(EVAL_HELD="60", EVAL_HELD_FILE=str(held))
-    try:
-        one = TWO_PHASES.split("  - {name: later")[0].replace("seeds: [0, 1]", "seeds: [0]").replace(
-            "variants: [basic, slowerhider]", "variants: [basic]")
-        _, _, r = queue_in(tmp_path, repo, rec, one, tmp_path / "calls.txt")
-    finally:
-        del os.environ["EVAL_HELD"], os.environ["EVAL_HELD_FILE"]
+    monkeypatch.setenv("EVAL_HELD", "60")  # the stand-in evaluate.launch books it into EVAL_HELD_FILE
+    monkeypatch.setenv("EVAL_HELD_FILE", str(held))
+    one = TWO_PHASES.split("  - {name: later")[0].replace("seeds: [0, 1]", "seeds: [0]").replace(
+        "variants: [basic, slowerhider]", "variants: [basic]")
+    _, _, r = queue_in(tmp_path, repo, rec, one, tmp_path / "calls.txt")
     assert r.returncode == 0, r.stdout + r.stderr
     assert held.read_text().split()[0] == str(20 + 60 * 2)  # both evaluations (greedy, sampled) were held
     e = yaml.safe_load((rec / "policies" / "policies.yaml").read_text())["basic_seed0"]
@@ -615,16 +614,8 @@ def test_the_held_time_in_training_is_read_from_an_older_pin_s_wall_s_recorded_a
     from hideseek_analysis import registry as reg
     from hideseek_pipeline import runner
     registry = str(rec / "policies" / "policies.yaml")
-
-    class Records:
-        registry_path = registry
-
-        def __init__(self):
-            self.registry = reg
-
-        def docs(self, name, *parts):
-            return os.path.join(str(rec), "docs", "runs", name, *parts)
-    stand_in = type("Sweep", (), {"records": Records()})()
+    stand_in = types.SimpleNamespace(records=types.SimpleNamespace(
+        registry=reg, registry_path=registry, docs=lambda name, *parts: os.path.join(rec, "docs", "runs", name, *parts)))
     assert runner.held_in_training(stand_in, "basic_seed0", 140) == 140  # no log yet: all of it
     (rec / "docs" / "runs" / "basic_seed0" / "training_log.csv").write_text(
         "update,steps,wall_s,x\n1,1024,60.2,0\n2,2048,123.7,0\n")

@@ -44,28 +44,31 @@ shipped_failed=${#failures[@]}
 #     later games must leave as it was. A change to the game, the renderer or the network that moves
 #     one episode fails here; one meant to change a game must be a new game.
 failures=()
-replays() {  # NETWORK GAME EPISODES_CSV: the shipped basic run's recorded episodes.csv against EPISODES_CSV
-  local run
-  run=$(/usr/bin/python3 -c "import sys; sys.path.insert(0, '$root/../hideseek_analysis/python')
-from hideseek_analysis import registry; print(registry.shipped('basic', network='$1', game='$2')[0] or '')")
+replays() {  # NETWORK GAME [EVALUATION_DIR]: evaluates the shipped basic policy into a folder of its own
+  # (or reads part 1's EVALUATION_DIR) and compares its episodes.csv with its run's recorded one
+  local run policy evaluation=${3:-$dir/$1_$2}
+  read -r run policy < <(/usr/bin/python3 -c "import sys; sys.path.insert(0, '$root/../hideseek_analysis/python')
+from hideseek_analysis import registry; print(*registry.shipped('basic', network='$1', game='$2'))")
   local recorded="$root/../../docs/runs/$run/episodes.csv"
-  if [ -z "$run" ] || [ ! -s "$recorded" ]; then
+  if [ "$run" = None ] || [ ! -s "$recorded" ]; then
     failures+=("basic ($1, $2): no shipped run with recorded episodes ('$run', $recorded)")
-  elif [ ! -s "$3" ]; then
-    failures+=("$run: the evaluation wrote no $3")
-  elif ! diff "$recorded" "$3" > "$3.diff"; then
-    failures+=("$run: $(grep -c '^<' "$3.diff") of its 100 recorded episodes differ: $(head -c 300 "$3.diff" | tr '\n' ' ')")
+    return
+  fi
+  if [ -z "${3:-}" ]; then
+    mkdir -p "$evaluation"
+    timeout 600 roslaunch -p "$port" hideseek_world evaluate.launch variant:=basic game:="$2" policy:="$policy" \
+      output_dir:="$evaluation" > "$evaluation/launch.log" 2>&1
+  fi
+  if [ ! -s "$evaluation/episodes.csv" ]; then
+    failures+=("$run: the evaluation wrote no $evaluation/episodes.csv")
+  elif ! diff "$recorded" "$evaluation/episodes.csv" > "$evaluation/replay.diff"; then
+    failures+=("$run: $(grep -c '^<' "$evaluation/replay.diff") of its 100 recorded episodes differ: \
+$(head -c 300 "$evaluation/replay.diff" | tr '\n' ' ')")
   fi
 }
-replays ff v3 "$dir/episodes.csv"
-for network_game in gru:v3 ff:v2; do
-  mkdir -p "$dir/${network_game/:/_}"
-  timeout 600 roslaunch -p "$port" hideseek_world evaluate.launch variant:=basic game:="${network_game#*:}" \
-    policy:="$(/usr/bin/python3 "$root/../hideseek_analysis/scripts/hideseek_registry.py" shipped basic \
-    --network "${network_game%:*}" --game "${network_game#*:}")" output_dir:="$dir/${network_game/:/_}" \
-    > "$dir/${network_game/:/_}/launch.log" 2>&1
-  replays "${network_game%:*}" "${network_game#*:}" "$dir/${network_game/:/_}/episodes.csv"
-done
+replays ff v3 "$dir"
+replays gru v3
+replays ff v2
 write_xunit "${out%.xml}-replay.xml" evaluate ShippedPoliciesReplayTheirRecordedEpisodes "${failures[@]}"
 printf 'failure: %s\n' "${failures[@]}"
 replay_failed=${#failures[@]}
