@@ -26,7 +26,8 @@ test: build
 bench: build
 	$(PIPELINE) bench
 
-# Table 2, the analysis of every variant with a shipped policy, Table 3 and the figures, in docs/report.
+# Table 2, Table 3, the claims and the figures across training seeds, from the committed records, into
+# docs/report (hideseek_pipeline report --from-scratch evaluates and analyses the shipped policies anew).
 reproduce: build
 	$(PIPELINE) report
 

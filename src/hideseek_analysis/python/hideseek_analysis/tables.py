@@ -56,7 +56,7 @@ def ci_over_runs(values, seed, reps, *key):
 
 TABLE3_INTRO = (
     "Balanced accuracy (%) of a linear probe on the shared probe set's held-out episodes "
-    "([docs/analysis.md](../analysis.md)): the trained network of each run, mean over the variant's runs "
+    "([docs/analysis.md](ANALYSIS_MD)): the trained network of each run, mean over the variant's runs "
     "with a 95 % bootstrap interval over runs (none with one run; with two runs the bootstrap returns their "
     "range, and the table says so); the mean of five random-init networks "
     "and the raw pixels, the same images for every variant; the gain, trained minus random init, per run "
@@ -123,8 +123,10 @@ def table3(root, out, R, variants, paper, seed, reps):
 
     made = [_table3_row(v, target, analysed, paper.get(v, {}), random_range(target), seed, reps)
             for v in variants for analysed in [R.analysed(v, "probes")] if analysed for target in TARGETS]
+    analysis_md = os.path.relpath(os.path.join(root, "docs", "analysis.md"), out)
     write_table(out, "table3_seeds", [r for r, _ in made], "Table 3 across training seeds: what the features say "
-                "about S and H", TABLE3_INTRO, TABLE3_COLUMNS, [line for _, line in made])
+                "about S and H", TABLE3_INTRO.replace("ANALYSIS_MD", analysis_md), TABLE3_COLUMNS,
+                [line for _, line in made])
 
 
 BEHAVIOUR = (("backward_share", "walks backward (share of steps)"),
