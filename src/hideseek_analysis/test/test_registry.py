@@ -1,6 +1,7 @@
 """Tests of hideseek_analysis.registry, the one Python reader of the variants and the run registry,
 and of its command line src/hideseek_analysis/scripts/hideseek_registry.py: run with python3 -m pytest."""
 import os
+import re
 import subprocess
 import sys
 
@@ -22,6 +23,29 @@ def test_the_tree_agrees_with_itself():
     game, and every .pt in policies/ is some run's shipped weights."""
     result = cli("check")
     assert result.returncode == 0, result.stderr
+
+
+def test_every_relative_link_in_the_readme_and_docs_names_a_file_that_exists():
+    """A reader follows the README's and docs' links, the generated report's among them (Table 3's
+    link to docs/analysis.md once pointed one folder too high); code blocks are not links."""
+    link = re.compile(r"\]\(([^)\s]+)\)")
+    pages = [os.path.join(ROOT, "README.md")] + [
+        os.path.join(d, f) for d, _, fs in os.walk(os.path.join(ROOT, "docs")) for f in fs if f.endswith(".md")]
+    broken = []
+    for page in pages:
+        in_code = False
+        with open(page) as f:
+            for number, line in enumerate(f, 1):
+                if line.lstrip().startswith("```"):
+                    in_code = not in_code
+                    continue
+                for target in [] if in_code else link.findall(line):
+                    path = target.split("#")[0]
+                    if path and not re.match(r"[a-z]+:", path) and \
+                            not os.path.exists(os.path.join(os.path.dirname(page), path)):
+                        broken.append("%s:%d: %s" % (os.path.relpath(page, ROOT), number, target))
+    assert len(pages) > 20
+    assert not broken, "\n".join(broken)
 
 
 def test_variants_are_discovered_from_config_variants():
