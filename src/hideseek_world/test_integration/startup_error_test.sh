@@ -2,7 +2,8 @@
 # A node that cannot start says why, where roslaunch shows it: a missing checkpoint, a bad
 # precision or memory format, an unknown game or variant name, a misspelt variant field, a misspelt scripted evader and the memoryless ablation
 # asked of a hider without a GRU, a checkpoint of the other role, and a misspelt seeker mode each
-# stop the game with a FATAL line naming the problem.
+# stop the game with a FATAL line naming the problem. A variant's launch file given another variant
+# refuses before any node starts.
 # usage: startup_error_test.sh XUNIT_OUTPUT
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -24,6 +25,13 @@ expect_fatal bad_memory_format "/hider/memory_format must be auto, channels_last
   variant:=basic memory_format:=nhwc
 expect_fatal unknown_game "game names no game: " basic.launch game:=v9
 expect_fatal unknown_variant "'nosuch' is not a variant here (basic, " game.launch.xml variant:=nosuch
+# A variant's launch file plays its own variant: variant:= naming another is refused before any node starts.
+timeout 120 roslaunch -p "$port" hideseek_world slowerhider.launch variant:=basic > "$dir/other_variant.log" 2>&1
+rc=$?
+if [ $rc -eq 0 ] || grep -q "^process\[" "$dir/other_variant.log" ||
+  ! grep -qF "variant:=basic: slowerhider.launch plays slowerhider only; start basic.launch" "$dir/other_variant.log"; then
+  failures+=("other_variant: slowerhider.launch variant:=basic was not refused by name before any node started (exit $rc; got: $(tail -c 300 "$dir/other_variant.log"))")
+fi
 config="$(cd "$(dirname "$0")/../../hideseek_game/config" && pwd)"  # the game package holds the maps
 printf 'variant: basic\nmap: %s/maps/deterministic.yaml\nhider:\n  sped: 3.0\n' "$config" > "$dir/typo.yaml"
 expect_fatal bad_field "field 'hider.sped': unknown field" game.launch.xml variant:=basic variant_config:="$dir/typo.yaml"
