@@ -123,9 +123,11 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   if (options_.status_period > 0.0) {
     status_timer_ = nh_.createWallTimer(ros::WallDuration(options_.status_period), &WorldNode::printStatus, this);
   }
-  ROS_INFO("world: variant '%s', map '%s', %d arena(s), %s mode, seed %u, images %dx%d", options_.variant.name.c_str(),
-           options_.map.name.c_str(), n, lockstep ? "lockstep" : "realtime", options_.loop.seed, game.camera.width,
-           game.camera.height);
+  // ~game left empty plays config/games.yaml's default: the parameter then says which game that was.
+  if (private_nh.param<std::string>("game", "").empty()) private_nh.setParam("game", game.name);
+  ROS_INFO("world: game '%s', variant '%s', map '%s', %d arena(s), %s mode, seed %u, images %dx%d", game.name.c_str(),
+           options_.variant.name.c_str(), options_.map.name.c_str(), n, lockstep ? "lockstep" : "realtime",
+           options_.loop.seed, game.camera.width, game.camera.height);
 }
 
 bool WorldNode::reachedMaxDecisions() const {
@@ -214,6 +216,13 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_game::CheckedAc
         break;
       }
       case Verdict::kWrongStep: {
+        const std::vector<int64_t>& awaited = before_reset_[static_cast<size_t>(channel.player)];
+        if (i < awaited.size() && awaited[i] == static_cast<int64_t>(msg.step[i])) {
+          ++rejected_.superseded_by_reset;
+          ROS_DEBUG("world: %s answered arena %zu's step %u after world/reset restarted it (dropped)",
+                    channel.name.c_str(), i, msg.step[i]);
+          break;
+        }
         ++rejected_.wrong_step;
         WallThrottle& throttle = throttles_.wrong_step;
         if (throttle.ready()) {
@@ -501,6 +510,15 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
   // A decision step in progress is played to its end first, with the hider's action and the
   // seeker's latest: every arena's step stays whole, and an episode it ends is reported like any
   // other.
+  // The step ids the reset arenas await now: an agent's answer to one may still be on its way.
+  std::array<std::vector<int64_t>, 2> awaited = before_reset_;
+  for (const Player player : {Player::kHider, Player::kSeeker}) {
+    auto& ids = awaited[static_cast<size_t>(player)];
+    ids.resize(static_cast<size_t>(options_.loop.num_arenas), -1);
+    for (int arena = 0; arena < options_.loop.num_arenas; ++arena) {
+      if (req.arena == -1 || req.arena == arena) ids[static_cast<size_t>(arena)] = game_.expectedStepId(player, arena);
+    }
+  }
   try {
     if (const std::optional<Decision> decision = game_.reset(req.arena, req.seed)) publishDecision(*decision);
   } catch (const std::invalid_argument& e) {
@@ -508,6 +526,7 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
     res.message = e.what();
     return true;
   }
+  before_reset_ = awaited;
   last_finished_.reset();
   if (req.arena <= 0) startEpisodeVisuals();
   res.success = true;
@@ -569,6 +588,7 @@ void WorldNode::publishDiagnostics(const ros::WallTimerEvent&) {
   add("rejected_wrong_step", std::to_string(rejected_.wrong_step));
   add("rejected_second_publisher", std::to_string(rejected_.second_publisher));
   add("rejected_late", std::to_string(rejected_.late));
+  add("dropped_superseded_by_reset", std::to_string(rejected_.superseded_by_reset));
   add("stale_decisions", std::to_string(stale_decisions_));
   add("decision_steps", std::to_string(decisions));
   add("observation_batches", std::to_string(batches_published_));

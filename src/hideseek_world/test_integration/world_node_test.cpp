@@ -4,6 +4,7 @@
 #include <hideseek_msgs/ActionBatch.h>
 #include <hideseek_msgs/GameState.h>
 #include <hideseek_msgs/ObservationBatch.h>
+#include <hideseek_msgs/Reset.h>
 #include <hideseek_msgs/SeekerObservationBatch.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/ros.h>
@@ -300,6 +301,50 @@ TEST_F(WorldNodeTest, MalformedInputIsRejectedCountedAndTheWorldKeepsServing) {
       << "rejections are counted in /diagnostics: arena count " << counts["rejected_wrong_arena_count"] << ", action "
       << counts["rejected_invalid_action"] << ", step " << counts["rejected_wrong_step"] << ", second publisher "
       << counts["rejected_second_publisher"];
+}
+
+TEST_F(WorldNodeTest, AnAnswerOvertakenByAResetIsDroppedWithoutAWarning) {
+  // world/reset restarts arena 0 while the hider's answer to its step is on the way: the answer is
+  // expected, so it is dropped and counted apart, not as a wrong step (which would warn).
+  std::map<std::string, std::string> values;
+  bool fresh = false;
+  auto sub = nh_.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10,
+                                                             [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+                                                               for (const auto& s : m->status) {
+                                                                 if (s.name != "hideseek world: input") continue;
+                                                                 for (const auto& kv : s.values)
+                                                                   values[kv.key] = kv.value;
+                                                                 fresh = true;
+                                                               }
+                                                             });
+  ASSERT_TRUE(waitFor([&] { return fresh; }, 5.0)) << "no /diagnostics from the world";
+  const std::string wrong_steps = values["rejected_wrong_step"], dropped = values["dropped_superseded_by_reset"];
+  ASSERT_EQ(dropped, "0");
+  if (hider_obs_->step[0] == 0) ASSERT_TRUE(playStep(0, 0));  // step 0 would be awaited after the reset too
+  const auto before = hider_obs_;
+  hideseek_msgs::Reset reset;
+  reset.request.arena = 0;
+  reset.request.seed = 11;
+  ASSERT_TRUE(ros::service::call("world/reset", reset));
+  ASSERT_TRUE(reset.response.success) << reset.response.message;
+  ASSERT_NE(before->seed[0], 11u);
+  ASSERT_TRUE(waitFor([&] { return hider_obs_->seed[0] == 11u; }, 5.0)) << "no observation of the reset arena";
+  EXPECT_EQ(hider_obs_->step[0], 0u);
+  hider_pub_.publish(batch(0, before->step));  // arena 0: the step before the reset
+  fresh = false;
+  ASSERT_TRUE(waitFor([&] { return fresh && values["dropped_superseded_by_reset"] == "1"; }, 5.0))
+      << "dropped_superseded_by_reset: " << values["dropped_superseded_by_reset"];
+  EXPECT_EQ(values["rejected_wrong_step"], wrong_steps) << "an answer overtaken by a reset counted as a wrong step";
+  // Another wrong step id still counts as one.
+  auto wrong = batch(0, hider_obs_->step);
+  wrong.step[0] += 7;
+  hider_pub_.publish(wrong);
+  fresh = false;
+  ASSERT_TRUE(waitFor([&] { return fresh && values["rejected_wrong_step"] != wrong_steps; }, 5.0));
+  EXPECT_EQ(values["dropped_superseded_by_reset"], "1");
+  // And the reset arena plays on.
+  ASSERT_TRUE(playStep(0, 0));
+  EXPECT_EQ(hider_obs_->step[0], 1u);
 }
 
 TEST_F(WorldNodeTest, BrokenConfigStopsTheNodeBeforeItPublishes) {

@@ -14,6 +14,7 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -49,6 +50,9 @@ struct RejectionCounts {
   uint64_t wrong_step = 0;
   uint64_t second_publisher = 0;
   uint64_t late = 0;  // realtime: arrived after its step had started without it
+  // An answer to the step an arena was at when world/reset restarted it: expected, so counted
+  // apart and not warned about (an agent answering while the reset happens sends one).
+  uint64_t superseded_by_reset = 0;
 };
 
 // One agent's side of the exchange: who may send its actions.
@@ -112,6 +116,9 @@ class WorldNode {
   AgentChannel hider_;
   AgentChannel seeker_;
   RejectionCounts rejected_;
+  // Per player (hider, seeker) and arena, the step id the arena awaited when world/reset last
+  // restarted it (-1: never reset): an answer to it arrives after the reset and is no fault.
+  std::array<std::vector<int64_t>, 2> before_reset_;
   WarningThrottles throttles_;
   uint64_t batches_published_ = 0;
   ros::WallTime last_visuals_;
