@@ -10,4 +10,6 @@ if [ -f "$_hideseek_root/devel/setup.bash" ]; then
   source "$_hideseek_root/devel/setup.bash"
   [ "$_hideseek_nounset" = 1 ] && set -u
 fi
+# The pipeline's command by its name, as the README and docs write it (rosrun finds it once built).
+hideseek_pipeline() { rosrun hideseek_pipeline hideseek_pipeline "$@"; }
 true
