@@ -216,8 +216,9 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_game::CheckedAc
         break;
       }
       case Verdict::kWrongStep: {
-        const std::vector<int64_t>& awaited = before_reset_[static_cast<size_t>(channel.player)];
+        std::vector<int64_t>& awaited = before_reset_[static_cast<size_t>(channel.player)];
         if (i < awaited.size() && awaited[i] == static_cast<int64_t>(msg.step[i])) {
+          awaited[i] = -1;  // one answer was on its way; another to that id is a wrong step
           ++rejected_.superseded_by_reset;
           ROS_DEBUG("world: %s answered arena %zu's step %u after world/reset restarted it (dropped)",
                     channel.name.c_str(), i, msg.step[i]);
@@ -507,9 +508,6 @@ void WorldNode::publishArenaZero(bool force_visuals) {
 }
 
 bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset::Response& res) {
-  // A decision step in progress is played to its end first, with the hider's action and the
-  // seeker's latest: every arena's step stays whole, and an episode it ends is reported like any
-  // other.
   // The step ids the reset arenas await now: an agent's answer to one may still be on its way.
   std::array<std::vector<int64_t>, 2> awaited = before_reset_;
   for (const Player player : {Player::kHider, Player::kSeeker}) {
@@ -519,6 +517,9 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
       if (req.arena == -1 || req.arena == arena) ids[static_cast<size_t>(arena)] = game_.expectedStepId(player, arena);
     }
   }
+  // A decision step in progress is played to its end first, with the hider's action and the
+  // seeker's latest: every arena's step stays whole, and an episode it ends is reported like any
+  // other.
   try {
     if (const std::optional<Decision> decision = game_.reset(req.arena, req.seed)) publishDecision(*decision);
   } catch (const std::invalid_argument& e) {

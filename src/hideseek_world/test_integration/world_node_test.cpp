@@ -335,12 +335,15 @@ TEST_F(WorldNodeTest, AnAnswerOvertakenByAResetIsDroppedWithoutAWarning) {
   ASSERT_TRUE(waitFor([&] { return fresh && values["dropped_superseded_by_reset"] == "1"; }, 5.0))
       << "dropped_superseded_by_reset: " << values["dropped_superseded_by_reset"];
   EXPECT_EQ(values["rejected_wrong_step"], wrong_steps) << "an answer overtaken by a reset counted as a wrong step";
-  // Another wrong step id still counts as one.
+  // The same answer again, and another wrong step id, count as wrong steps.
+  hider_pub_.publish(batch(0, before->step));
   auto wrong = batch(0, hider_obs_->step);
   wrong.step[0] += 7;
   hider_pub_.publish(wrong);
   fresh = false;
-  ASSERT_TRUE(waitFor([&] { return fresh && values["rejected_wrong_step"] != wrong_steps; }, 5.0));
+  ASSERT_TRUE(waitFor(
+      [&] { return fresh && values["rejected_wrong_step"] == std::to_string(std::stoul(wrong_steps) + 2); }, 5.0))
+      << "rejected_wrong_step " << values["rejected_wrong_step"] << ", before " << wrong_steps;
   EXPECT_EQ(values["dropped_superseded_by_reset"], "1");
   // And the reset arena plays on.
   ASSERT_TRUE(playStep(0, 0));
