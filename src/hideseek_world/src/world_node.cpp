@@ -191,8 +191,10 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_game::CheckedAc
   for (size_t i = 0; i < n; ++i) {
     const int arena = static_cast<int>(i);
     const uint32_t current = game_.expectedStepId(channel.player, arena);
+    std::vector<int64_t>& awaited = before_reset_[static_cast<size_t>(channel.player)];
     switch (game_.offer(channel.player, arena, msg.actions[i], msg.step[i])) {
       case Verdict::kAccepted:
+        if (i < awaited.size()) awaited[i] = -1;  // answers come in order: none to the old step follows
         break;
       case Verdict::kInvalidAction: {
         ++rejected_.invalid_action;
@@ -216,7 +218,6 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_game::CheckedAc
         break;
       }
       case Verdict::kWrongStep: {
-        std::vector<int64_t>& awaited = before_reset_[static_cast<size_t>(channel.player)];
         if (i < awaited.size() && awaited[i] == static_cast<int64_t>(msg.step[i])) {
           awaited[i] = -1;  // one answer was on its way; another to that id is a wrong step
           ++rejected_.superseded_by_reset;
@@ -514,7 +515,9 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
     auto& ids = awaited[static_cast<size_t>(player)];
     ids.resize(static_cast<size_t>(options_.loop.num_arenas), -1);
     for (int arena = 0; arena < options_.loop.num_arenas; ++arena) {
-      if (req.arena == -1 || req.arena == arena) ids[static_cast<size_t>(arena)] = game_.expectedStepId(player, arena);
+      if (req.arena != -1 && req.arena != arena) continue;
+      const uint32_t id = game_.expectedStepId(player, arena);
+      ids[static_cast<size_t>(arena)] = id == hideseek_game::kNoStep ? -1 : static_cast<int64_t>(id);
     }
   }
   // A decision step in progress is played to its end first, with the hider's action and the

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Loads every launch file of a folder with roslaunch's own loader (arguments, includes,
 substitutions) and checks that each node's package and executable exist, that every
-argument a user can set carries a doc= (roslaunch --ros-args lists it), and that the `policy`
+argument a user can set carries a doc= (roslaunch --ros-args lists it, and must load the file to do so), and
+that the `policy`
 argument of a variant's launch file defaults to `shipped` (the policy policies/policies.yaml ships
 for the variant, else the random hider). The training parameters (output_dir, ppo_config, ...)
 reach the agent that trains and no other: an agent that plays a policy, at random or by script
@@ -19,6 +20,7 @@ import sys
 import xml.etree.ElementTree as ET
 from xml.sax.saxutils import escape
 
+import roslaunch.arg_dump
 import roslaunch.config
 import roslaunch.xmlloader
 import rospkg
@@ -78,8 +80,21 @@ def training_problems(config):
     return problems
 
 
+def ros_args_problems(path):
+    """`roslaunch --ros-args` lists the file's arguments (docs/launch_files.md points users to it), and an
+    argument it lists as required (no default, or an empty one) is one a user can set: documented."""
+    try:
+        listed = roslaunch.arg_dump.get_args([path])
+    except Exception as e:  # roslaunch raises several unrelated exception types
+        return ["roslaunch --ros-args fails: %s" % str(e).strip().splitlines()[0]]
+    return ["roslaunch --ros-args lists '%s', a computed argument, as required" % name
+            for name, (doc, default) in sorted(listed.items()) if not doc and not default]
+
+
 def check(path, argv=None):
     problems = ["argument '%s' has no doc=" % name for name in undocumented_arguments(path)]
+    if argv is None:
+        problems += ros_args_problems(path)
     if path.endswith(".launch.xml"):
         return problems  # an include: its required arguments come from the files that load it
     config = roslaunch.config.ROSLaunchConfig()

@@ -304,8 +304,8 @@ TEST_F(WorldNodeTest, MalformedInputIsRejectedCountedAndTheWorldKeepsServing) {
 }
 
 TEST_F(WorldNodeTest, AnAnswerOvertakenByAResetIsDroppedWithoutAWarning) {
-  // world/reset restarts arena 0 while the hider's answer to its step is on the way: the answer is
-  // expected, so it is dropped and counted apart, not as a wrong step (which would warn).
+  // world/reset restarts arena 0 while both agents' answers to its step are on the way: they are
+  // expected, so they are dropped and counted apart, not as wrong steps (which would warn).
   std::map<std::string, std::string> values;
   bool fresh = false;
   auto sub = nh_.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10,
@@ -322,17 +322,19 @@ TEST_F(WorldNodeTest, AnAnswerOvertakenByAResetIsDroppedWithoutAWarning) {
   ASSERT_EQ(dropped, "0");
   if (hider_obs_->step[0] == 0) ASSERT_TRUE(playStep(0, 0));  // step 0 would be awaited after the reset too
   const auto before = hider_obs_;
+  const auto seeker_before = seeker_obs_;
+  ASSERT_NE(before->seed[0], 11u);
   hideseek_msgs::Reset reset;
   reset.request.arena = 0;
   reset.request.seed = 11;
   ASSERT_TRUE(ros::service::call("world/reset", reset));
   ASSERT_TRUE(reset.response.success) << reset.response.message;
-  ASSERT_NE(before->seed[0], 11u);
   ASSERT_TRUE(waitFor([&] { return hider_obs_->seed[0] == 11u; }, 5.0)) << "no observation of the reset arena";
   EXPECT_EQ(hider_obs_->step[0], 0u);
   hider_pub_.publish(batch(0, before->step));  // arena 0: the step before the reset
+  seeker_pub_.publish(batch(0, seeker_before->step));
   fresh = false;
-  ASSERT_TRUE(waitFor([&] { return fresh && values["dropped_superseded_by_reset"] == "1"; }, 5.0))
+  ASSERT_TRUE(waitFor([&] { return fresh && values["dropped_superseded_by_reset"] == "2"; }, 5.0))
       << "dropped_superseded_by_reset: " << values["dropped_superseded_by_reset"];
   EXPECT_EQ(values["rejected_wrong_step"], wrong_steps) << "an answer overtaken by a reset counted as a wrong step";
   // The same answer again, and another wrong step id, count as wrong steps.
@@ -344,7 +346,7 @@ TEST_F(WorldNodeTest, AnAnswerOvertakenByAResetIsDroppedWithoutAWarning) {
   ASSERT_TRUE(waitFor(
       [&] { return fresh && values["rejected_wrong_step"] == std::to_string(std::stoul(wrong_steps) + 2); }, 5.0))
       << "rejected_wrong_step " << values["rejected_wrong_step"] << ", before " << wrong_steps;
-  EXPECT_EQ(values["dropped_superseded_by_reset"], "1");
+  EXPECT_EQ(values["dropped_superseded_by_reset"], "2");
   // And the reset arena plays on.
   ASSERT_TRUE(playStep(0, 0));
   EXPECT_EQ(hider_obs_->step[0], 1u);

@@ -756,7 +756,7 @@ def write_both(out_dir, by_game, reps):
     md = ["# The paper's claims on both games", "",
           "Each claim decided on each game's sweep runs, as in each game's own table (%s), which gives every "
           "measure, practical size and possible cause. Intervals: 95 %% bootstrap over each variant's training "
-          "seeds (%d resamples): over as many runs as the cell's count says (three to five a variant, as the "
+          "seeds (%d resamples): over as many runs as the cell's count says (one to five a variant, as the "
           "sweep trains seeds 3-4). Game v3 reads the paper's motion as its engine would run it: the last column "
           "names what changed from v2 that bears on a claim; the map's cross, longer on v3, bears on every one." % (
               ", ".join("[%s](%s/claims.md)" % (g, g) for g in games), reps), "",
