@@ -29,7 +29,7 @@ import hideseek
 
 
 def parse_args():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--variant", default="basic")
     p.add_argument("--game", default=None, help="v3, v2 or v1 (default: config/games.yaml's); give import_policy "
                    "the same --game")

@@ -74,8 +74,9 @@ def plot(runs, output, title, marks=()):
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
-    if not argv:
-        sys.exit(__doc__)
+    if not argv or argv[0] in ("-h", "--help"):
+        print(__doc__)
+        sys.exit(0 if argv else 1)
     if any(a.startswith("--") for a in argv):
         parser = argparse.ArgumentParser(description="Learning curves of several runs on one plot.")
         parser.add_argument("--run", nargs=2, action="append", required=True, metavar=("LABEL", "LOG"),

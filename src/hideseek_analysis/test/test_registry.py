@@ -92,6 +92,19 @@ def test_record_then_ship_makes_one_run_the_shipped_one(tree, tmp_path):
     assert reg.shipped("basic", game="v1", registry=registry) == (None, None)
 
 
+def test_a_registry_elsewhere_finds_its_runs_logs_beside_it(tree, tmp_path):
+    """`check --registry` of records kept outside the checkout (hideseek_pipeline train --record-root)
+    reads each run's log and curve under that registry's own folder, not under the checkout's."""
+    registry, variants = tree
+    reg.record("scratch_seed0", {"variant": "basic", "network": "ff", "game": "v3", "training_seed": 0, "steps": 2048,
+                                 "log": "docs/runs/scratch_seed0/training_log.csv"}, registry)
+    assert reg.problems(registry, variants) == [
+        "run scratch_seed0: log docs/runs/scratch_seed0/training_log.csv does not exist"]
+    (tmp_path / "docs" / "runs" / "scratch_seed0").mkdir(parents=True)
+    (tmp_path / "docs" / "runs" / "scratch_seed0" / "training_log.csv").write_text("update,steps\n1,1024\n")
+    assert reg.problems(registry, variants) == []
+
+
 def test_a_v3_policy_ships_beside_the_v2_one_of_its_variant(tree, tmp_path):
     """Shipping game v3's basic leaves v2's basic.pt as it is, so that v2 stays playable."""
     registry, variants = tree

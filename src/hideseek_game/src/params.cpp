@@ -84,8 +84,16 @@ VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
     }
   }
   if (game_file.empty() && variant_file.empty()) return selectGame(config, game, variant).config;
-  return loadVariantConfig(game_file.empty() ? gameFile(config, game) : game_file,
-                           variant_file.empty() ? variantFile(config, variant) : variant_file);
+  VariantConfig v = loadVariantConfig(game_file.empty() ? gameFile(config, game) : game_file,
+                                      variant_file.empty() ? variantFile(config, variant) : variant_file);
+  // The variant's name labels what the nodes write (evaluations, logs, checkpoints): a file of one's
+  // own is played under its own name.
+  if (!variant_file.empty() && !variant.empty() && v.name != variant) {
+    throw bad(nh, "variant_config",
+              "is variant '" + v.name + "' (" + variant_file + "), but " + nh.resolveName("variant") + " is '" +
+                  variant + "': give the file's name (variant:=" + v.name + ")");
+  }
+  return v;
 }
 
 }  // namespace hideseek_game

@@ -232,4 +232,19 @@ std::vector<uint8_t> Learner::trainStep(const LearnerBatch& b) {
   return {};
 }
 
+void Learner::stop() {
+  if (!training_ || exit_code_ != 0 || training_->finished()) return;
+  try {
+    if (training_->saveCheckpointOnStop()) {
+      ROS_INFO(
+          "train: stopped at %ld of %ld steps (its last update); checkpoint %s: the same command resumes from there",
+          static_cast<long>(training_->updatedSteps()), static_cast<long>(training_->totalSteps()),
+          training_->checkpointPath().c_str());
+    }
+  } catch (const std::exception& e) {
+    ROS_ERROR("%s: stopped, but its checkpoint was not written: %s", role_.c_str(), e.what());
+    exit_code_ = 1;
+  }
+}
+
 }  // namespace hideseek_hider

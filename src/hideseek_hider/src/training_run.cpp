@@ -231,6 +231,8 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
   }
   trainer_.setTotalSamples(options_.total_steps / world_);
   start_steps_ = steps();
+  checkpoint_steps_ = start_steps_;
+  updated_wall_s_ = start_wall_s_;
   // the log continues across resumes
   updates_ = start_steps_ / (static_cast<int64_t>(ppo.rollout_steps) * num_arenas * world_);
   if (rank_ != 0) return;  // rank 0 alone writes the logs
@@ -296,6 +298,7 @@ void TrainingRun::progress(UpdateReport& rep, Clock::time_point now) {
   rep.steps = steps();
   const double process_s = std::chrono::duration<double>(now - start_).count();
   rep.wall_s = start_wall_s_ + process_s;
+  updated_wall_s_ = rep.wall_s;
   rep.steps_per_s = (rep.steps - start_steps_) / std::max(process_s, 1e-9);
   rep.eta_s = std::max<int64_t>(0, options_.total_steps - rep.steps) / std::max(rep.steps_per_s, 1e-9);
   const int64_t finished = episodes_seen_.takeFinished();
@@ -323,12 +326,11 @@ void TrainingRun::progress(UpdateReport& rep, Clock::time_point now) {
 
 void TrainingRun::saveCheckpoint() {
   if (rank_ != 0) return;
-  const auto now = Clock::now();
   CheckpointInfo info{trainer_.net()->architecture(), options_.image_height, options_.image_width, options_.variant,
-                      steps()};
+                      updatedSteps()};
   info.game = options_.game;
   info.role = options_.role;
-  info.wall_s = start_wall_s_ + std::chrono::duration<double>(now - start_).count();
+  info.wall_s = updated_wall_s_;  // the log's row of that update has the same
   info.episodes = episodes_;
   for (const auto& [length, ret] : episodes_seen_.recent()) {
     info.recent_lengths.push_back(length);
@@ -336,6 +338,13 @@ void TrainingRun::saveCheckpoint() {
   }
   hideseek_hider::saveCheckpoint(checkpointPath(), trainer_.net(), info, &trainer_.optimizer());
   last_checkpoint_ = Clock::now();
+  checkpoint_steps_ = info.steps;
+}
+
+bool TrainingRun::saveCheckpointOnStop() {
+  if (rank_ != 0 || updatedSteps() == checkpoint_steps_) return false;
+  saveCheckpoint();
+  return true;
 }
 
 }  // namespace hideseek_hider

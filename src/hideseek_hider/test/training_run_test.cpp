@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -160,6 +161,42 @@ TEST(TrainingRun, ResumedLogContinuesWithoutDuplicatesAndKeepsWallTimeAndEpisode
   EXPECT_GE(std::stod(column(log[4], 2)), wall_at_checkpoint);
   EXPECT_GT(std::stoll(column(log[4], 4)), episodes_at_checkpoint);
   EXPECT_GE(std::stod(column(log[5], 2)), std::stod(column(log[4], 2)));
+}
+
+TEST(TrainingRun, AStopMidRolloutKeepsTheLastUpdateAndItsLogRow) {
+  // Ctrl-C comes while a rollout is being recorded: the checkpoint holds the last update (its steps
+  // and the wall time of its log row), not the samples of the unfinished rollout, and the next
+  // start resumes there with every log row kept.
+  const std::string dir = testing::TempDir() + "run_stop";
+  std::remove((dir + "/checkpoint.pt").c_str());
+  std::remove((dir + "/training_log.csv").c_str());
+  torch::manual_seed(0);
+  {
+    TrainingRun run(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
+    EXPECT_FALSE(run.saveCheckpointOnStop()) << "no update yet: nothing to keep";
+    feed(run, 3);
+    const std::vector<uint8_t> images(kArenas * kSize * kSize * 3, 128);
+    std::optional<UpdateReport> report;
+    for (int k = 0; k < 2; ++k) {  // half of the next rollout
+      run.step(images.data(), std::vector<float>(kArenas, 0.001f), std::vector<uint8_t>(kArenas, 0), &report);
+    }
+    EXPECT_EQ(run.steps(), 24 + 2 * kArenas);
+    EXPECT_EQ(run.updatedSteps(), 24);
+    ASSERT_TRUE(run.saveCheckpointOnStop());
+    EXPECT_FALSE(run.saveCheckpointOnStop()) << "the checkpoint holds the last update already";
+    const CheckpointInfo info = readCheckpointInfo(run.checkpointPath());
+    EXPECT_EQ(info.steps, 24);
+    const auto log = lines(run.logPath());
+    ASSERT_EQ(log.size(), 1u + 3u);
+    // The log writes six significant digits.
+    EXPECT_NEAR(std::stod(column(log[3], 2)), info.wall_s, 1e-5 * std::max(1.0, info.wall_s))
+        << "the wall time of the update's log row";
+  }
+  TrainingRun resumed(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
+  EXPECT_TRUE(resumed.resumed());
+  EXPECT_EQ(resumed.steps(), 24);
+  EXPECT_EQ(resumed.droppedLogRows(), 0);
+  EXPECT_FALSE(resumed.saveCheckpointOnStop()) << "resumed, no update since: nothing new to keep";
 }
 
 TEST(TrainingRun, ACheckpointRecordsItsGameAndIsNotResumedUnderAnother) {

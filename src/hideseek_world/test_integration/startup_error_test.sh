@@ -2,7 +2,8 @@
 # A node that cannot start says why, where roslaunch shows it: a missing checkpoint, a bad
 # precision or memory format, an unknown game or variant name, a misspelt variant field, a misspelt scripted evader and the memoryless ablation
 # asked of a hider without a GRU, a checkpoint of the other role, and a misspelt seeker mode each
-# stop the game with a FATAL line naming the problem. A variant's launch file given another variant
+# stop the game with a FATAL line naming the problem, as does a variant file of one's own named
+# otherwise than variant:=. A variant's launch file given another variant
 # refuses before any node starts.
 # usage: startup_error_test.sh XUNIT_OUTPUT
 set -uo pipefail
@@ -35,6 +36,10 @@ fi
 config="$(cd "$(dirname "$0")/../../hideseek_game/config" && pwd)"  # the game package holds the maps
 printf 'variant: basic\nmap: %s/maps/deterministic.yaml\nhider:\n  sped: 3.0\n' "$config" > "$dir/typo.yaml"
 expect_fatal bad_field "field 'hider.sped': unknown field" game.launch.xml variant:=basic variant_config:="$dir/typo.yaml"
+# A variant file of one's own plays under its own name, which labels the results: another is refused.
+printf 'variant: slowbasic\nmap: %s/maps/deterministic.yaml\nhider:\n  speed: 1.0\n' "$config" > "$dir/slowbasic.yaml"
+expect_fatal variant_file_named_otherwise "variant_config is variant 'slowbasic' ($dir/slowbasic.yaml), but" \
+  game.launch.xml variant:=basic variant_config:="$dir/slowbasic.yaml"
 policies="$(cd "$(dirname "$0")/../policies" && pwd)"
 expect_fatal memoryless_ff "memoryless applies to a GRU policy only, and this one is a feed-forward hider" evaluate.launch \
   policy:="$policies/basic.pt" memoryless:=true episodes:=1 output_dir:="$dir/eval_ff"

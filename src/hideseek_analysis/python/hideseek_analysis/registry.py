@@ -438,6 +438,7 @@ def problems(registry=REGISTRY, variants_dir=VARIANTS_DIR):
     except RegistryError as e:
         return [str(e)]
     keys = {}
+    root = os.path.dirname(os.path.dirname(os.path.abspath(registry)))  # the records' checkout: log paths are its
     for name, e in entries.items():
         if e["variant"] not in names:
             found.append("run %s: variant %r has no file in %s" % (name, e["variant"], variants_dir))
@@ -451,7 +452,7 @@ def problems(registry=REGISTRY, variants_dir=VARIANTS_DIR):
                              % (keys[key], name, *key))
             keys[key] = name
         for field in ("log", "curve"):
-            if e.get(field) and not os.path.isfile(os.path.join(ROOT, e[field])):
+            if e.get(field) and not os.path.isfile(os.path.join(root, e[field])):
                 found.append("run %s: %s %s does not exist" % (name, field, e[field]))
         if draw(e) == "retrain":
             first = entries.get(e["retrain_of"])

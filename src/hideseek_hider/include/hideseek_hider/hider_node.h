@@ -36,6 +36,10 @@ class HiderNode {
   HiderNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
   // The process's exit status once spinning ends: non-zero when training stopped on an error.
   int exitCode() const { return learner_ ? learner_->exitCode() : 0; }
+  // Once spinning ends: a training run not finished writes its checkpoint (Learner::stop).
+  void stop() {
+    if (learner_) learner_->stop();
+  }
 
  private:
   void onObservations(const hideseek_msgs::ObservationBatch::ConstPtr& msg);

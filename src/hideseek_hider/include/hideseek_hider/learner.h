@@ -75,6 +75,9 @@ class Learner {
   // then 1) or finished (its final checkpoint written): the node then shuts down.
   std::vector<uint8_t> act(const LearnerBatch& batch);
   int exitCode() const { return exit_code_; }
+  // The node is stopping (Ctrl-C, roslaunch shutting down): a training run not yet finished writes
+  // the checkpoint of its last update, so that the same command resumes from there.
+  void stop();
 
  private:
   void startTraining(const LearnerOptions& o);

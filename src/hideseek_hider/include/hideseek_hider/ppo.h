@@ -111,6 +111,8 @@ class PpoTrainer {
   HiderNet& net() { return net_; }
   torch::optim::Adam& optimizer() { return optimizer_; }
   int64_t samplesSeen() const { return samples_; }
+  // The samples of the rollouts updated on: samplesSeen() less the rows of the one being recorded.
+  int64_t samplesUpdated() const { return samples_ - static_cast<int64_t>(step_) * num_arenas_; }
   // GRU only: each arena's state after the last act() ([N, 512]).
   const torch::Tensor& hidden() const { return hidden_; }
   void setSamplesSeen(int64_t samples) { samples_ = samples; }

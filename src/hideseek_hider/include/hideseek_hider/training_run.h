@@ -135,8 +135,15 @@ class TrainingRun {
   int64_t steps() const { return trainer_.samplesSeen() * world_; }
   int64_t totalSteps() const { return options_.total_steps; }
   int numArenas() const { return num_arenas_; }
-  // Writes output_dir/checkpoint.pt atomically; on a rank other than 0, nothing.
+  // Environment steps of all ranks in the updates done: what a checkpoint holds (the rollout being
+  // recorded is not in the network yet).
+  int64_t updatedSteps() const { return trainer_.samplesUpdated() * world_; }
+  // Writes output_dir/checkpoint.pt atomically (the network and optimiser as the last update left
+  // them, its steps and wall time); on a rank other than 0, nothing.
   void saveCheckpoint();
+  // The process is asked to stop before the run is finished (Ctrl-C, roslaunch shutting down):
+  // the checkpoint of the last update, unless the checkpoint holds it already. Whether it wrote one.
+  bool saveCheckpointOnStop();
   const PpoTrainer& trainer() const { return trainer_; }
   int rank() const { return rank_; }
   std::string checkpointPath() const { return options_.output_dir + "/checkpoint.pt"; }
@@ -163,7 +170,9 @@ class TrainingRun {
   bool acted_ = false;
   int64_t updates_ = 0;
   int64_t start_steps_ = 0;
-  double start_wall_s_ = 0.0;  // wall seconds the run had trained before this process
+  double start_wall_s_ = 0.0;     // wall seconds the run had trained before this process
+  double updated_wall_s_ = 0.0;   // the run's wall seconds at its last update
+  int64_t checkpoint_steps_ = 0;  // the steps the checkpoint holds (0: none written)
   Clock::time_point start_;
   Clock::time_point last_checkpoint_;
   EpisodeStatistics episodes_seen_;  // this rank's arenas

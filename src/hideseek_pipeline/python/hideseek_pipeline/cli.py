@@ -76,7 +76,8 @@ def parser():
     sub = p.add_subparsers(dest="command", required=True)
     common = argparse.ArgumentParser(add_help=False)
     common.add_argument("--record-root", help="the checkout whose registry names the run and whose docs/runs/ "
-                        "receives its files (default: this checkout)")
+                        "receives its files (default: this checkout; a folder of one's own needs a "
+                        "policies/policies.yaml, which may be empty)")
     common.add_argument("--workspace", help="the catkin workspace whose launch files and tools run (default: this "
                         "checkout; the sweep passes a phase's pinned worktree)")
     _train_parser(sub, common)
@@ -97,7 +98,8 @@ def _train_parser(sub, common):
     t.add_argument("variant")
     t.add_argument("--seed", type=int, default=0, help="the training seed (default 0)")
     t.add_argument("--steps", type=int, default=2_000_000, help="environment steps (default 2000000)")
-    t.add_argument("--runs-dir", default="~/hideseek_runs", help="where <run>/ holds weights and checkpoints")
+    t.add_argument("--runs-dir", default="~/hideseek_runs",
+                   help="where <run>/ holds weights and checkpoints (default ~/hideseek_runs)")
     t.add_argument("--network", choices=["ff", "gru"], default="ff")
     t.add_argument("--name", help="the run's name (default: as the sweep names it, <variant>[_seeker][_<game> unless v2]"
                    "[_gru][_<budget> unless 2M]_seed<S>, e.g. basic_v3_8m_seed0)")
@@ -252,7 +254,7 @@ def sweep_command(args):
 def run_command(args):
     root = repository_root()
     ws = Workspace(args.workspace or root)
-    records = Records(os.path.realpath(args.record_root or root), root)
+    records = Records(os.path.realpath(args.record_root or root), root, "--record-root")
     if args.command == "train":
         o = train.TrainOptions(
             variant=args.variant, seed=args.seed, steps=args.steps, runs_dir=args.runs_dir, network=args.network,
@@ -347,7 +349,8 @@ def main(argv=None):
     try:
         return sweep_command(args) if args.command == "sweep" else run_command(args)
     except (SweepError, sweep_config.ConfigError, FileNotFoundError) as e:
-        print("sweep: %s" % e, file=sys.stderr)
+        print("%s: %s" % ("sweep" if args.command == "sweep" else "hideseek_pipeline " + args.command, e),
+              file=sys.stderr)
         return 2
     except ToolError as e:
         print("hideseek_pipeline: %s" % e, file=sys.stderr)

@@ -19,14 +19,15 @@ def load_registry_module(root):
 
 
 class Records:
-    def __init__(self, root, code_root):
+    def __init__(self, root, code_root, given_by="SWEEP_RECORD_ROOT"):
         """`root`: the checkout that receives the records (its registry says which runs are done);
         `code_root`: the checkout whose registry module and variants are read where `root` has
-        none (a bare folder of records)."""
+        none (a bare folder of records); `given_by`: what named `root`, for the error."""
         self.root = root
         self.registry_path = os.path.join(root, "policies", "policies.yaml")
         if not os.path.isfile(self.registry_path):
-            raise FileNotFoundError("SWEEP_RECORD_ROOT: no policies/policies.yaml in %s" % root)
+            raise FileNotFoundError("%s: no policies/policies.yaml in %s (records go into a registry there: an "
+                                    "empty policies/policies.yaml starts one)" % (given_by, root))
         own = os.path.isfile(os.path.join(root, "src", "hideseek_analysis", "python", "hideseek_analysis", "registry.py"))
         self.registry = load_registry_module(root if own else code_root)
         # The note the queue records on each run it trained: the registry's, which Table 2, the

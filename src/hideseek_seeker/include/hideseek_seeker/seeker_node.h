@@ -39,6 +39,10 @@ class SeekerNode {
   SeekerNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
   // The process's exit status once spinning ends: non-zero when training stopped on an error.
   int exitCode() const { return learner_ ? learner_->exitCode() : 0; }
+  // Once spinning ends: a learning seeker's training run not finished writes its checkpoint.
+  void stop() {
+    if (learner_) learner_->stop();
+  }
 
  private:
   void onObservations(const hideseek_msgs::SeekerObservationBatch::ConstPtr& msg);
