@@ -69,7 +69,6 @@ VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
   const std::string game_file = readString(nh, "game_config", ""), variant_file = readString(nh, "variant_config", "");
   // ~game empty or unset: the default game (config/games.yaml), as the launch files' game:= does.
   const std::string game = readString(nh, "game", ""), variant = readString(nh, "variant", "");
-  if (!game_file.empty() && !variant_file.empty()) return loadVariantConfig(game_file, variant_file);
   if (variant.empty() && variant_file.empty()) {
     throw bad(
         nh, "variant",
@@ -91,7 +90,7 @@ VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
   if (!variant_file.empty() && !variant.empty() && v.name != variant) {
     throw bad(nh, "variant_config",
               "is variant '" + v.name + "' (" + variant_file + "), but " + nh.resolveName("variant") + " is '" +
-                  variant + "': give the file's name (variant:=" + v.name + ")");
+                  variant + "': give the file's name (variant.launch.xml variant:=" + v.name + ")");
   }
   return v;
 }

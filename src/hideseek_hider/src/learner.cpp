@@ -234,6 +234,11 @@ std::vector<uint8_t> Learner::trainStep(const LearnerBatch& b) {
 
 void Learner::stop() {
   if (!training_ || exit_code_ != 0 || training_->finished()) return;
+  if (training_->rank() != 0) {
+    ROS_INFO("train: stopped at %ld steps (rank %d: rank 0 writes the checkpoint)",
+             static_cast<long>(training_->updatedSteps()), training_->rank());
+    return;
+  }
   try {
     if (training_->saveCheckpointOnStop()) {
       ROS_INFO(

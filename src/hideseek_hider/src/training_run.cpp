@@ -233,6 +233,7 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
   start_steps_ = steps();
   checkpoint_steps_ = start_steps_;
   updated_wall_s_ = start_wall_s_;
+  updated_recent_ = episodes_seen_.recent();
   // the log continues across resumes
   updates_ = start_steps_ / (static_cast<int64_t>(ppo.rollout_steps) * num_arenas * world_);
   if (rank_ != 0) return;  // rank 0 alone writes the logs
@@ -322,6 +323,7 @@ void TrainingRun::progress(UpdateReport& rep, Clock::time_point now) {
     std::tie(rep.mean_length, rep.mean_return) = episodes_seen_.recentMeans();
   }
   rep.episodes = episodes_;
+  updated_recent_ = episodes_seen_.recent();
 }
 
 void TrainingRun::saveCheckpoint() {
@@ -332,7 +334,7 @@ void TrainingRun::saveCheckpoint() {
   info.role = options_.role;
   info.wall_s = updated_wall_s_;  // the log's row of that update has the same
   info.episodes = episodes_;
-  for (const auto& [length, ret] : episodes_seen_.recent()) {
+  for (const auto& [length, ret] : updated_recent_) {  // the window of the log's last row, as its counts
     info.recent_lengths.push_back(length);
     info.recent_returns.push_back(ret);
   }

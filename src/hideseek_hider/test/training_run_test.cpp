@@ -177,8 +177,8 @@ TEST(TrainingRun, AStopMidRolloutKeepsTheLastUpdateAndItsLogRow) {
     feed(run, 3);
     const std::vector<uint8_t> images(kArenas * kSize * kSize * 3, 128);
     std::optional<UpdateReport> report;
-    for (int k = 0; k < 2; ++k) {  // half of the next rollout
-      run.step(images.data(), std::vector<float>(kArenas, 0.001f), std::vector<uint8_t>(kArenas, 0), &report);
+    for (int k = 0; k < 2; ++k) {  // half of the next rollout, in which both arenas' episodes end
+      run.step(images.data(), std::vector<float>(kArenas, 0.001f), std::vector<uint8_t>(kArenas, 1), &report);
     }
     EXPECT_EQ(run.steps(), 24 + 2 * kArenas);
     EXPECT_EQ(run.updatedSteps(), 24);
@@ -192,6 +192,20 @@ TEST(TrainingRun, AStopMidRolloutKeepsTheLastUpdateAndItsLogRow) {
     EXPECT_NEAR(std::stod(column(log[3], 2)), info.wall_s, 1e-5 * std::max(1.0, info.wall_s))
         << "the wall time of the update's log row";
   }
+  // The episode window it keeps is the update's too: the same run checkpointed at that update.
+  const std::string reference = testing::TempDir() + "run_stop_reference";
+  std::remove((reference + "/checkpoint.pt").c_str());
+  std::remove((reference + "/training_log.csv").c_str());
+  torch::manual_seed(0);
+  {
+    TrainingRun run(tinyRun(reference, 80), tinyPpo(), kArenas, torch::kCPU);
+    feed(run, 3);
+    run.saveCheckpoint();
+  }
+  const CheckpointInfo at_update = readCheckpointInfo(reference + "/checkpoint.pt");
+  const CheckpointInfo at_stop = readCheckpointInfo(dir + "/checkpoint.pt");
+  EXPECT_EQ(at_stop.episodes, at_update.episodes);
+  EXPECT_EQ(at_stop.recent_lengths, at_update.recent_lengths) << "episodes of the unfinished rollout kept";
   TrainingRun resumed(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
   EXPECT_TRUE(resumed.resumed());
   EXPECT_EQ(resumed.steps(), 24);

@@ -15,9 +15,13 @@ namespace hideseek_game {
 
 inline volatile std::sig_atomic_t g_interrupted = 0;
 
-// From now on SIGINT asks spinUntilInterrupted() to return.
+// From now on SIGINT asks spinUntilInterrupted() to return; a second SIGINT stops the process at
+// once, as roscpp's own handler would (a node stuck in a wait).
 inline void catchInterrupt() {
-  std::signal(SIGINT, [](int) { g_interrupted = 1; });
+  std::signal(SIGINT, [](int) {
+    g_interrupted = 1;
+    std::signal(SIGINT, SIG_DFL);
+  });
 }
 
 // Runs the callbacks, one thread, until SIGINT came or ROS shut down (ros::shutdown(), a node

@@ -170,9 +170,10 @@ class TrainingRun {
   bool acted_ = false;
   int64_t updates_ = 0;
   int64_t start_steps_ = 0;
-  double start_wall_s_ = 0.0;     // wall seconds the run had trained before this process
-  double updated_wall_s_ = 0.0;   // the run's wall seconds at its last update
-  int64_t checkpoint_steps_ = 0;  // the steps the checkpoint holds (0: none written)
+  double start_wall_s_ = 0.0;                              // wall seconds the run had trained before this process
+  double updated_wall_s_ = 0.0;                            // the run's wall seconds at its last update
+  int64_t checkpoint_steps_ = 0;                           // the steps the checkpoint holds (0: none written)
+  std::deque<std::pair<int64_t, double>> updated_recent_;  // the episode window at the last update
   Clock::time_point start_;
   Clock::time_point last_checkpoint_;
   EpisodeStatistics episodes_seen_;  // this rank's arenas

@@ -144,8 +144,8 @@ def _seeker_parsers(sub, common):
     e = sub.add_parser("evaluate-seeker", parents=[common], help="a learned seeker against hiders, beside the "
                        "scripted seeker", description=seeker.__doc__)
     e.add_argument("seeker", help="a seeker's checkpoint or exported policy")
-    e.add_argument("--variant", default="basic")
-    e.add_argument("--variant-config", help="a variant file of one's own (tests)")
+    e.add_argument("--variant", help="default: the --variant-config file's own name, else basic")
+    e.add_argument("--variant-config", help="a variant file of one's own (its variant field names it)")
     e.add_argument("--game", help="default: config/games.yaml's")
     e.add_argument("--hiders", nargs="+", default=["shipped"],
                    help="the hiders to play against: shipped, random, scripted/EVADER or a hider's checkpoint "
@@ -157,8 +157,8 @@ def _seeker_parsers(sub, common):
     p = sub.add_parser("selfplay", parents=[common], help="hider-seeker self-play: generations, then cross-play",
                        description=selfplay.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("output", help="the self-play's folder (resumes what it holds)")
-    p.add_argument("--variant", default="basic")
-    p.add_argument("--variant-config", help="a variant file of one's own (tests)")
+    p.add_argument("--variant", help="default: the --variant-config file's own name, else basic")
+    p.add_argument("--variant-config", help="a variant file of one's own (its variant field names it)")
     p.add_argument("--game", help="default: config/games.yaml's")
     p.add_argument("--generations", type=int, default=4)
     p.add_argument("--steps", type=int, default=250_000, help="steps per side and generation (default 250000)")
@@ -251,6 +251,17 @@ def sweep_command(args):
             "pause": control.pause, "resume": control.resume, "stop": control.stop}[c](sweep)
 
 
+def _variant(args):
+    """--variant, else the --variant-config file's own name (the nodes refuse a file named otherwise), else basic."""
+    if args.variant:
+        return args.variant
+    if args.variant_config:
+        import yaml  # python3-yaml: install_deps.sh installs it
+        with open(args.variant_config) as f:
+            return (yaml.safe_load(f) or {}).get("variant") or "basic"
+    return "basic"
+
+
 def run_command(args):
     root = repository_root()
     ws = Workspace(args.workspace or root)
@@ -266,12 +277,12 @@ def run_command(args):
     elif args.command == "evaluate":
         evaluate.evaluate(ws, records, args.run, args.weights, tuple(args.modes), args.port)
     elif args.command == "evaluate-seeker":
-        seeker.evaluate_seeker(ws, args.variant, args.game, args.seeker, args.hiders, os.path.realpath(args.output),
+        seeker.evaluate_seeker(ws, _variant(args), args.game, args.seeker, args.hiders, os.path.realpath(args.output),
                                args.episodes, args.first_seed, args.port,
                                variant_config=args.variant_config and os.path.realpath(args.variant_config))
     elif args.command == "selfplay":
         o = selfplay.SelfPlayOptions(
-            out=args.output, variant=args.variant, game=args.game, generations=args.generations, steps=args.steps,
+            out=args.output, variant=_variant(args), game=args.game, generations=args.generations, steps=args.steps,
             seed=args.seed, latest_share=args.latest_share, num_arenas=args.num_arenas,
             hider_threads=args.hider_threads, precision=args.precision,
             ppo_config=args.ppo_config and os.path.realpath(args.ppo_config),

@@ -116,14 +116,17 @@ def train(ws, records, o, say=print):
         % (name, "a seeker against %s, " % opponent if o.role == "seeker" else "", o.variant, o.network, game, o.seed,
            o.steps, run, run))
     launch_log = os.path.join(run, "launch.log")
-    ws.command(args, env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=launch_log, check=False)
+    ws.command(args, env={"ROS_MASTER_URI": "http://localhost:%d" % port}, log=launch_log, check=False,
+               through_interrupt=True)
     # roslaunch exits 0 even when the hider dies: record only a run that trained all its steps.
     log_csv = os.path.join(run, "training_log.csv")
     row = _last_row(log_csv) if os.path.isfile(log_csv) and os.path.getsize(log_csv) else []
     trained = int(row[1]) if len(row) > 2 and row[1].isdigit() else 0
     if trained < o.steps:
-        raise ToolError("train: %s stopped at %d of %d steps (see %s); nothing recorded" % (name, trained, o.steps,
-                                                                                          launch_log))
+        again = "; the same command resumes it from its checkpoint" if os.path.isfile(
+            os.path.join(run, "checkpoint.pt")) else ""
+        raise ToolError("train: %s stopped at %d of %d steps (see %s); nothing recorded%s" % (
+            name, trained, o.steps, launch_log, again))
     ws.command([ws.tool("hideseek_hider", "export_policy"), os.path.join(run, "checkpoint.pt"),
                 os.path.join(run, "policy.pt")])
     docs = records.docs(name)

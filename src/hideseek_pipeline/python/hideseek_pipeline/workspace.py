@@ -2,6 +2,7 @@
 worktree at its pinned commit. Every command runs with the workspace's environment
 (scripts/env.sh: Debian's python3 first, the devel space sourced), from its root."""
 import os
+import signal
 import subprocess
 
 ANALYSIS_SCRIPTS = os.path.join("src", "hideseek_analysis", "scripts")
@@ -17,15 +18,23 @@ class Workspace:
         if not os.path.isfile(os.path.join(self.root, "scripts", "env.sh")):
             raise ToolError("%s is not a hideseek checkout (no scripts/env.sh)" % self.root)
 
-    def command(self, args, env=None, log=None, check=True, show_stderr=False):
+    def command(self, args, env=None, log=None, check=True, show_stderr=False, through_interrupt=False):
         """Runs `args` in the workspace's environment; stdout to `log` (a path) when given, else
         captured and returned; stderr with it, or (`show_stderr`) to this process's stderr. Raises
-        ToolError naming the command when `check` and it fails."""
+        ToolError naming the command when `check` and it fails. `through_interrupt`: a Ctrl-C at the
+        terminal, which reaches the command too, is left to it (roslaunch stops its nodes, and a
+        training writes its checkpoint), and this process waits for it to end instead of killing it."""
         wrapped = ["bash", "-c", 'source scripts/env.sh && exec "$@"', "hideseek"] + [str(a) for a in args]
         full_env = dict(os.environ, **(env or {}))
         if log:
-            with open(log, "w") as f:
-                r = subprocess.run(wrapped, cwd=self.root, env=full_env, stdout=f, stderr=subprocess.STDOUT)
+            # A handler, not SIG_IGN, which the command would inherit.
+            previous = signal.signal(signal.SIGINT, lambda *_: None) if through_interrupt else None
+            try:
+                with open(log, "w") as f:
+                    r = subprocess.run(wrapped, cwd=self.root, env=full_env, stdout=f, stderr=subprocess.STDOUT)
+            finally:
+                if through_interrupt:
+                    signal.signal(signal.SIGINT, previous)
             out = ""
         else:
             r = subprocess.run(wrapped, cwd=self.root, env=full_env, stdout=subprocess.PIPE, text=True,
