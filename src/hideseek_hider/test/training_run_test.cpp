@@ -54,6 +54,15 @@ TrainingOptions tinyRun(const std::string& dir, int64_t steps) {
   return o;
 }
 
+// A run folder without an earlier test's checkpoint and log, the generator seeded as every run here.
+std::string freshRun(const std::string& name) {
+  const std::string dir = testing::TempDir() + name;
+  std::remove((dir + "/checkpoint.pt").c_str());
+  std::remove((dir + "/training_log.csv").c_str());
+  torch::manual_seed(0);
+  return dir;
+}
+
 // Feeds batches until `updates` more updates have run; every `period`-th step ends both episodes.
 void feed(TrainingRun& run, int updates, int period = 3) {
   const std::vector<uint8_t> images(kArenas * kSize * kSize * 3, 128);
@@ -72,10 +81,7 @@ TEST(TrainingRun, StepCountIsRoundedUpToWholeRolloutsSoEverySampleIsTrained) {
   EXPECT_EQ(wholeRollouts(3000, 256), 3072);
   EXPECT_EQ(wholeRollouts(3072, 256), 3072);
   EXPECT_EQ(wholeRollouts(1, 1024), 1024);
-  const std::string dir = testing::TempDir() + "run_rounding";
-  std::remove((dir + "/checkpoint.pt").c_str());
-  std::remove((dir + "/training_log.csv").c_str());
-  torch::manual_seed(0);
+  const std::string dir = freshRun("run_rounding");
   TrainingRun run(tinyRun(dir, 30), tinyPpo(), kArenas, torch::kCPU);
   EXPECT_EQ(run.totalSteps(), 32);
   feed(run, 100);
@@ -127,10 +133,7 @@ TEST(TrainingRun, LoopProfileSaysWhereTheTimeWentUpdateByUpdate) {
 }
 
 TEST(TrainingRun, ResumedLogContinuesWithoutDuplicatesAndKeepsWallTimeAndEpisodes) {
-  const std::string dir = testing::TempDir() + "run_resume";
-  std::remove((dir + "/checkpoint.pt").c_str());
-  std::remove((dir + "/training_log.csv").c_str());
-  torch::manual_seed(0);
+  const std::string dir = freshRun("run_resume");
   double wall_at_checkpoint = 0.0;
   int64_t episodes_at_checkpoint = 0;
   {
@@ -167,10 +170,7 @@ TEST(TrainingRun, AStopMidRolloutKeepsTheLastUpdateAndItsLogRow) {
   // Ctrl-C comes while a rollout is being recorded: the checkpoint holds the last update (its steps
   // and the wall time of its log row), not the samples of the unfinished rollout, and the next
   // start resumes there with every log row kept.
-  const std::string dir = testing::TempDir() + "run_stop";
-  std::remove((dir + "/checkpoint.pt").c_str());
-  std::remove((dir + "/training_log.csv").c_str());
-  torch::manual_seed(0);
+  const std::string dir = freshRun("run_stop");
   {
     TrainingRun run(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
     EXPECT_FALSE(run.saveCheckpointOnStop()) << "no update yet: nothing to keep";
@@ -193,10 +193,7 @@ TEST(TrainingRun, AStopMidRolloutKeepsTheLastUpdateAndItsLogRow) {
         << "the wall time of the update's log row";
   }
   // The episode window it keeps is the update's too: the same run checkpointed at that update.
-  const std::string reference = testing::TempDir() + "run_stop_reference";
-  std::remove((reference + "/checkpoint.pt").c_str());
-  std::remove((reference + "/training_log.csv").c_str());
-  torch::manual_seed(0);
+  const std::string reference = freshRun("run_stop_reference");
   {
     TrainingRun run(tinyRun(reference, 80), tinyPpo(), kArenas, torch::kCPU);
     feed(run, 3);
@@ -214,10 +211,7 @@ TEST(TrainingRun, AStopMidRolloutKeepsTheLastUpdateAndItsLogRow) {
 }
 
 TEST(TrainingRun, ACheckpointRecordsItsGameAndIsNotResumedUnderAnother) {
-  const std::string dir = testing::TempDir() + "run_game";
-  std::remove((dir + "/checkpoint.pt").c_str());
-  std::remove((dir + "/training_log.csv").c_str());
-  torch::manual_seed(0);
+  const std::string dir = freshRun("run_game");
   TrainingOptions v3 = tinyRun(dir, 80);
   v3.game = "v3";
   {
@@ -239,10 +233,7 @@ TEST(TrainingRun, ACheckpointRecordsItsGameAndIsNotResumedUnderAnother) {
 }
 
 TEST(TrainingRun, ResumedLogAveragesOverTheEpisodesBeforeTheCheckpointToo) {
-  const std::string dir = testing::TempDir() + "run_resume_window";
-  std::remove((dir + "/checkpoint.pt").c_str());
-  std::remove((dir + "/training_log.csv").c_str());
-  torch::manual_seed(0);
+  const std::string dir = freshRun("run_resume_window");
   {
     TrainingRun run(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
     // Episodes end at steps 4 and 9 (the first step only acts): lengths 4 and 5 in both arenas.
@@ -265,10 +256,7 @@ TEST(TrainingRun, ResumedLogAveragesOverTheEpisodesBeforeTheCheckpointToo) {
 }
 
 TEST(TrainingRun, RestartAfterAKillBeforeTheFirstCheckpointStartsAFreshLog) {
-  const std::string dir = testing::TempDir() + "run_no_checkpoint";
-  std::remove((dir + "/checkpoint.pt").c_str());
-  std::remove((dir + "/training_log.csv").c_str());
-  torch::manual_seed(0);
+  const std::string dir = freshRun("run_no_checkpoint");
   {
     TrainingRun run(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
     feed(run, 3);  // logged, never checkpointed
