@@ -130,6 +130,16 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
            options_.loop.seed, game.camera.width, game.camera.height);
 }
 
+bool WorldNode::everyoneListens() const {
+  // Both agents listen and both can answer, so neither the first observation nor the first answer
+  // is lost (an agent connects its two topics one after the other), and every listener that must
+  // see the first episodes listens.
+  return hider_obs_pub_.getNumSubscribers() > 0 && seeker_obs_pub_.getNumSubscribers() > 0 &&
+         hider_sub_.getNumPublishers() > 0 && seeker_sub_.getNumPublishers() > 0 &&
+         episodes_pub_.getNumSubscribers() >= static_cast<uint32_t>(options_.episode_listeners) &&
+         steps_pub_.getNumSubscribers() >= static_cast<uint32_t>(options_.step_listeners);
+}
+
 bool WorldNode::reachedMaxDecisions() const {
   return options_.max_decisions > 0 && game_.decisions() >= static_cast<uint64_t>(options_.max_decisions);
 }
@@ -263,9 +273,7 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
   if (!started_) {
     // The first episode starts when both players are there (a person's keyboard hider may take
     // seconds to open), and when every listener that must see it listens.
-    if (hider_sub_.getNumPublishers() == 0 || seeker_sub_.getNumPublishers() == 0 ||
-        episodes_pub_.getNumSubscribers() < static_cast<uint32_t>(options_.episode_listeners) ||
-        steps_pub_.getNumSubscribers() < static_cast<uint32_t>(options_.step_listeners)) {
+    if (!everyoneListens()) {
       publishAgentTransforms(ros::Time::now());
       return;
     }
@@ -321,14 +329,7 @@ void WorldNode::warnStale() {
 void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
   const ros::WallTime now = ros::WallTime::now();
   if (!started_) {
-    // Start once both agents listen and both can answer, so neither the first batch nor the
-    // first answer is lost, and once every listener that must see the first episodes listens.
-    if (hider_obs_pub_.getNumSubscribers() == 0 || seeker_obs_pub_.getNumSubscribers() == 0 ||
-        hider_sub_.getNumPublishers() == 0 || seeker_sub_.getNumPublishers() == 0 ||
-        episodes_pub_.getNumSubscribers() < static_cast<uint32_t>(options_.episode_listeners) ||
-        steps_pub_.getNumSubscribers() < static_cast<uint32_t>(options_.step_listeners)) {
-      return;
-    }
+    if (!everyoneListens()) return;
     started_ = true;
     ROS_INFO("world: both agents connected, starting lockstep");
     publishObservations();

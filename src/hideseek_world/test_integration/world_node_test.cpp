@@ -352,6 +352,35 @@ TEST_F(WorldNodeTest, AnAnswerOvertakenByAResetIsDroppedWithoutAWarning) {
   EXPECT_EQ(hider_obs_->step[0], 1u);
 }
 
+// A real-time world starts once both agents listen as well as publish. An agent connects its
+// action and observation topics one after the other; a world that started on the first would play
+// step 0 before the agent could see it, and warn that the agent stood still.
+TEST(RealtimeStart, TheWorldWaitsUntilEachAgentListens) {
+  ros::NodeHandle nh("late");
+  int seeker_batches = 0;
+  std::vector<uint32_t> hider_steps;
+  ros::Subscriber seeker_sub = nh.subscribe<hideseek_msgs::SeekerObservationBatch>(
+      "seeker/observations", 10, [&](const hideseek_msgs::SeekerObservationBatch::ConstPtr&) { ++seeker_batches; });
+  ros::Publisher hider_pub = nh.advertise<hideseek_msgs::ActionBatch>("hider/actions", 1);
+  ros::Publisher seeker_pub = nh.advertise<hideseek_msgs::ActionBatch>("seeker/actions", 1);
+  // Both agents publish and the seeker listens; the hider does not listen yet.
+  ASSERT_TRUE(waitFor(
+      [&] {
+        return hider_pub.getNumSubscribers() > 0 && seeker_pub.getNumSubscribers() > 0 &&
+               seeker_sub.getNumPublishers() > 0;
+      },
+      30.0))
+      << "the real-time world in /late did not connect";
+  waitFor([] { return false; }, 1.5);
+  EXPECT_EQ(seeker_batches, 0) << "the world started before the hider listened";
+  ros::Subscriber hider_sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
+      "hider/observations", 10,
+      [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) { hider_steps.push_back(m->step[0]); });
+  ASSERT_TRUE(waitFor([&] { return !hider_steps.empty(); }, 30.0)) << "no observation once the hider listened";
+  EXPECT_EQ(hider_steps.front(), 0u) << "step 0 was played before the hider could see it";
+  EXPECT_GT(seeker_batches, 0);
+}
+
 TEST_F(WorldNodeTest, BrokenConfigStopsTheNodeBeforeItPublishes) {
   ros::WallDuration(1.0).sleep();
   ros::master::V_TopicInfo topics;

@@ -106,6 +106,7 @@ class WorldNode {
   // Sim time after `decisions` decision steps (lockstep), or wall time (realtime).
   ros::Time simTime(uint64_t decisions) const;
   ros::Time simNow() const { return simTime(game_.decisions()); }
+  bool everyoneListens() const;
   bool reachedMaxDecisions() const;
 
   ros::NodeHandle nh_;
