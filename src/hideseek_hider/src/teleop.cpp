@@ -1,5 +1,8 @@
 #include "hideseek_hider/teleop.h"
 
+#include <poll.h>
+#include <unistd.h>
+
 namespace hideseek_hider {
 
 namespace {
@@ -68,13 +71,53 @@ TeleopCommand TeleopKeys::feed(const std::string& bytes) {
     }
     if (c == '\x1b') {
       pending_ = c;
-    } else if (c == 'q' || c == 'Q' || c == '\x03') {
+    } else if (c == 'q' || c == 'Q' || c == '\x03' || c == '\x04') {
       out.quit = true;
     } else if (auto a = letterAction(c)) {
       out.action = a;
     }
   }
   return out;
+}
+
+RawTerminal::RawTerminal(int fd, bool owns) : owns_(owns) {
+  if (fd < 0 || !isatty(fd) || tcgetattr(fd, &saved_) != 0) {
+    if (fd >= 0 && owns) close(fd);
+    return;
+  }
+  fd_ = fd;
+  termios raw = saved_;
+  raw.c_lflag &= ~(ICANON | ECHO);
+  raw.c_cc[VMIN] = 0;
+  raw.c_cc[VTIME] = 0;
+  tcsetattr(fd_, TCSANOW, &raw);
+  write("\x1b[2J\x1b[?25l");  // clear, hide the cursor
+}
+
+RawTerminal::~RawTerminal() {
+  if (fd_ < 0) return;
+  write("\x1b[0m\x1b[?25h\r\n");
+  tcsetattr(fd_, TCSANOW, &saved_);
+  if (owns_) close(fd_);
+}
+
+std::string RawTerminal::read() {
+  std::string out;
+  if (fd_ < 0) return out;
+  char buf[64];
+  ssize_t n;
+  while ((n = ::read(fd_, buf, sizeof buf)) > 0) out.append(buf, static_cast<size_t>(n));
+  return out;
+}
+
+bool RawTerminal::closed() const {
+  if (fd_ < 0) return true;
+  pollfd p{fd_, POLLIN, 0};
+  return poll(&p, 1, 0) > 0 && (p.revents & (POLLHUP | POLLERR | POLLNVAL)) != 0;
+}
+
+void RawTerminal::write(const std::string& s) {
+  if (fd_ < 0 || ::write(fd_, s.data(), s.size()) < 0) return;  // a closed terminal: nothing to show
 }
 
 void TeleopAction::press(uint8_t action, double now_s) {

@@ -1,12 +1,11 @@
 // The keyboard hider: a person plays arena 0 from a terminal that shows the hider's camera.
-// w/s/a/d or the arrow keys move and turn, space stops, q quits. The node answers every
-// observation batch like the hider node does, so the world, the recorder and the evaluator treat
-// a human like any policy.
+// w/s/a/d or the arrow keys move and turn, space stops, q or Ctrl-D quits, as does closing the
+// terminal. The node answers every observation batch like the hider node does, so the world, the
+// recorder and the evaluator treat a human like any policy.
 #include <fcntl.h>
 #include <hideseek_msgs/ActionBatch.h>
 #include <hideseek_msgs/ObservationBatch.h>
 #include <ros/ros.h>
-#include <termios.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -18,45 +17,6 @@
 #include "hideseek_hider/teleop.h"
 
 namespace {
-
-// The terminal in raw mode (keys arrive one by one, unechoed) for the node's lifetime.
-class Terminal {
- public:
-  Terminal() {
-    fd_ = isatty(STDIN_FILENO) ? STDIN_FILENO : open("/dev/tty", O_RDWR | O_NONBLOCK);
-    if (fd_ < 0 || !isatty(fd_) || tcgetattr(fd_, &saved_) != 0) {
-      fd_ = -1;
-      return;
-    }
-    termios raw = saved_;
-    raw.c_lflag &= ~(ICANON | ECHO);
-    raw.c_cc[VMIN] = 0;
-    raw.c_cc[VTIME] = 0;
-    tcsetattr(fd_, TCSANOW, &raw);
-    write("\x1b[2J\x1b[?25l");  // clear, hide the cursor
-  }
-  ~Terminal() {
-    if (fd_ < 0) return;
-    write("\x1b[0m\x1b[?25h\r\n");
-    tcsetattr(fd_, TCSANOW, &saved_);
-    if (fd_ != STDIN_FILENO) close(fd_);
-  }
-  bool ok() const { return fd_ >= 0; }
-  std::string read() {
-    std::string out;
-    char buf[64];
-    ssize_t n;
-    while ((n = ::read(fd_, buf, sizeof buf)) > 0) out.append(buf, static_cast<size_t>(n));
-    return out;
-  }
-  void write(const std::string& s) {
-    if (::write(fd_, s.data(), s.size()) < 0) return;  // a closed terminal: nothing to show
-  }
-
- private:
-  int fd_ = -1;
-  termios saved_{};
-};
 
 double wallNow() { return ros::WallTime::now().toSec(); }
 
@@ -86,7 +46,9 @@ int main(int argc, char** argv) {
   }
   const double key_timeout = options.key_timeout;
   ROS_INFO("teleop: you play the hider of arena 0 (key_timeout %.2f s)", key_timeout);
-  Terminal terminal;  // clears the screen: the game's picture replaces the log from here on
+  // Clears the screen: the game's picture replaces the log from here on.
+  const bool on_stdin = isatty(STDIN_FILENO);
+  hideseek_hider::RawTerminal terminal(on_stdin ? STDIN_FILENO : open("/dev/tty", O_RDWR | O_NONBLOCK), !on_stdin);
   if (!terminal.ok()) {
     ROS_FATAL(
         "teleop: no terminal to read keys from. Run it in one: rosrun hideseek_hider teleop_node "
@@ -119,7 +81,7 @@ int main(int argc, char** argv) {
         char status[200];
         std::snprintf(status, sizeof status,
                       "\x1b[0mepisode %u, step %u    last episode: %s\x1b[K\r\n"
-                      "w/up forward  s/down back  a/left d/right turn  space stop  q quit\x1b[K\r\n",
+                      "w/up forward  s/down back  a/left d/right turn  space stop  q/Ctrl-D quit\x1b[K\r\n",
                       m->episode[0], m->step[0], last_outcome.c_str());
         terminal.write(hideseek_hider::renderHalfBlocks(m->images.data(), static_cast<int>(m->height),
                                                         static_cast<int>(m->width)) +
@@ -130,6 +92,10 @@ int main(int argc, char** argv) {
     const hideseek_hider::TeleopCommand c = keys.feed(terminal.read());
     if (c.action) action.press(*c.action, wallNow());
     if (c.quit) ros::shutdown();
+    if (terminal.closed()) {
+      ROS_INFO("teleop: the terminal closed; quitting");
+      ros::shutdown();
+    }
   });
   ros::spin();
   return 0;

@@ -1,6 +1,9 @@
 #include "hideseek_hider/teleop.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <stdlib.h>
+#include <unistd.h>
 
 namespace hideseek_hider {
 namespace {
@@ -36,11 +39,47 @@ TEST(TeleopKeys, ModifiedArrowsAndALoneEscapeDoNotMisfire) {
   EXPECT_EQ(k.feed("\x1bw").action, 1);
 }
 
-TEST(TeleopKeys, QAndCtrlCQuit) {
+TEST(TeleopKeys, QCtrlCAndCtrlDQuit) {
   TeleopKeys k;
   EXPECT_TRUE(k.feed("q").quit);
   EXPECT_TRUE(k.feed("\x03").quit);
+  EXPECT_TRUE(k.feed("\x04").quit);  // raw mode: Ctrl-D is a byte, not an end of file
   EXPECT_FALSE(k.feed("w").quit);
+}
+
+// A pseudo-terminal stands in for the player's: its master end is the xterm.
+TEST(RawTerminal, ReadsKeysUnbufferedRestoresTheTerminalAndSeesAHangUp) {
+  const int master = posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(grantpt(master), 0);
+  ASSERT_EQ(unlockpt(master), 0);
+  const int slave = open(ptsname(master), O_RDWR | O_NOCTTY);
+  ASSERT_GE(slave, 0);
+  termios before{};
+  ASSERT_EQ(tcgetattr(slave, &before), 0);
+  ASSERT_TRUE(before.c_lflag & ICANON);
+  {
+    RawTerminal terminal(slave, false);
+    ASSERT_TRUE(terminal.ok());
+    EXPECT_EQ(terminal.read(), "") << "nothing typed: the read returns at once";
+    ASSERT_EQ(write(master, "w", 1), 1);  // no Enter: raw mode delivers the key alone
+    std::string got;
+    for (int i = 0; i < 200 && got.empty(); ++i) {
+      got = terminal.read();
+      if (got.empty()) usleep(5000);
+    }
+    EXPECT_EQ(got, "w");
+    EXPECT_FALSE(terminal.closed());
+  }
+  termios after{};
+  ASSERT_EQ(tcgetattr(slave, &after), 0);
+  EXPECT_TRUE(after.c_lflag & ICANON) << "the terminal left in raw mode";
+  EXPECT_TRUE(after.c_lflag & ECHO);
+  RawTerminal terminal(slave, true);
+  ASSERT_TRUE(terminal.ok());
+  close(master);  // the window closes
+  EXPECT_TRUE(terminal.closed());
+  EXPECT_FALSE(RawTerminal(-1, false).ok());
 }
 
 TEST(TeleopAction, AHeldKeyLastsUntilItsRepeatsStop) {

@@ -3,6 +3,8 @@
 // exactly what a policy sees and nothing more. ROS-free; teleop_node wires it to the game.
 #pragma once
 
+#include <termios.h>
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -16,7 +18,8 @@ struct TeleopCommand {
 };
 
 // Reads keys from a stream of terminal bytes: w/s/a/d or the arrow keys move and turn, space or x
-// stops, q quits. Escape sequences may arrive split across reads.
+// stops, q, Ctrl-C or Ctrl-D quits (raw mode delivers Ctrl-D as a byte, not as an end of file).
+// Escape sequences may arrive split across reads.
 class TeleopKeys {
  public:
   // Feeds bytes; returns the command of the last complete key among them, if any.
@@ -24,6 +27,28 @@ class TeleopKeys {
 
  private:
   std::string pending_;  // an escape sequence not yet complete
+};
+
+// A terminal in raw mode (keys arrive one by one, unechoed, reads never block) for the object's
+// lifetime, restored when it ends. ok() is false where `fd` is no terminal. `owns`: close fd at the
+// end (a /dev/tty opened for the purpose, not stdin).
+class RawTerminal {
+ public:
+  RawTerminal(int fd, bool owns);
+  ~RawTerminal();
+  RawTerminal(const RawTerminal&) = delete;
+  RawTerminal& operator=(const RawTerminal&) = delete;
+  bool ok() const { return fd_ >= 0; }
+  // The bytes typed since the last call; empty when none.
+  std::string read();
+  // The other end hung up (the xterm was closed, the ssh session ended): no key will come again.
+  bool closed() const;
+  void write(const std::string& s);
+
+ private:
+  int fd_ = -1;
+  bool owns_ = false;
+  termios saved_{};  // the terminal's settings before raw mode
 };
 
 // The hider's action while no key is held: the last key's action until `key_timeout` seconds
