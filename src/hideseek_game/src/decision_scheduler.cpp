@@ -1,5 +1,8 @@
 #include "hideseek_game/decision_scheduler.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace hideseek_game {
 
 DecisionScheduler::DecisionScheduler(ClockMode mode, int num_arenas, double stale_action_timeout, double resend_period,
@@ -9,12 +12,19 @@ DecisionScheduler::DecisionScheduler(ClockMode mode, int num_arenas, double stal
       stale_action_timeout_(stale_action_timeout),
       resend_period_(resend_period),
       seeker_actions_(seeker_actions),
-      pending_(2 * static_cast<size_t>(num_arenas)) {}
+      pending_(2 * static_cast<size_t>(num_arenas)),
+      superseded_(2 * static_cast<size_t>(num_arenas)) {}
 
 Verdict DecisionScheduler::offer(Player player, int arena, uint8_t action, uint32_t step_id, uint32_t current_step) {
   if (action >= actions(player)) return Verdict::kInvalidAction;
   if (mode_ == ClockMode::kRealtime && executing_ && player == Player::kHider) return Verdict::kLate;
-  if (step_id != current_step) return Verdict::kWrongStep;
+  std::optional<uint32_t>& superseded = superseded_[index(player, arena)];
+  if (step_id != current_step) {
+    if (superseded != step_id) return Verdict::kWrongStep;
+    superseded.reset();
+    return Verdict::kSupersededByReset;
+  }
+  superseded.reset();  // answers come in order: none to the step before the reset follows
   pending_[index(player, arena)] = static_cast<Action>(action);
   return Verdict::kAccepted;
 }
@@ -64,11 +74,17 @@ DecisionActions DecisionScheduler::takeDecision() {
   return d;
 }
 
-void DecisionScheduler::reset(int arena) {
+void DecisionScheduler::reset(int arena, const std::vector<std::optional<uint32_t>>& awaited) {
+  if (awaited.size() != pending_.size()) {
+    throw std::invalid_argument("DecisionScheduler::reset: awaited holds " + std::to_string(awaited.size()) +
+                                " step ids, not one per player and arena (" + std::to_string(pending_.size()) + ")");
+  }
   for (int i = 0; i < num_arenas_; ++i) {
     if (arena != -1 && arena != i) continue;
-    pending_[index(Player::kHider, i)].reset();
-    pending_[index(Player::kSeeker, i)].reset();
+    for (const Player p : {Player::kHider, Player::kSeeker}) {
+      pending_[index(p, i)].reset();
+      superseded_[index(p, i)] = awaited[index(p, i)];
+    }
   }
   waiting_since_.reset();
 }

@@ -148,8 +148,16 @@ std::optional<Decision> GameLoop::reset(int arena, int64_t seed) {
   }
   if (seed < -1 || seed > static_cast<int64_t>(UINT32_MAX))
     throw std::invalid_argument("seed must be -1 or in [0, 2^32)");
+  // The step ids awaited now: an agent's answer to one may already be on its way.
+  std::vector<std::optional<uint32_t>> awaited;
+  for (const Player player : {Player::kHider, Player::kSeeker}) {
+    for (int i = 0; i < n; ++i) {
+      const uint32_t id = expectedStepId(player, i);
+      awaited.push_back(id == kNoStep ? std::nullopt : std::optional<uint32_t>(id));
+    }
+  }
   std::optional<Decision> finished = finishStep();
-  scheduler_.reset(arena);
+  scheduler_.reset(arena, awaited);
   for (int i = 0; i < n; ++i) {
     if (arena != -1 && arena != i) continue;
     std::optional<uint32_t> s;

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
 namespace hideseek_game {
 namespace {
 
@@ -30,18 +34,39 @@ TEST(DecisionScheduler, RefusesAnotherStepsAnswerAndAnInvalidAction) {
   EXPECT_FALSE(s.answered(Player::kHider, 0));
 }
 
+// awaited for two arenas: [hider 0, hider 1, seeker 0, seeker 1].
+using Awaited = std::vector<std::optional<uint32_t>>;
+
 TEST(DecisionScheduler, AResetMidEpisodeForgetsTheAnswersToTheOldStep) {
   DecisionScheduler s(ClockMode::kLockstep, 2, 0.5, 1.0);
   s.offer(Player::kHider, 0, kForwardId, 40, 40);
   s.offer(Player::kHider, 1, kForwardId, 12, 12);
-  s.reset(0);
+  s.reset(0, {40, 12, 40, 12});
   EXPECT_FALSE(s.answered(Player::kHider, 0));
   EXPECT_TRUE(s.answered(Player::kHider, 1));
-  // After the reset arena 0 is at step 0: an answer to step 40 is refused, one to step 0 counts.
-  EXPECT_EQ(s.offer(Player::kHider, 0, kForwardId, 40, 0), Verdict::kWrongStep);
+  // After the reset arena 0 is at step 0: one to step 0 counts.
   EXPECT_EQ(s.offer(Player::kHider, 0, kForwardId, 0, 0), Verdict::kAccepted);
-  s.reset(-1);
+  s.reset(-1, {0, 12, 40, 12});
   EXPECT_FALSE(s.answered(Player::kHider, 1));
+  EXPECT_THROW(s.reset(-1, {0, 0}), std::invalid_argument);  // one id per player and arena
+}
+
+TEST(DecisionScheduler, TheAnswerAResetOvertookIsDroppedOnceNotCountedAsAWrongStep) {
+  DecisionScheduler s(ClockMode::kLockstep, 2, 0.5, 1.0);
+  // Arena 0 awaited step 40 from both agents, arena 1 awaited step 12; arena 0 is reset to step 0.
+  s.reset(0, Awaited{40, 12, 40, 12});
+  EXPECT_EQ(s.offer(Player::kHider, 0, kForwardId, 40, 0), Verdict::kSupersededByReset);
+  EXPECT_EQ(s.offer(Player::kHider, 0, kForwardId, 40, 0), Verdict::kWrongStep) << "only one was on its way";
+  EXPECT_EQ(s.offer(Player::kHider, 0, kForwardId, 39, 0), Verdict::kWrongStep) << "another id is a wrong step";
+  EXPECT_EQ(s.offer(Player::kHider, 1, kForwardId, 11, 12), Verdict::kWrongStep) << "arena 1 was not reset";
+  // The seeker's own record: its next accepted answer ends it, so a late one after that is wrong.
+  EXPECT_EQ(s.offer(Player::kSeeker, 0, kLeftId, 0, 0), Verdict::kAccepted);
+  EXPECT_EQ(s.offer(Player::kSeeker, 0, kLeftId, 40, 0), Verdict::kWrongStep);
+  // An arena that awaited nothing from a player (the hider inside a step) drops nothing.
+  s.reset(1, Awaited{std::nullopt, std::nullopt, 7, 7});
+  EXPECT_EQ(s.offer(Player::kHider, 1, kForwardId, 12, 0), Verdict::kWrongStep);
+  EXPECT_EQ(s.offer(Player::kSeeker, 1, kLeftId, 7, 0), Verdict::kSupersededByReset);
+  EXPECT_FALSE(s.answered(Player::kSeeker, 1)) << "a dropped answer answers nothing";
 }
 
 TEST(DecisionScheduler, LockstepResendsAnObservationNobodyAnswered) {

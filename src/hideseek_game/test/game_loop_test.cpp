@@ -216,6 +216,32 @@ TEST(GameLoop, AResetInsideAStepPlaysItToItsEndFirst) {
   EXPECT_EQ(game.world().arena(1).seed(), 10u);   // 8, then 8 + 2 arenas
 }
 
+// The world node's world/reset: an agent may have answered the step the reset arena awaited
+// before it sees the reset. That one answer is dropped as overtaken, not refused as a wrong step.
+TEST(GameLoop, AnAnswerToTheStepAResetOvertookIsDroppedAsSuperseded) {
+  VariantConfig v = loadVariant("basic");
+  GameLoop game(v.game, loadMap("deterministic"), unrendered(2, 7));
+  exchangeStep(game, {Action::kForward, Action::kForward});
+  const uint32_t hider_id = game.expectedStepId(Player::kHider, 0);
+  const uint32_t seeker_id = game.expectedStepId(Player::kSeeker, 0);
+  ASSERT_EQ(hider_id, 1u);
+  EXPECT_FALSE(game.reset(0, 500));
+  EXPECT_EQ(game.offer(Player::kHider, 0, 1, hider_id), Verdict::kSupersededByReset);
+  EXPECT_EQ(game.offer(Player::kSeeker, 0, 1, seeker_id), Verdict::kSupersededByReset);
+  EXPECT_EQ(game.offer(Player::kHider, 0, 1, hider_id), Verdict::kWrongStep) << "a second answer is a fault";
+  EXPECT_EQ(game.offer(Player::kHider, 1, 1, 0), Verdict::kWrongStep) << "arena 1 was not reset";
+  // Inside a step the hider awaits nothing, so a reset there drops none of its answers.
+  for (int i = 0; i < 2; ++i) {
+    ASSERT_EQ(game.offer(Player::kHider, i, 1, game.expectedStepId(Player::kHider, i)), Verdict::kAccepted);
+  }
+  answerSeeker(game);
+  game.takeDecision();
+  ASSERT_FALSE(game.playToNextDecision());
+  ASSERT_EQ(game.expectedStepId(Player::kHider, 1), kNoStep);
+  ASSERT_TRUE(game.reset(1, 600));
+  EXPECT_EQ(game.offer(Player::kHider, 1, 1, 1), Verdict::kWrongStep);
+}
+
 TEST(GameLoop, AResetOfAnArenaOrSeedOutOfRangeIsRefusedAndChangesNothing) {
   VariantConfig v = loadVariant("basic");
   GameLoop game(v.game, loadMap("deterministic"), unrendered(2, 7));

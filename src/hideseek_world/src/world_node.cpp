@@ -201,10 +201,13 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_game::CheckedAc
   for (size_t i = 0; i < n; ++i) {
     const int arena = static_cast<int>(i);
     const uint32_t current = game_.expectedStepId(channel.player, arena);
-    std::vector<int64_t>& awaited = before_reset_[static_cast<size_t>(channel.player)];
     switch (game_.offer(channel.player, arena, msg.actions[i], msg.step[i])) {
       case Verdict::kAccepted:
-        if (i < awaited.size()) awaited[i] = -1;  // answers come in order: none to the old step follows
+        break;
+      case Verdict::kSupersededByReset:
+        ++rejected_.superseded_by_reset;
+        ROS_DEBUG("world: %s answered arena %zu's step %u after world/reset restarted it (dropped)",
+                  channel.name.c_str(), i, msg.step[i]);
         break;
       case Verdict::kInvalidAction: {
         ++rejected_.invalid_action;
@@ -228,13 +231,6 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_game::CheckedAc
         break;
       }
       case Verdict::kWrongStep: {
-        if (i < awaited.size() && awaited[i] == static_cast<int64_t>(msg.step[i])) {
-          awaited[i] = -1;  // one answer was on its way; another to that id is a wrong step
-          ++rejected_.superseded_by_reset;
-          ROS_DEBUG("world: %s answered arena %zu's step %u after world/reset restarted it (dropped)",
-                    channel.name.c_str(), i, msg.step[i]);
-          break;
-        }
         ++rejected_.wrong_step;
         WallThrottle& throttle = throttles_.wrong_step;
         if (throttle.ready()) {
@@ -510,17 +506,6 @@ void WorldNode::publishArenaZero(bool force_visuals) {
 }
 
 bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset::Response& res) {
-  // The step ids the reset arenas await now: an agent's answer to one may still be on its way.
-  std::array<std::vector<int64_t>, 2> awaited = before_reset_;
-  for (const Player player : {Player::kHider, Player::kSeeker}) {
-    auto& ids = awaited[static_cast<size_t>(player)];
-    ids.resize(static_cast<size_t>(options_.loop.num_arenas), -1);
-    for (int arena = 0; arena < options_.loop.num_arenas; ++arena) {
-      if (req.arena != -1 && req.arena != arena) continue;
-      const uint32_t id = game_.expectedStepId(player, arena);
-      ids[static_cast<size_t>(arena)] = id == hideseek_game::kNoStep ? -1 : static_cast<int64_t>(id);
-    }
-  }
   // A decision step in progress is played to its end first, with the hider's action and the
   // seeker's latest: every arena's step stays whole, and an episode it ends is reported like any
   // other.
@@ -531,7 +516,6 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
     res.message = e.what();
     return true;
   }
-  before_reset_ = awaited;
   last_finished_.reset();
   if (req.arena <= 0) startEpisodeVisuals();
   res.success = true;

@@ -24,8 +24,9 @@ enum class ClockMode { kRealtime, kLockstep };
 
 enum class Player { kHider = 0, kSeeker = 1 };
 
-// What became of an offered action.
-enum class Verdict { kAccepted, kInvalidAction, kWrongStep, kLate };
+// What became of an offered action. kSupersededByReset: the answer to the step an arena awaited
+// when a reset restarted it (sent before the agent saw the reset); dropped, and no fault of the agent.
+enum class Verdict { kAccepted, kInvalidAction, kWrongStep, kLate, kSupersededByReset };
 
 // A realtime decision's start: wait for answers, start with them, or start without some.
 enum class RealtimeStart { kWait, kReady, kStale };
@@ -67,7 +68,10 @@ class DecisionScheduler {
   bool executing() const { return executing_; }
 
   // Forgets the answers of `arena` (-1: all) after a reset; a realtime wait starts afresh.
-  void reset(int arena);
+  // `awaited[player * num_arenas + arena]`: the step id each arena awaited from each player (none
+  // where it awaited nothing); only the reset arenas' are read. One answer to it may still be on its way: it is
+  // kSupersededByReset, until the player's next accepted answer for that arena; a second is a wrong step.
+  void reset(int arena, const std::vector<std::optional<uint32_t>>& awaited);
 
   // Lockstep: an observation went out at `now_s`; is a re-send due at `now_s`?
   void observationSent(double now_s) { last_sent_ = now_s; }
@@ -83,7 +87,8 @@ class DecisionScheduler {
   double stale_action_timeout_;
   double resend_period_;
   int seeker_actions_;
-  std::vector<std::optional<Action>> pending_;  // [player][arena]
+  std::vector<std::optional<Action>> pending_;       // [player][arena]
+  std::vector<std::optional<uint32_t>> superseded_;  // [player][arena]: the step id a reset left unanswered
   bool executing_ = false;
   std::optional<double> waiting_since_;  // realtime: when the next decision could first have started
   double last_sent_ = 0.0;

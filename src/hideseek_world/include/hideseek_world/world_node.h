@@ -14,7 +14,6 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
-#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -117,9 +116,6 @@ class WorldNode {
   AgentChannel hider_;
   AgentChannel seeker_;
   RejectionCounts rejected_;
-  // Per player (hider, seeker) and arena, the step id the arena awaited when world/reset last
-  // restarted it (-1: never reset): an answer to it arrives after the reset and is no fault.
-  std::array<std::vector<int64_t>, 2> before_reset_;
   WarningThrottles throttles_;
   uint64_t batches_published_ = 0;
   ros::WallTime last_visuals_;
