@@ -348,6 +348,9 @@ def test_pause_stops_the_runs_processes_and_resume_books_the_paused_time(tmp_pat
         assert proc_state(child, "SR") in ("S", "R")
         paused = int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text())
         assert 2 <= paused <= held + 1
+        # and when the pause ended, for drop_pauses_after_checkpoint
+        ended, booked = map(int, (tmp_path / "sweep" / "runs" / "basic_seed1" / "paused.log").read_text().split())
+        assert booked == paused and abs(ended - time.time()) < 5
         # A second pause adds to the first.
         sweep(tmp_path, rec, "pause")
         time.sleep(1.1)
@@ -604,6 +607,47 @@ def test_a_pause_while_a_run_is_evaluated_stays_out_of_its_recorded_paused_s(tmp
     assert (e["wall_s"], e["paused_s"]) == (103, 20)
     assert "basic_seed0: held 120 s more while it was evaluated after training: left out of its wall_s and of its " \
         "paused_s (20 s, held in training)" in r.stdout, r.stdout
+
+
+def test_pauses_booked_after_a_run_s_last_checkpoint_come_off_its_paused_s_when_it_restarts(tmp_path):
+    """A stop (or a crash) lost the training after basic_seed0's last checkpoint, and a 40 s pause
+    in it; the run resumes from the checkpoint, whose log holds only the 30 s pause before it. The
+    queue takes the 40 s off paused_s before training, so wall_s is the log's 123 s less 30."""
+    repo = stand_in_workspace(tmp_path / "repo")
+    rec = make_records(tmp_path, {})
+    fake_analysis(rec)
+    run = tmp_path / "sweep" / "runs" / "basic_seed0"
+    run.mkdir(parents=True)
+    now = time.time()
+    (run / "checkpoint.pt").write_text("ckpt")
+    os.utime(run / "checkpoint.pt", (now - 100, now - 100))
+    (run / "paused_s").write_text("70\n")
+    (run / "paused.log").write_text("%d 30\n%d 40\n" % (now - 200, now - 50))
+    one = TWO_PHASES.split("  - {name: later")[0].replace("seeds: [0, 1]", "seeds: [0]").replace(
+        "variants: [basic, slowerhider]", "variants: [basic]")
+    _, _, r = queue_in(tmp_path, repo, rec, one, tmp_path / "calls.txt")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "basic_seed0: 40 s of pauses after its last checkpoint left out of its paused_s" in r.stdout, r.stdout
+    e = yaml.safe_load((rec / "policies" / "policies.yaml").read_text())["basic_seed0"]
+    assert (e["wall_s"], e["paused_s"]) == (93, 30)
+
+
+def test_a_run_restarting_without_a_checkpoint_keeps_none_of_its_pauses_and_old_totals_stay(tmp_path):
+    """Dropping pauses reads paused.log: a run with no checkpoint (it starts afresh) keeps none of
+    those it lists; a total booked before paused.log existed stays as it is."""
+    sys.path.insert(0, PACKAGE)
+    from hideseek_pipeline import control
+    fresh = tmp_path / "fresh"
+    fresh.mkdir()
+    (fresh / "paused_s").write_text("50\n")
+    (fresh / "paused.log").write_text("%d 20\n%d 30\n" % (time.time() - 60, time.time() - 30))
+    assert control.drop_pauses_after_checkpoint(str(fresh)) == 50
+    assert (fresh / "paused_s").read_text() == "0\n" and (fresh / "paused.log").read_text() == ""
+    old = tmp_path / "old"
+    old.mkdir()
+    (old / "paused_s").write_text("600\n")
+    assert control.drop_pauses_after_checkpoint(str(old)) == 0
+    assert (old / "paused_s").read_text() == "600\n"
 
 
 def test_the_held_time_in_training_is_read_from_an_older_pin_s_wall_s_recorded_as_text(tmp_path):

@@ -348,10 +348,48 @@ def resume(sweep, book=True):
             os.makedirs(os.path.dirname(path), exist_ok=True)
             before = int(float(last_line(path) or 0))
             open(path, "w").write("%d\n" % (before + held))
+            # when each pause ended: drop_pauses_after_checkpoint reads it
+            with open(os.path.join(sweep.runs_dir, name, PAUSES_LOG), "a") as f:
+                f.write("%d %d\n" % (time.time(), held))
     remove_file(sweep.state_file("paused"))
     remove_file(sweep.state_file("paused.runs"))
     print("sweep: resumed after %d s" % held)
     return 0
+
+
+PAUSES_LOG = "paused.log"  # beside paused_s: one `end_time held_s` line per pause booked
+
+
+def drop_pauses_after_checkpoint(run_dir):
+    """Before a run's training (re)starts: the pauses booked into its paused_s after its last
+    checkpoint are taken off it, and their seconds returned. A stop or a crash lost the training
+    after that checkpoint, and the log of the resumed run, which goes on from the checkpoint, holds
+    none of them; a run without a checkpoint starts afresh and keeps none. A pause cannot straddle a
+    checkpoint (the trainer is stopped meanwhile), so one that ended after it came after it. Pauses
+    booked before paused.log existed are kept as they are."""
+    log = os.path.join(run_dir, PAUSES_LOG)
+    if not os.path.isfile(log):
+        return 0
+    checkpoint = os.path.join(run_dir, "checkpoint.pt")
+    since = os.path.getmtime(checkpoint) if os.path.isfile(checkpoint) else None
+    kept, dropped = [], 0
+    for line in read_lines(log):
+        fields = line.split()
+        try:
+            ended, held = float(fields[0]), int(fields[1])
+        except (IndexError, ValueError):
+            continue  # a line cut short as it was written: its pause was never added to paused_s
+        if since is not None and ended <= since:
+            kept.append(line)
+        else:
+            dropped += held
+    if dropped:
+        path = os.path.join(run_dir, "paused_s")
+        total = int(float(last_line(path) or 0))
+        open(path, "w").write("%d\n" % max(total - dropped, 0))
+        with open(log, "w") as f:
+            f.writelines(line + "\n" for line in kept)
+    return dropped
 
 
 def stop(sweep):

@@ -15,7 +15,7 @@ import time
 from hideseek_pipeline import analyze as analysis
 from hideseek_pipeline import evaluate
 from hideseek_pipeline import processes as proc
-from hideseek_pipeline.control import logged_rows
+from hideseek_pipeline.control import drop_pauses_after_checkpoint, logged_rows
 from hideseek_pipeline.queue import NO_BF16, RETRAIN_SUFFIX, SweepError, last_line, package_path, remove_file, say
 from hideseek_pipeline.sweep_config import start_window
 from hideseek_pipeline.workspace import ToolError, Workspace
@@ -78,6 +78,11 @@ def job(sweep, run, slot):
         return 3
     if phase.role == "selfplay":  # (a shell trainer's pin was refused just above)
         return _selfplay_job(sweep, run, port, tree, log)
+    # (Self-play resumes from its saved generations, not from one checkpoint: its pauses stay booked.)
+    lost = drop_pauses_after_checkpoint(os.path.dirname(paused))
+    if lost:
+        say("%s: %d s of pauses after its last checkpoint left out of its paused_s (the training after the "
+            "checkpoint was lost, and the run resumes from it)" % (run.name, lost))
     if os.path.isfile(script):
         # A pin from before this command: its own shell trainer.
         env = dict(os.environ, RECORD_ROOT=sweep.records.root, PRECISION=phase.precision,
