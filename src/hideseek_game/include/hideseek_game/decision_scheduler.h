@@ -25,7 +25,7 @@ enum class ClockMode { kRealtime, kLockstep };
 enum class Player { kHider = 0, kSeeker = 1 };
 
 // What became of an offered action. kSupersededByReset: the answer to the step an arena awaited
-// when a reset restarted it (sent before the agent saw the reset); dropped, and no fault of the agent.
+// when a reset restarted it (sent before the agent saw the reset); dropped, no fault of the agent.
 enum class Verdict { kAccepted, kInvalidAction, kWrongStep, kLate, kSupersededByReset };
 
 // A realtime decision's start: wait for answers, start with them, or start without some.
@@ -69,8 +69,9 @@ class DecisionScheduler {
 
   // Forgets the answers of `arena` (-1: all) after a reset; a realtime wait starts afresh.
   // `awaited[player * num_arenas + arena]`: the step id each arena awaited from each player (none
-  // where it awaited nothing); only the reset arenas' are read. One answer to it may still be on its way: it is
-  // kSupersededByReset, until the player's next accepted answer for that arena; a second is a wrong step.
+  // where it awaited nothing); only the reset arenas' are read. One answer to it may still be on
+  // its way: it is kSupersededByReset, until the player's next accepted answer for that arena; a
+  // second is a wrong step.
   void reset(int arena, const std::vector<std::optional<uint32_t>>& awaited);
 
   // Lockstep: an observation went out at `now_s`; is a re-send due at `now_s`?

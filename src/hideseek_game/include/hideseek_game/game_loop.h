@@ -93,8 +93,8 @@ class GameLoop {
   // first played to its end with the seeker's latest decision, so that no step is cut in two; it
   // is returned, like any other. Pending answers of the arena are forgotten and the hider views
   // rendered afresh; one answer per agent to the step it awaited before is then dropped as
-  // kSupersededByReset (it was sent before the agent saw the reset). Throws std::invalid_argument, changing nothing,
-  // for an arena or seed out of range.
+  // kSupersededByReset (it was sent before the agent saw the reset). Throws
+  // std::invalid_argument, changing nothing, for an arena or seed out of range.
   std::optional<Decision> reset(int arena, int64_t seed);
 
   // What the hider observes after the last decision (or reset): per arena.
