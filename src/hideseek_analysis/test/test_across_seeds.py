@@ -435,6 +435,12 @@ def test_an_effect_under_its_practical_size_is_negligible_not_support():
     assert claims.verdict((-0.05, -0.03), 3, 1.0, -0.04, size) == "contradicted"
     assert claims.verdict((-0.01, 0.05), 3, 1.0, 0.02, size) == "inconclusive"
     assert claims.verdict((0.03, 0.05), 1, 1.0, 0.04, size) == "inconclusive"  # one run: no interval over seeds
+    # under the size, but its interval reaches it: the size is not shown (v3's oscillation, 0.36 [0.21, 0.58]
+    # swings against 0.5), on either side of zero
+    swings = claims.PRACTICAL["swings"][0]
+    assert claims.verdict((0.206, 0.580), 3, 1.0, 0.362, swings) == "inconclusive"
+    assert claims.verdict((-0.580, -0.206), 3, 1.0, -0.362, swings) == "inconclusive"
+    assert claims.verdict((0.206, 0.45), 3, 1.0, 0.362, swings) == "negligible"
 
 
 def write_behaviour(rec, name, turns, swings=None):
@@ -581,6 +587,9 @@ def test_the_claims_on_both_games_sit_side_by_side_with_the_budget_check_last(tm
     # 8M minus 2M on v3: (600 + 610 + 620) / 3 - (300 + 310 + 320) / 3 = 300 living steps
     assert "| **supported** | 300.000 [" in last and "(basic 8m 3, basic 2M 3)" in last
     assert "the A mode: v2 brakes on every turn, v3 keeps the hider's momentum" in both
+    # the table has no measure column: the claim on every variant names the variant it was decided on
+    outlives = next(line for line in both.splitlines() if line.startswith("| Every variant's hider outlives"))
+    assert "(basic's, the lowest lower bound; basic 3)" in outlives, outlives
 
 
 def test_a_miss_names_only_the_causes_its_game_still_has_and_says_when_none_is_left():

@@ -17,8 +17,9 @@ Every interval is a 95 % percentile bootstrap over the runs (training seeds) of 
 involved, resampled within each variant; living steps use the two-level bootstrap (runs, then
 episodes). A claim is **supported** when its interval lies wholly on the paper's side of zero and
 its effect reaches the measure's practical size (PRACTICAL), **contradicted** when the same holds on
-the other side, **negligible** when the interval excludes zero but the effect is under the practical
-size, and **inconclusive** otherwise, or when a variant it needs has fewer than MIN_RUNS runs (an
+the other side, **negligible** when the interval excludes zero and lies wholly under the practical
+size, and **inconclusive** otherwise (an interval that excludes zero, around an effect under the
+practical size, but reaches that size, among them), or when a variant it needs has fewer than MIN_RUNS runs (an
 interval over one training seed says nothing about seeds). Only each seed's first training counts:
 a retrain (<run>_retrain) never does. Where a claim is not supported, the table names the rules of
 this game that depart from the paper, were tested, and could cause it, each with the experiment
@@ -81,8 +82,8 @@ class Causes(str):
 
 
 # The smallest effect that counts, per measure (in the measure's own units). A claim whose interval
-# lies wholly on one side of zero but whose effect is smaller than this is "negligible": neither
-# support nor contradiction.
+# lies wholly on one side of zero and wholly under this is "negligible": neither support nor
+# contradiction.
 PRACTICAL = {
     "rho": (0.3, "a rho of 0.3 either way"),
     "living": (25.0, "25 living steps (2.5 % of an episode)"),
@@ -97,14 +98,18 @@ PRACTICAL = {
 
 def verdict(ci, n_min, sign=1.0, point=None, practical=0.0):
     """supported / contradicted / inconclusive for an effect whose paper-side is sign * effect > 0;
-    negligible where the interval lies on one side of zero but |point| is under the practical size."""
+    negligible where the interval lies on one side of zero and wholly under the practical size;
+    inconclusive where it lies on one side of zero, |point| is under the size and the interval
+    reaches it (the direction is shown, the size is not)."""
     if n_min < MIN_RUNS or not np.all(np.isfinite(ci)):
         return "inconclusive"
     lo, hi = sorted((sign * ci[0], sign * ci[1]))
     if lo <= 0 <= hi:
         return "inconclusive"
     if point is not None and abs(point) < practical:
-        return "negligible"
+        # Small, and shown to be small only where the whole interval stays under the size; one
+        # that reaches it leaves the size undecided.
+        return "negligible" if max(abs(ci[0]), abs(ci[1])) < practical else "inconclusive"
     return "supported" if lo > 0 else "contradicted"
 
 
@@ -213,9 +218,11 @@ def beats_random_claim(c, living):
     res, size = decide(d[1], n_min, d[0], "living")
     if any(x[1][1] < 0 and x[0] <= -PRACTICAL["living"][0] for x in diffs.values()) and n_min >= MIN_RUNS:
         res = "contradicted"
-    return claim(*BEATS_RANDOM, "living steps, trained minus random; the variant with the lowest lower bound (%s)"
+    made = claim(*BEATS_RANDOM, "living steps, trained minus random; the variant with the lowest lower bound (%s)"
                  % v_worst, d[0], d[1], runs_text(living), res, missing(living, c.variants),
                  c.causes("a_mode", "steps"), size)
+    made["focus"] = "%s's, the lowest lower bound" % v_worst  # the table on both games has no measure column
+    return made
 
 
 def features_claims(c):
@@ -676,7 +683,8 @@ def header(found, reps):
             "(%d resamples); a claim needs at least %d runs of every variant it involves to be decided. "
             "Supported: the interval lies on the paper's side of zero and the effect reaches the measure's "
             "practical size (its column); contradicted: the same on the other side; negligible: the interval "
-            "excludes zero but the effect is under the practical size; inconclusive: otherwise. Only each "
+            "excludes zero and lies wholly under the practical size; inconclusive: otherwise (among them an "
+            "effect under the practical size whose interval excludes zero but reaches that size). Only each "
             "seed's first training counts (a retrain, <run>_retrain, never does). With two runs of a variant the "
             "bootstrap over its runs can only return "
             "the two runs' range, whose coverage is well under 95 %%: a claim decided on two runs of a variant is "
@@ -743,7 +751,8 @@ def _cell(r):
     if r is None:
         return "-", "-"
     note = " (%s)" % r["note"] if r["note"] else ""
-    return "**%s**%s" % (r["result"], note), effect_text(r) + (" (%s)" % r["runs"] if r["runs"] else "")
+    within = "; ".join(x for x in (r.get("focus", ""), r["runs"]) if x)
+    return "**%s**%s" % (r["result"], note), effect_text(r) + (" (%s)" % within if within else "")
 
 
 def write_both(out_dir, by_game, reps):
