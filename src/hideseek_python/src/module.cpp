@@ -171,6 +171,9 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("height", &VecGame::height)
       .def_property_readonly("width", &VecGame::width)
       .def_property_readonly("max_steps", &VecGame::maxSteps)
+      .def_property_readonly(
+          "step_duration", [](const VecGame& g) { return g.variant().game.stepDuration(); },
+          "seconds of game time a decision step lasts (action_repeat physics frames)")
       .def_property_readonly("seeker_policy", [](const VecGame& g) { return g.variant().seeker_policy; })
       .def_property_readonly("map_file", [](const VecGame& g) { return g.variant().map_file; })
       .def_property_readonly("decisions", &VecGame::decisions)

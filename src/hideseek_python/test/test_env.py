@@ -36,6 +36,10 @@ def test_spaces_shapes_and_metadata(envs):
     assert envs.observation_space.shape == (4, 84, 84, 3)
     assert envs.action_space.shape == (4,)
     assert envs.metadata["autoreset_mode"] == hideseek.AutoresetMode.SAME_STEP
+    # one frame a decision step of 0.12 s (3 frames of 0.04 s): a video of them plays at game speed
+    assert envs.metadata["render_fps"] == pytest.approx(1 / 0.12)
+    assert hideseek.make("basic").metadata["render_fps"] == pytest.approx(1 / 0.12)
+    assert hideseek.HideSeekVecEnv.metadata["render_fps"] is None  # each environment's own, from its game
     obs, infos = envs.reset(seed=0)
     assert obs.dtype == np.uint8 and obs.shape == (4, 84, 84, 3)
     assert envs.observation_space.contains(obs)
@@ -87,6 +91,15 @@ def test_reset_without_a_seed_after_construction_skips_no_seed():
     assert list(infos["seed"]) == [9, 10, 11]
 
 
+def test_a_closed_environment_says_so():
+    for env in (hideseek.make_vec("basic", num_envs=2), hideseek.make("basic")):
+        env.reset(seed=0)
+        env.close()
+        for call in (lambda: env.reset(), lambda: env.step(np.zeros(2, int) if hasattr(env, "num_envs") else 0)):
+            with pytest.raises(RuntimeError, match="is closed: make a new environment"):
+                call()
+
+
 def test_reset_seeds_one_per_env_and_next(envs):
     a, _ = envs.reset(seed=7)
     _, infos = envs.reset(seed=[3, 1, 4, 1])
@@ -107,6 +120,12 @@ def test_bad_input_is_refused_with_a_clear_error(envs):
         envs.step([0, 1, 5, 0])
     with pytest.raises(ValueError, match="integers"):
         envs.step([0.5, 1, 1, 0])
+    with pytest.raises(ValueError, match="integers"):
+        envs.step(np.array(["a", "b", "c", "d"]))
+    with pytest.raises(ValueError, match="integers"):
+        envs.step([True, False, True, False])  # not in Discrete either
+    with pytest.raises(ValueError, match=r"^action 7 is not in \[0, 5\)$"):
+        hideseek.make("basic").step(7)  # one environment: no index to name
     with pytest.raises(ValueError, match="3 seeds for 4"):
         envs.reset(seed=[1, 2, 3])
     with pytest.raises(ValueError, match="seed"):

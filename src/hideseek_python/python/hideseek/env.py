@@ -92,12 +92,13 @@ def _actions(actions, num_envs, count=_core.num_actions, what="action"):
     a = np.asarray(actions)
     if a.shape != (num_envs,):
         raise ValueError("%ss must have shape (%d,), got %s" % (what, num_envs, a.shape))
-    if not np.issubdtype(a.dtype, np.integer):
-        if not np.all(np.equal(np.mod(a, 1), 0)):
-            raise ValueError("%ss must be integers in [0, %d), got %s" % (what, count, a))
+    # numbers only: strings, objects and booleans (which Discrete does not contain either) are refused
+    if a.dtype.kind not in "iuf" or (a.dtype.kind == "f" and not np.all(np.equal(np.mod(a, 1), 0))):
+        raise ValueError("%ss must be integers in [0, %d), got %s" % (what, count, a))
     if np.any(a < 0) or np.any(a >= count):
         bad = int(np.flatnonzero((a < 0) | (a >= count))[0])
-        raise ValueError("%s %s of environment %d is not in [0, %d)" % (what, a[bad], bad, count))
+        where = " of environment %d" % bad if num_envs > 1 else ""
+        raise ValueError("%s %s%s is not in [0, %d)" % (what, a[bad], where, count))
     return a.astype(np.uint8)
 
 
@@ -126,7 +127,8 @@ class HideSeekVecEnv(_VectorBase):
     """num_envs arenas of a variant played together; arena i's first episode has seed seed + i, its
     later ones seed + i + k * num_envs (the world node's num_arenas and seed)."""
 
-    metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": ["rgb_array"], "render_fps": 5}
+    # render_fps: one frame a decision step; set from the game's step (0.12 s: 8.33 frames a second).
+    metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": ["rgb_array"], "render_fps": None}
 
     def __init__(self, variant="basic", num_envs=16, seed=0, game=None, config_dir=None,
                  render_threads=2, render_mode=None, role="hider", opponent=None):
@@ -152,8 +154,16 @@ class HideSeekVecEnv(_VectorBase):
         self.single_action_space = _spaces.Discrete(count)
         self.observation_space = _spaces.Box(0, 255, (self.num_envs, h, w, 3), np.uint8)
         self.action_space = _spaces.MultiDiscrete(np.full(self.num_envs, count))
+        self.metadata = dict(self.metadata, render_fps=1.0 / self._game.step_duration)
         self.closed = False
         self._everyone = np.ones(self.num_envs, dtype=bool)
+
+    @property
+    def _live(self):
+        """The game, or a clear error once close() freed it."""
+        if self._game is None:
+            raise RuntimeError("%r is closed: make a new environment" % self)
+        return self._game
 
     def reset(self, *, seed=None, options=None):
         """New episodes in every arena: seed (int) gives arena i seed + i, a list one seed per arena,
@@ -161,55 +171,55 @@ class HideSeekVecEnv(_VectorBase):
         if options:
             raise ValueError("hideseek environments take no reset options, got %r" % (options,))
         seeds = _seed_list(seed, self.num_envs)
-        self._game.reset(seeds)  # first: it refuses a bad seed, changing nothing
+        self._live.reset(seeds)  # first: it refuses a bad seed, changing nothing
         if HAVE_GYMNASIUM and seed is not None:
             super().reset(seed=seeds[0])  # seeds the vector env's own np_random, as Gymnasium's do
         return self._observations(), self._infos()
 
     def step(self, actions):
-        n = self.num_envs
+        n, game = self.num_envs, self._live  # a closed environment says so before the actions are checked
         if self.role == "hider":
             hider = _actions(actions, n)
-            seeker = self._opponent_actions() if self._game.seeker_outside else None
+            seeker = self._opponent_actions() if game.seeker_outside else None
         else:
-            seeker = _actions(actions, n, self._game.seeker_actions, "seeker action")
+            seeker = _actions(actions, n, game.seeker_actions, "seeker action")
             hider = self._opponent_actions()
-        self._game.step(hider, seeker)
-        outcomes = self._game.outcomes()
+        game.step(hider, seeker)
+        outcomes = game.outcomes()
         infos = self._infos()
-        done = self._game.done()
+        done = game.done()
         if done.any():
-            final = self._game.finished()
+            final = game.finished()
             del final["_mask"]  # the same as done
             if self.role == "seeker":
                 final["hider_return"], final["return"] = final["return"], final["seeker_return"]
             del final["seeker_return"]
             infos["final_info"] = _with_masks(final, done)
             infos["_final_info"] = done
-        rewards = self._game.seeker_rewards() if self.role == "seeker" else self._game.rewards()
+        rewards = game.seeker_rewards() if self.role == "seeker" else game.rewards()
         return (self._observations(), rewards.astype(np.float64), outcomes == OUTCOME_CAPTURED,
                 outcomes == OUTCOME_SURVIVED, infos)
 
     def _observations(self):
-        return self._game.seeker_observations() if self.role == "seeker" else self._game.observations()
+        return self._live.seeker_observations() if self.role == "seeker" else self._live.observations()
 
     def _opponent_actions(self):
         """The other side's actions for the current state: a script's, or a callable's on its own images."""
         n, o = self.num_envs, self.opponent
         if self.role == "hider":
             if o == "random":
-                return self._game.random_seeker_actions()
-            return _actions(o(self._game.seeker_observations(), self._infos()), n, self._game.seeker_actions,
+                return self._live.random_seeker_actions()
+            return _actions(o(self._live.seeker_observations(), self._infos()), n, self._live.seeker_actions,
                             "opponent's action")
         if isinstance(o, str):
-            return self._game.scripted_actions(o)
-        return _actions(o(self._game.observations(), self._infos()), n, _core.num_actions, "opponent's action")
+            return self._live.scripted_actions(o)
+        return _actions(o(self._live.observations(), self._infos()), n, _core.num_actions, "opponent's action")
 
     def scripted_actions(self, name):
         """A scripted hider's actions for every arena's current state: random (the paper's random
         hider) or an evader reading the true state (backpedal, flee, hide, lap). The evaders keep a
         goal and a path within an episode: ask once per step, as the graph asks them."""
-        return self._game.scripted_actions(name).astype(np.int64)
+        return self._live.scripted_actions(name).astype(np.int64)
 
     def render(self):
         """The images of the side played, a tuple of num_envs uint8 [H, W, 3] frames (render_mode
@@ -222,7 +232,7 @@ class HideSeekVecEnv(_VectorBase):
         self.closed = True
 
     def _infos(self):
-        return _with_masks(self._game.infos(), self._everyone)
+        return _with_masks(self._live.infos(), self._everyone)
 
     def __repr__(self):
         return "HideSeekVecEnv(%s, num_envs=%d, game=%s%s)" % (
@@ -234,7 +244,7 @@ class HideSeekEnv(_EnvBase):
     already the next episode's first image (the game never renders the terminal state); reset()
     then keeps that episode instead of skipping a seed, so episodes have seeds seed, seed + 1, ..."""
 
-    metadata = {"render_modes": ["rgb_array"], "render_fps": 5}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": None}  # set from the game, as the vector env's
 
     def __init__(self, variant="basic", seed=0, game=None, config_dir=None, render_threads=2,
                  render_mode=None, role="hider", opponent=None):
@@ -242,6 +252,7 @@ class HideSeekEnv(_EnvBase):
         if render_mode not in (None, "rgb_array"):
             raise ValueError("render_mode must be None or 'rgb_array', got %r" % (render_mode,))
         self.render_mode = render_mode
+        self.metadata = dict(self.metadata, render_fps=self._vec.metadata["render_fps"])
         self.observation_space = self._vec.single_observation_space
         self.action_space = self._vec.single_action_space
         self._fresh = True  # an episode has just started and taken no step
@@ -249,8 +260,9 @@ class HideSeekEnv(_EnvBase):
     def reset(self, *, seed=None, options=None):
         if options:
             raise ValueError("hideseek environments take no reset options, got %r" % (options,))
+        game = self._vec._live
         if seed is not None or not self._fresh:
-            self._vec._game.reset(_seed_list(seed, 1))
+            game.reset(_seed_list(seed, 1))
         if HAVE_GYMNASIUM:
             super().reset(seed=seed)
         self._fresh = True
@@ -276,7 +288,7 @@ class HideSeekEnv(_EnvBase):
     def _info(self):
         # The arena's episode counter is left out: it counts resets, so that a reset with the same
         # seed gives the same info (check_env's determinism).
-        return {k: v[0] for k, v in self._vec._game.infos().items() if k != "episode_index"}
+        return {k: v[0] for k, v in self._vec._live.infos().items() if k != "episode_index"}
 
 
 def make_vec(variant="basic", num_envs=16, seed=0, **kwargs):
