@@ -29,15 +29,26 @@ void runAnalysis(const AnalysisJob& job) {
   std::filesystem::create_directories(job.inputs_dir);
   std::filesystem::create_directories(job.report_dir);
 
+  const int h = job.variant.game.camera.height, w = job.variant.game.camera.width;
+  hideseek_hider::CheckpointInfo info;
+  hideseek_hider::HiderNet net = hideseek_hider::loadCheckpoint(job.policy, h, w, &info);
+  // A bag names neither its variant nor its game: the analysis plays the ones it is given (the
+  // random hider's baseline, the maps), which must be the recording's. A policy trained on others
+  // may be what was recorded, but is more often a slip.
+  if (!info.variant.empty() && (info.variant != job.variant.name || info.game != job.variant.game.name)) {
+    std::fprintf(stderr,
+                 "analysis: warning: %s was trained on variant '%s', game %s; this analysis is of variant '%s', game "
+                 "%s (its random-hider baseline and maps are those): name the variant and game the bag was "
+                 "recorded in\n",
+                 job.policy.c_str(), info.variant.c_str(), info.game.c_str(), job.variant.name.c_str(),
+                 job.variant.game.name.c_str());
+  }
+
   std::printf("analysis: reading %s\n", job.bag.c_str());
   std::fflush(stdout);
   const StepLog log = readStepBag(job.bag);
   std::printf("analysis: %zu decisions of %d arenas (%zu steps), %ld images, no step missing\n", log.decisions(),
               log.numArenas(), log.records().size(), static_cast<long>(log.numImages()));
-
-  const int h = job.variant.game.camera.height, w = job.variant.game.camera.width;
-  hideseek_hider::CheckpointInfo info;
-  hideseek_hider::HiderNet net = hideseek_hider::loadCheckpoint(job.policy, h, w, &info);
   std::printf(
       "analysis: features of %ld images through %s (network %s, %ld training steps) and a random network "
       "(seed %u)%s\n",

@@ -3,7 +3,7 @@
 # 1. A small analysis of the shipped basic policy (the default, policy:=shipped; 4 arenas, 800 decisions, an image every 4th)
 #    records every decision into its bag and writes every file of the report.
 # 2. The same bag with one decision filtered out is reported as missing that step, and nothing
-#    is analysed.
+#    is analysed; analysed as another variant than its policy's, it is warned about first.
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
 out=$1
@@ -38,6 +38,11 @@ if [ -s "$dir/work/rollout.bag" ]; then
   grep -q "decisions 100 to 100 are missing (1 decision steps of 4 arenas); nothing was analysed" "$dir/gap.log" ||
     failures+=("the missing step was not reported: $(head -c 300 "$dir/gap.log")")
   [ ! -e "$dir/gap/report/probes.csv" ] || failures+=("a report was written past the missing step")
+  # A policy of another variant than the one analysed: named before the bag is read.
+  "$(catkin_find hideseek_analysis analyze_bag --first-only)" fasterhider "$(/usr/bin/python3 "$root/../hideseek_analysis/scripts/hideseek_registry.py" shipped basic)" "$dir/gap.bag" \
+    "$dir/other" > "$dir/other.log" 2>&1
+  grep -q "was trained on variant 'basic', game v3; this analysis is of variant 'fasterhider', game v3" "$dir/other.log" ||
+    failures+=("no warning for a basic policy analysed as fasterhider: $(head -c 300 "$dir/other.log")")
 else
   failures+=("no bag to cut a step out of")
 fi
