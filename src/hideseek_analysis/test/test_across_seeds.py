@@ -428,19 +428,35 @@ def test_a_claim_decided_on_two_runs_of_a_variant_is_marked_provisional():
     assert two["note"].startswith("provisional") and three["note"] == "" and undecided["note"] == "needs more"
 
 
-def test_an_effect_under_its_practical_size_is_negligible_not_support():
+def test_the_interval_decides_the_size_as_it_decides_the_direction():
     size = claims.PRACTICAL["share"][0]
-    assert claims.verdict((0.004, 0.011), 3, 1.0, 0.007, size) == "negligible"  # v2's 0.007 of the steps
-    assert claims.verdict((0.03, 0.05), 3, 1.0, 0.04, size) == "supported"
-    assert claims.verdict((-0.05, -0.03), 3, 1.0, -0.04, size) == "contradicted"
-    assert claims.verdict((-0.01, 0.05), 3, 1.0, 0.02, size) == "inconclusive"
-    assert claims.verdict((0.03, 0.05), 1, 1.0, 0.04, size) == "inconclusive"  # one run: no interval over seeds
-    # under the size, but its interval reaches it: the size is not shown (v3's oscillation, 0.36 [0.21, 0.58]
-    # swings against 0.5), on either side of zero
-    swings = claims.PRACTICAL["swings"][0]
-    assert claims.verdict((0.206, 0.580), 3, 1.0, 0.362, swings) == "inconclusive"
-    assert claims.verdict((-0.580, -0.206), 3, 1.0, -0.362, swings) == "inconclusive"
-    assert claims.verdict((0.206, 0.45), 3, 1.0, 0.362, swings) == "negligible"
+    assert claims.verdict((0.004, 0.011), 3, 1.0, size) == "negligible"  # v2's 0.007 of the steps
+    assert claims.verdict((0.03, 0.05), 3, 1.0, size) == "supported"
+    assert claims.verdict((-0.05, -0.03), 3, 1.0, size) == "contradicted"
+    assert claims.verdict((-0.05, -0.03), 3, -1.0, size) == "supported"  # the paper's side is below zero
+    assert claims.verdict((-0.01, 0.05), 3, 1.0, size) == "inconclusive"
+    assert claims.verdict((0.03, 0.05), 1, 1.0, size) == "inconclusive"  # one run: no interval over seeds
+    # An interval that excludes zero but crosses the size shows the direction, not the size, whichever
+    # side of the size its point lies: v3's oscillation, 0.36 [0.21, 0.58] swings against 0.5, and
+    # v2's transition 1, 0.289 [0.012, 0.573] per 100 steps against 0.2.
+    swings, rate = claims.PRACTICAL["swings"][0], claims.PRACTICAL["rate"][0]
+    assert claims.verdict((0.206, 0.580), 3, 1.0, swings) == "inconclusive"
+    assert claims.verdict((-0.580, -0.206), 3, 1.0, swings) == "inconclusive"
+    assert claims.verdict((0.012, 0.573), 3, 1.0, rate) == "inconclusive"
+    assert claims.verdict((-0.573, -0.012), 3, 1.0, rate) == "inconclusive"
+    assert claims.verdict((0.206, 0.45), 3, 1.0, swings) == "negligible"
+    assert claims.verdict((0.2, 0.573), 3, 1.0, rate) == "supported"  # at the size counts
+
+
+def test_the_concave_curve_is_decided_on_its_coefficient_s_interval_as_bends():
+    """The practical size is a bend of balanced accuracy: the coefficient's interval is decided once
+    turned into bends across the runs' range (here (0.7 / 2)^2 = 0.1225 of the coefficient)."""
+    x = np.array([0.04, 0.3, 0.74])
+    ci = (0.02, 0.07)  # a convex curve, but its bends, [0.0025, 0.0086], all under 0.01
+    bends = tuple(np.multiply(ci, claims.bend_scale(x)))
+    assert np.allclose(bends, (0.00245, 0.008575))
+    assert claims.verdict(bends, 3, -1.0, claims.PRACTICAL["bend"][0]) == "negligible"
+    assert claims.verdict(ci, 3, -1.0, claims.PRACTICAL["bend"][0]) == "contradicted"  # the coefficient as a bend
 
 
 def write_behaviour(rec, name, turns, swings=None):

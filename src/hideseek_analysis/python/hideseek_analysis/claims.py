@@ -15,11 +15,12 @@ budget config/sweep.yaml trains, against 2M) is the last row of that game's tabl
 
 Every interval is a 95 % percentile bootstrap over the runs (training seeds) of each variant
 involved, resampled within each variant; living steps use the two-level bootstrap (runs, then
-episodes). A claim is **supported** when its interval lies wholly on the paper's side of zero and
-its effect reaches the measure's practical size (PRACTICAL), **contradicted** when the same holds on
-the other side, **negligible** when the interval excludes zero and lies wholly under the practical
-size, and **inconclusive** otherwise (an interval that excludes zero, around an effect under the
-practical size, but reaches that size, among them), or when a variant it needs has fewer than MIN_RUNS runs (an
+episodes). The interval decides the size as it decides the direction: a claim is **supported**
+when its interval lies wholly on the paper's side of zero and at or beyond the measure's practical
+size (PRACTICAL), **contradicted** when the same holds on the other side, **negligible** when the
+interval excludes zero and lies wholly under the practical size, and **inconclusive** otherwise (an
+interval across zero, or one that excludes zero but crosses the practical size: the direction is
+shown, the size is not), or when a variant it needs has fewer than MIN_RUNS runs (an
 interval over one training seed says nothing about seeds). Only each seed's first training counts:
 a retrain (<run>_retrain) never does. Where a claim is not supported, the table names the rules of
 this game that depart from the paper, were tested, and could cause it, each with the experiment
@@ -81,9 +82,9 @@ class Causes(str):
         return made
 
 
-# The smallest effect that counts, per measure (in the measure's own units). A claim whose interval
-# lies wholly on one side of zero and wholly under this is "negligible": neither support nor
-# contradiction.
+# The smallest effect that counts, per measure (in the measure's own units): an interval must lie
+# wholly at or beyond it to support or contradict a claim; one that excludes zero but lies wholly
+# under it is "negligible".
 PRACTICAL = {
     "rho": (0.3, "a rho of 0.3 either way"),
     "living": (25.0, "25 living steps (2.5 % of an episode)"),
@@ -96,21 +97,24 @@ PRACTICAL = {
 
 
 
-def verdict(ci, n_min, sign=1.0, point=None, practical=0.0):
-    """supported / contradicted / inconclusive for an effect whose paper-side is sign * effect > 0;
-    negligible where the interval lies on one side of zero and wholly under the practical size;
-    inconclusive where it lies on one side of zero, |point| is under the size and the interval
-    reaches it (the direction is shown, the size is not)."""
+def verdict(ci, n_min, sign=1.0, practical=0.0):
+    """The verdict on an effect whose paper side is sign * effect > 0, from its interval alone, which
+    decides the size as it decides the direction: supported where the interval lies wholly on the
+    paper's side and at or beyond the practical size; contradicted, the same on the other side;
+    negligible where it excludes zero and lies wholly under the size; inconclusive otherwise: an
+    interval across zero, or one that excludes zero but crosses the size (the direction is shown,
+    the size is not), or fewer than MIN_RUNS runs of a variant."""
     if n_min < MIN_RUNS or not np.all(np.isfinite(ci)):
         return "inconclusive"
     lo, hi = sorted((sign * ci[0], sign * ci[1]))
     if lo <= 0 <= hi:
         return "inconclusive"
-    if point is not None and abs(point) < practical:
-        # Small, and shown to be small only where the whole interval stays under the size; one
-        # that reaches it leaves the size undecided.
-        return "negligible" if max(abs(ci[0]), abs(ci[1])) < practical else "inconclusive"
-    return "supported" if lo > 0 else "contradicted"
+    near, far = (lo, hi) if lo > 0 else (-hi, -lo)  # the interval's ends, by their distance from zero
+    if far < practical:
+        return "negligible"
+    if near >= practical:
+        return "supported" if lo > 0 else "contradicted"
+    return "inconclusive"
 
 
 def claim(name, paper, measure, point=None, ci=None, runs="", result="inconclusive", note="", departure="",
@@ -123,10 +127,10 @@ def claim(name, paper, measure, point=None, ci=None, runs="", result="inconclusi
             "departure": "" if result == "supported" else departure, "causes": getattr(departure, "keys", ())}
 
 
-def decide(ci, n_min, point, kind, sign=1.0):
+def decide(ci, n_min, kind, sign=1.0):
     """verdict() with the practical size of a measure of PRACTICAL's kind; (result, its text)."""
     size, text = PRACTICAL[kind]
-    return verdict(ci, n_min, sign, point, size), text
+    return verdict(ci, n_min, sign, size), text
 
 
 def runs_text(per_variant):
@@ -191,7 +195,7 @@ def ordering_claim(c, living):
     vs = list(living)
     rho, ci = st.rank_correlation([living[v] for v in vs], [c.paper[v]["living_trained"] for v in vs], c.rng("rho"),
                                   c.reps)
-    res, size = decide(ci, fewest(living, c.variants), rho, "rho")
+    res, size = decide(ci, fewest(living, c.variants), "rho")
     return claim(*ORDERING, "Spearman's rho with the paper's living steps (%d variants)" % len(vs), rho, ci,
                  runs_text(living), res, missing(living, c.variants), c.causes("a_mode", "seeker_motion"), size)
 
@@ -215,8 +219,9 @@ def beats_random_claim(c, living):
     v_worst = min(lows, key=lows.get)
     d = diffs[v_worst]
     n_min = min(x[2] for x in diffs.values()) if len(diffs) == len(c.variants) else 0
-    res, size = decide(d[1], n_min, d[0], "living")
-    if any(x[1][1] < 0 and x[0] <= -PRACTICAL["living"][0] for x in diffs.values()) and n_min >= MIN_RUNS:
+    res, size = decide(d[1], n_min, "living")
+    # a variant whose whole interval lies at or beyond the practical size under the random hider
+    if any(x[1][1] <= -PRACTICAL["living"][0] for x in diffs.values()) and n_min >= MIN_RUNS:
         res = "contradicted"
     made = claim(*BEATS_RANDOM, "living steps, trained minus random; the variant with the lowest lower bound (%s)"
                  % v_worst, d[0], d[1], runs_text(living), res, missing(living, c.variants),
@@ -236,7 +241,7 @@ def features_claims(c):
                              "balanced accuracy gain on %s, on the shared probe set" % label, note="no run analysed yet"))
             continue
         point, ci = st.boot_runs(gains, mean_of_means, c.rng("features", target), c.reps)
-        res, size = decide(ci, fewest(gains, c.variants), point, "accuracy")
+        res, size = decide(ci, fewest(gains, c.variants), "accuracy")
         out.append(claim("Trained features beat random-init ones on %s" % target, "Table 3: trained > random init",
                          "balanced accuracy on the shared probe set, trained minus the mean of 5 random-init "
                          "networks, mean over variants", point, ci, runs_text(gains), res,
@@ -260,7 +265,7 @@ def perception_claim(c):
     def margin(s):
         return s[WORST].mean() - min(x.mean() for v, x in s.items() if v != WORST)
     point, ci = st.boot_runs(acc, margin, c.rng("worst at perception"), c.reps)
-    res, size = decide(ci, fewest(acc, c.variants), point, "accuracy", -1.0)
+    res, size = decide(ci, fewest(acc, c.variants), "accuracy", -1.0)
     return claim(*PERCEPTION, "mean of S and H balanced accuracy, %s minus the lowest other variant" % WORST,
                  point, ci, runs_text(acc), res, missing(acc, c.variants), c.causes("colours", "a_mode"), size)
 
@@ -288,6 +293,12 @@ def _concave_fit(x, y, groups, rng, reps):
     return quad, st.interval(boot), err
 
 
+def bend_scale(x):
+    """A quadratic coefficient a as its bend across the range of x: |a| (range / 2)^2, the curve's
+    largest distance from its chord there (PRACTICAL["bend"]'s units)."""
+    return ((np.max(x) - np.min(x)) / 2) ** 2
+
+
 def concave_claim(c):
     """5. Survival and representation: a concave curve over one point per run (living steps, probe gain)."""
     pts = []
@@ -307,8 +318,9 @@ def concave_claim(c):
     per_variant = min(int((groups == g).sum()) for g in variants_in)
     # The practical size is a bend: the quadratic's largest distance from its chord across the
     # runs' range of x, |a| (range / 2)^2, of at least PRACTICAL["bend"] balanced accuracy.
-    bend = abs(quad) * ((x.max() - x.min()) / 2) ** 2
-    res = verdict(ci, per_variant if len(variants_in) == len(c.variants) else 0, -1.0, bend, PRACTICAL["bend"][0])
+    bend = abs(quad) * bend_scale(x)
+    res = verdict(tuple(np.multiply(ci, bend_scale(x))), per_variant if len(variants_in) == len(c.variants) else 0,
+                  -1.0, PRACTICAL["bend"][0])
     if res == "supported" and err[2] >= err[1]:
         res = "inconclusive"
     return claim(*CONCAVE, "quadratic coefficient of probe gain (mean of S, H) against living steps / 1000, one point "
@@ -336,7 +348,7 @@ def relative(c, variants, tables, fn, label, paper_text, departure, kind):
                      note="no analysed run (or no random-hider baseline) of %s" % ", ".join(variants),
                      practical=PRACTICAL[kind][1])
     point, ci = st.boot_runs(per, mean_of_means, c.rng(label), c.reps)
-    res, size = decide(ci, fewest(per, variants), point, kind)
+    res, size = decide(ci, fewest(per, variants), kind)
     return claim(label, paper_text, "trained minus the random hider of the same variant", point, ci,
                  runs_text(per), res, missing(per, variants), departure, size)
 
@@ -445,7 +457,7 @@ def oscillation_claim(c):
         return claim(*OSCILLATES, measure, runs=runs_text(osc), note=note or "needs basic and a faster hider analysed",
                      departure=departure, practical=PRACTICAL["swings"][1])
     point, ci = st.boot_runs(osc, excess, c.rng("oscillates"), c.reps)
-    res, size = decide(ci, fewest(osc, needed), point, "swings")
+    res, size = decide(ci, fewest(osc, needed), "swings")
     return claim(*OSCILLATES, measure, point, ci, runs_text(osc), res,
                  "; ".join(x for x in (missing(osc, needed), note) if x), departure, size)
 
@@ -544,8 +556,7 @@ def _memory_gain_verdict(c, ablation):
     if not ablation:
         return "no memoryless ablation yet", None
     g_point, g_ci = st.boot_runs(ablation, mean_of_means, c.rng("memory", "memory_gain"), c.reps)
-    g_verdict = verdict(g_ci, min(len(ablation.get(v, [])) for v in c.gru_variants), 1.0, g_point,
-                        PRACTICAL["living"][0])
+    g_verdict = verdict(g_ci, min(len(ablation.get(v, [])) for v in c.gru_variants), 1.0, PRACTICAL["living"][0])
     return "memory minus memoryless %.1f%s" % (
         g_point, " [%.1f, %.1f]" % g_ci if np.all(np.isfinite(g_ci)) else " (one run of a variant: no interval)"), g_verdict
 
@@ -574,7 +585,7 @@ def memory_claim(c):
             for samples in zip(*[st.two_level_samples(pairs[v], rng, c.reps) for v in variants])]
     n_min = min(len(pairs.get(v, [])) for v in c.gru_variants)
     ci = st.interval(boot) if n_min >= MIN_RUNS else (np.nan, np.nan)
-    result, size = decide(ci, n_min, point, "living")
+    result, size = decide(ci, n_min, "living")
     short = [v for v in c.gru_variants if len(pairs.get(v, [])) < MIN_RUNS]
     notes = ["needs at least %d GRU runs, each with its evaluated feed-forward twin, of: %s" % (MIN_RUNS, ", ".join(short))
              ] if short else []
@@ -681,10 +692,11 @@ def header(found, reps):
     n = sum(len(x) for x in found.values())
     return ("Decided on %d run(s) of the sweep (%s). Intervals: 95 %% bootstrap over each variant's training seeds "
             "(%d resamples); a claim needs at least %d runs of every variant it involves to be decided. "
-            "Supported: the interval lies on the paper's side of zero and the effect reaches the measure's "
-            "practical size (its column); contradicted: the same on the other side; negligible: the interval "
-            "excludes zero and lies wholly under the practical size; inconclusive: otherwise (among them an "
-            "effect under the practical size whose interval excludes zero but reaches that size). Only each "
+            "The interval decides the size as it decides the direction. Supported: the interval lies on the "
+            "paper's side of zero, wholly at or beyond the measure's practical size (its column); contradicted: "
+            "the same on the other side; negligible: the interval excludes zero and lies wholly under the "
+            "practical size; inconclusive: otherwise (an interval across zero, or one that excludes zero but "
+            "crosses the practical size: the direction is shown, the size is not). Only each "
             "seed's first training counts (a retrain, <run>_retrain, never does). With two runs of a variant the "
             "bootstrap over its runs can only return "
             "the two runs' range, whose coverage is well under 95 %%: a claim decided on two runs of a variant is "
@@ -733,7 +745,7 @@ def budget_check(c, rows, big):
                      % (label, label.upper()),
                      practical=PRACTICAL["living"][1])
     d, ci = st.mean_difference(long_runs, short_runs, c.rng("budget", label), c.reps)
-    res, size = decide(ci, min(len(long_runs), len(short_runs)), d, "living")
+    res, size = decide(ci, min(len(long_runs), len(short_runs)), "living")
     # The same claims with basic's longer runs in its 2M runs' place (the GRU runs keep their 2M twins).
     swapped = dict(c.R.found, basic=found_big.get("basic", []))
     again = build(Context(c.root, swapped, c.cfg, c.seed, c.reps, c.game, c.gru_found, twins=c.R.found))[0]
