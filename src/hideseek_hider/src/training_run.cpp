@@ -300,6 +300,7 @@ void TrainingRun::progress(UpdateReport& rep, Clock::time_point now) {
   const double process_s = std::chrono::duration<double>(now - start_).count();
   rep.wall_s = start_wall_s_ + process_s;
   updated_wall_s_ = rep.wall_s;
+  updated_at_ = std::filesystem::file_time_type::clock::now();
   rep.steps_per_s = (rep.steps - start_steps_) / std::max(process_s, 1e-9);
   rep.eta_s = std::max<int64_t>(0, options_.total_steps - rep.steps) / std::max(rep.steps_per_s, 1e-9);
   const int64_t finished = episodes_seen_.takeFinished();
@@ -346,6 +347,10 @@ void TrainingRun::saveCheckpoint() {
 bool TrainingRun::saveCheckpointOnStop() {
   if (rank_ != 0 || updatedSteps() == checkpoint_steps_) return false;
   saveCheckpoint();
+  // Dated at the update it holds, as a periodic checkpoint is (it is written at its update): what
+  // happened after, a pause of the sweep's included, is not in the run that resumes from it.
+  std::error_code ignored;  // an undated file still holds the right state
+  std::filesystem::last_write_time(checkpointPath(), updated_at_, ignored);
   return true;
 }
 

@@ -642,6 +642,7 @@ def test_a_run_restarting_without_a_checkpoint_keeps_none_of_its_pauses_and_old_
     (fresh / "paused_s").write_text("50\n")
     (fresh / "paused.log").write_text("%d 20\n%d 30\n" % (time.time() - 60, time.time() - 30))
     assert control.drop_pauses_after_checkpoint(str(fresh)) == 50
+    assert (fresh / "paused.lock").exists()  # taken, as resume() takes it to book a pause
     assert (fresh / "paused_s").read_text() == "0\n" and (fresh / "paused.log").read_text() == ""
     old = tmp_path / "old"
     old.mkdir()

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -172,6 +173,7 @@ class TrainingRun {
   int64_t start_steps_ = 0;
   double start_wall_s_ = 0.0;                              // wall seconds the run had trained before this process
   double updated_wall_s_ = 0.0;                            // the run's wall seconds at its last update
+  std::filesystem::file_time_type updated_at_{};           // when that update was made (a file time)
   int64_t checkpoint_steps_ = 0;                           // the steps the checkpoint holds (0: none written)
   std::deque<std::pair<int64_t, double>> updated_recent_;  // the episode window at the last update
   Clock::time_point start_;

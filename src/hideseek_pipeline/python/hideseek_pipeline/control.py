@@ -344,13 +344,15 @@ def resume(sweep, book=True):
             continue
         proc.continue_tree(int(pid))
         if book:
-            path = os.path.join(sweep.runs_dir, name, "paused_s")
-            os.makedirs(os.path.dirname(path), exist_ok=True)
-            before = int(float(last_line(path) or 0))
-            open(path, "w").write("%d\n" % (before + held))
-            # when each pause ended: drop_pauses_after_checkpoint reads it
-            with open(os.path.join(sweep.runs_dir, name, PAUSES_LOG), "a") as f:
-                f.write("%d %d\n" % (time.time(), held))
+            run_dir = os.path.join(sweep.runs_dir, name)
+            os.makedirs(run_dir, exist_ok=True)
+            with proc.FileLock(os.path.join(run_dir, PAUSES_LOCK)):
+                # when each pause ended, first (drop_pauses_after_checkpoint reads it), then the total
+                with open(os.path.join(run_dir, PAUSES_LOG), "a") as f:
+                    f.write("%d %d\n" % (time.time(), held))
+                path = os.path.join(run_dir, "paused_s")
+                before = int(float(last_line(path) or 0))
+                open(path, "w").write("%d\n" % (before + held))
     remove_file(sweep.state_file("paused"))
     remove_file(sweep.state_file("paused.runs"))
     print("sweep: resumed after %d s" % held)
@@ -358,18 +360,26 @@ def resume(sweep, book=True):
 
 
 PAUSES_LOG = "paused.log"  # beside paused_s: one `end_time held_s` line per pause booked
+PAUSES_LOCK = "paused.lock"  # held while either is written: resume() and a run's start may meet
 
 
 def drop_pauses_after_checkpoint(run_dir):
     """Before a run's training (re)starts: the pauses booked into its paused_s after its last
     checkpoint are taken off it, and their seconds returned. A stop or a crash lost the training
     after that checkpoint, and the log of the resumed run, which goes on from the checkpoint, holds
-    none of them; a run without a checkpoint starts afresh and keeps none. A pause cannot straddle a
-    checkpoint (the trainer is stopped meanwhile), so one that ended after it came after it. Pauses
-    booked before paused.log existed are kept as they are."""
+    none of them; a run without a checkpoint starts afresh and keeps none. A checkpoint's file is
+    dated at the update it holds (a periodic one is written then; a trainer stopped by SIGINT dates
+    its stop checkpoint back to its last update), and no update happens during a pause, so a pause
+    that ended after that date came after the update. Pauses booked before paused.log existed are
+    kept as they are."""
     log = os.path.join(run_dir, PAUSES_LOG)
     if not os.path.isfile(log):
         return 0
+    with proc.FileLock(os.path.join(run_dir, PAUSES_LOCK)):
+        return _drop_pauses(run_dir, log)
+
+
+def _drop_pauses(run_dir, log):
     checkpoint = os.path.join(run_dir, "checkpoint.pt")
     since = os.path.getmtime(checkpoint) if os.path.isfile(checkpoint) else None
     kept, dropped = [], 0
@@ -378,7 +388,7 @@ def drop_pauses_after_checkpoint(run_dir):
         try:
             ended, held = float(fields[0]), int(fields[1])
         except (IndexError, ValueError):
-            continue  # a line cut short as it was written: its pause was never added to paused_s
+            continue  # a line cut short as it was written: its pause was not added to paused_s yet
         if since is not None and ended <= since:
             kept.append(line)
         else:

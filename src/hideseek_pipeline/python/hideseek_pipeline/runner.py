@@ -80,9 +80,11 @@ def job(sweep, run, slot):
         return _selfplay_job(sweep, run, port, tree, log)
     # (Self-play resumes from its saved generations, not from one checkpoint: its pauses stay booked.)
     lost = drop_pauses_after_checkpoint(os.path.dirname(paused))
-    if lost:
+    if lost and os.path.isfile(os.path.join(os.path.dirname(paused), "checkpoint.pt")):
         say("%s: %d s of pauses after its last checkpoint left out of its paused_s (the training after the "
             "checkpoint was lost, and the run resumes from it)" % (run.name, lost))
+    elif lost:
+        say("%s: %d s of pauses left out of its paused_s: it has no checkpoint, and starts afresh" % (run.name, lost))
     if os.path.isfile(script):
         # A pin from before this command: its own shell trainer.
         env = dict(os.environ, RECORD_ROOT=sweep.records.root, PRECISION=phase.precision,
