@@ -238,8 +238,8 @@ TEST(GameLoop, AnAnswerToTheStepAResetOvertookIsDroppedAsSuperseded) {
   game.takeDecision();
   ASSERT_FALSE(game.playToNextDecision());
   ASSERT_EQ(game.expectedStepId(Player::kHider, 1), kNoStep);
-  ASSERT_TRUE(game.reset(1, 600));
-  EXPECT_EQ(game.offer(Player::kHider, 1, 1, 1), Verdict::kWrongStep);
+  ASSERT_TRUE(game.reset(1, 600));  // plays arena 1's step 1 to its end first: it would next await step 2
+  EXPECT_EQ(game.offer(Player::kHider, 1, 1, 2), Verdict::kWrongStep) << "awaited is taken before the step ends";
 }
 
 TEST(GameLoop, AResetOfAnArenaOrSeedOutOfRangeIsRefusedAndChangesNothing) {

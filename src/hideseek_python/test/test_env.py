@@ -36,7 +36,7 @@ def test_spaces_shapes_and_metadata(envs):
     assert envs.observation_space.shape == (4, 84, 84, 3)
     assert envs.action_space.shape == (4,)
     assert envs.metadata["autoreset_mode"] == hideseek.AutoresetMode.SAME_STEP
-    # one frame a decision step of 0.12 s (3 frames of 0.04 s): a video of them plays at game speed
+    # one frame a decision step of 0.12 s (6 physics frames of 0.02 s): a video of them plays at game speed
     assert envs.metadata["render_fps"] == pytest.approx(1 / 0.12)
     assert hideseek.make("basic").metadata["render_fps"] == pytest.approx(1 / 0.12)
     assert hideseek.HideSeekVecEnv.metadata["render_fps"] is None  # each environment's own, from its game

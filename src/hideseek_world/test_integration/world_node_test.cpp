@@ -355,8 +355,9 @@ TEST_F(WorldNodeTest, AnAnswerOvertakenByAResetIsDroppedWithoutAWarning) {
 // A real-time world starts once both agents listen as well as publish. An agent connects its
 // action and observation topics one after the other; a world that started on the first would play
 // step 0 before the agent could see it, and warn that the agent stood still.
+// (realtime_start.test: a real-time world of its own, on the wall clock.)
 TEST(RealtimeStart, TheWorldWaitsUntilEachAgentListens) {
-  ros::NodeHandle nh("late");
+  ros::NodeHandle nh;
   int seeker_batches = 0;
   std::vector<uint32_t> hider_steps;
   ros::Subscriber seeker_sub = nh.subscribe<hideseek_msgs::SeekerObservationBatch>(
@@ -370,7 +371,7 @@ TEST(RealtimeStart, TheWorldWaitsUntilEachAgentListens) {
                seeker_sub.getNumPublishers() > 0;
       },
       30.0))
-      << "the real-time world in /late did not connect";
+      << "the real-time world did not connect";
   waitFor([] { return false; }, 1.5);
   EXPECT_EQ(seeker_batches, 0) << "the world started before the hider listened";
   ros::Subscriber hider_sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
