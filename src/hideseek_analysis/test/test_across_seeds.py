@@ -430,7 +430,7 @@ def test_a_claim_decided_on_two_runs_of_a_variant_is_marked_provisional():
 
 def test_the_interval_decides_the_size_as_it_decides_the_direction():
     size = claims.PRACTICAL["share"][0]
-    assert claims.verdict((0.004, 0.011), 3, 1.0, size) == "negligible"  # v2's 0.007 of the steps
+    assert claims.verdict((0.004, 0.011), 3, 1.0, size) == "negligible"  # wholly under 0.02 of the steps
     assert claims.verdict((0.03, 0.05), 3, 1.0, size) == "supported"
     assert claims.verdict((-0.05, -0.03), 3, 1.0, size) == "contradicted"
     assert claims.verdict((-0.05, -0.03), 3, -1.0, size) == "supported"  # the paper's side is below zero

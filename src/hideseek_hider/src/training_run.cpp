@@ -340,6 +340,12 @@ void TrainingRun::saveCheckpoint() {
     info.recent_returns.push_back(ret);
   }
   hideseek_hider::saveCheckpoint(checkpointPath(), trainer_.net(), info, &trainer_.optimizer());
+  // Dated at the update it holds, not when it was written (a stop comes later; a pause can fall in
+  // between): the sweep drops the pauses that ended after a run's checkpoint, since a run resumed
+  // from it holds none of them.
+  std::error_code ignored;  // an undated file still holds the right state
+  if (updated_at_ != std::filesystem::file_time_type{})
+    std::filesystem::last_write_time(checkpointPath(), updated_at_, ignored);
   last_checkpoint_ = Clock::now();
   checkpoint_steps_ = info.steps;
 }
@@ -347,10 +353,6 @@ void TrainingRun::saveCheckpoint() {
 bool TrainingRun::saveCheckpointOnStop() {
   if (rank_ != 0 || updatedSteps() == checkpoint_steps_) return false;
   saveCheckpoint();
-  // Dated at the update it holds, as a periodic checkpoint is (it is written at its update): what
-  // happened after, a pause of the sweep's included, is not in the run that resumes from it.
-  std::error_code ignored;  // an undated file still holds the right state
-  std::filesystem::last_write_time(checkpointPath(), updated_at_, ignored);
   return true;
 }
 

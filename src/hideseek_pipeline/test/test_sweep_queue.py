@@ -349,8 +349,8 @@ def test_pause_stops_the_runs_processes_and_resume_books_the_paused_time(tmp_pat
         paused = int((tmp_path / "sweep" / "runs" / "basic_seed1" / "paused_s").read_text())
         assert 2 <= paused <= held + 1
         # and when the pause ended, for drop_pauses_after_checkpoint
-        ended, booked = map(int, (tmp_path / "sweep" / "runs" / "basic_seed1" / "paused.log").read_text().split())
-        assert booked == paused and abs(ended - time.time()) < 5
+        ended, booked = (tmp_path / "sweep" / "runs" / "basic_seed1" / "paused.log").read_text().split()
+        assert int(booked) == paused and abs(float(ended) - time.time()) < 5
         # A second pause adds to the first.
         sweep(tmp_path, rec, "pause")
         time.sleep(1.1)

@@ -342,21 +342,29 @@ def resume(sweep, book=True):
         name, pid = (line.split() + ["", ""])[:2]
         if not pid.isdigit() or not proc.alive(int(pid)):
             continue
+        ended = time.time()  # before the run goes on: no update of it comes before this
+        # SIGCONT before the lock: a job stopped while holding it would hold it for good
         proc.continue_tree(int(pid))
         if book:
             run_dir = os.path.join(sweep.runs_dir, name)
             os.makedirs(run_dir, exist_ok=True)
             with proc.FileLock(os.path.join(run_dir, PAUSES_LOCK)):
-                # when each pause ended, first (drop_pauses_after_checkpoint reads it), then the total
-                with open(os.path.join(run_dir, PAUSES_LOG), "a") as f:
-                    f.write("%d %d\n" % (time.time(), held))
+                # the total, then when the pause ended (drop_pauses_after_checkpoint reads both)
                 path = os.path.join(run_dir, "paused_s")
-                before = int(float(last_line(path) or 0))
-                open(path, "w").write("%d\n" % (before + held))
+                _write_atomically(path, "%d\n" % (int(float(last_line(path) or 0)) + held))
+                with open(os.path.join(run_dir, PAUSES_LOG), "a") as f:
+                    f.write("%.3f %d\n" % (ended, held))
     remove_file(sweep.state_file("paused"))
     remove_file(sweep.state_file("paused.runs"))
     print("sweep: resumed after %d s" % held)
     return 0
+
+
+def _write_atomically(path, text):
+    """`text` into `path` whole or not at all (an interrupted write leaves the old file)."""
+    with open(path + ".tmp", "w") as f:
+        f.write(text)
+    os.replace(path + ".tmp", path)
 
 
 PAUSES_LOG = "paused.log"  # beside paused_s: one `end_time held_s` line per pause booked
@@ -367,11 +375,11 @@ def drop_pauses_after_checkpoint(run_dir):
     """Before a run's training (re)starts: the pauses booked into its paused_s after its last
     checkpoint are taken off it, and their seconds returned. A stop or a crash lost the training
     after that checkpoint, and the log of the resumed run, which goes on from the checkpoint, holds
-    none of them; a run without a checkpoint starts afresh and keeps none. A checkpoint's file is
-    dated at the update it holds (a periodic one is written then; a trainer stopped by SIGINT dates
-    its stop checkpoint back to its last update), and no update happens during a pause, so a pause
-    that ended after that date came after the update. Pauses booked before paused.log existed are
-    kept as they are."""
+    none of them; a run without a checkpoint starts afresh and keeps none. Trainers from 2026-12-01
+    on date a checkpoint's file at the update it holds (before, at its writing, which follows the
+    update at once unless a pause or a stop falls between), and no update happens during a pause,
+    so a pause that ended after that date came after the update. Pauses booked before paused.log
+    existed are kept as they are."""
     log = os.path.join(run_dir, PAUSES_LOG)
     if not os.path.isfile(log):
         return 0
@@ -388,17 +396,15 @@ def _drop_pauses(run_dir, log):
         try:
             ended, held = float(fields[0]), int(fields[1])
         except (IndexError, ValueError):
-            continue  # a line cut short as it was written: its pause was not added to paused_s yet
+            continue  # a line cut short as it was written: its pause stays in paused_s
         if since is not None and ended <= since:
             kept.append(line)
         else:
             dropped += held
     if dropped:
         path = os.path.join(run_dir, "paused_s")
-        total = int(float(last_line(path) or 0))
-        open(path, "w").write("%d\n" % max(total - dropped, 0))
-        with open(log, "w") as f:
-            f.writelines(line + "\n" for line in kept)
+        _write_atomically(path, "%d\n" % max(int(float(last_line(path) or 0)) - dropped, 0))
+        _write_atomically(log, "".join(line + "\n" for line in kept))
     return dropped
 
 
