@@ -12,7 +12,7 @@ import yaml
 from hideseek_pipeline import processes as proc
 from hideseek_pipeline import selfplay
 from hideseek_pipeline.workspace import Workspace
-from hideseek_pipeline.queue import RETRAIN_SUFFIX, SweepError, last_line, read_lines, remove_file
+from hideseek_pipeline.queue import RETRAIN_SUFFIX, SweepError, last_line, read_lines, remove_file, write_atomically
 from hideseek_pipeline.sweep_config import start_window
 
 
@@ -351,20 +351,13 @@ def resume(sweep, book=True):
             with proc.FileLock(os.path.join(run_dir, PAUSES_LOCK)):
                 # the total, then when the pause ended (drop_pauses_after_checkpoint reads both)
                 path = os.path.join(run_dir, "paused_s")
-                _write_atomically(path, "%d\n" % (int(float(last_line(path) or 0)) + held))
+                write_atomically(path, "%d\n" % (int(float(last_line(path) or 0)) + held))
                 with open(os.path.join(run_dir, PAUSES_LOG), "a") as f:
                     f.write("%.3f %d\n" % (ended, held))
     remove_file(sweep.state_file("paused"))
     remove_file(sweep.state_file("paused.runs"))
     print("sweep: resumed after %d s" % held)
     return 0
-
-
-def _write_atomically(path, text):
-    """`text` into `path` whole or not at all (an interrupted write leaves the old file)."""
-    with open(path + ".tmp", "w") as f:
-        f.write(text)
-    os.replace(path + ".tmp", path)
 
 
 PAUSES_LOG = "paused.log"  # beside paused_s: one `end_time held_s` line per pause booked
@@ -403,8 +396,8 @@ def _drop_pauses(run_dir, log):
             dropped += held
     if dropped:
         path = os.path.join(run_dir, "paused_s")
-        _write_atomically(path, "%d\n" % max(int(float(last_line(path) or 0)) - dropped, 0))
-        _write_atomically(log, "".join(line + "\n" for line in kept))
+        write_atomically(path, "%d\n" % max(int(float(last_line(path) or 0)) - dropped, 0))
+        write_atomically(log, "".join(line + "\n" for line in kept))
     return dropped
 
 

@@ -125,6 +125,13 @@ def package_path():
     return os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
+def write_atomically(path, text):
+    """`text` into `path` whole or not at all (an interrupted write leaves the old file)."""
+    with open(path + ".tmp", "w") as f:
+        f.write(text)
+    os.replace(path + ".tmp", path)
+
+
 def remove_file(path):
     try:
         os.remove(path)

@@ -31,6 +31,7 @@ from typing import Optional
 import yaml
 
 from hideseek_pipeline import seeker as seeker_evaluation
+from hideseek_pipeline.queue import write_atomically
 from hideseek_pipeline.workspace import ToolError
 
 ROLES = ("seeker", "hider")  # the order within a generation
@@ -157,11 +158,9 @@ def load_generations(out):
 
 
 def write_generations(out, generations):
-    path = os.path.join(out, "generations.yaml")
-    with open(path + ".tmp", "w") as f:
-        f.write("# hideseek_pipeline selfplay: every saved generation, like a run of the registry\n")
-        yaml.safe_dump({"generations": generations}, f, sort_keys=False)
-    os.replace(path + ".tmp", path)
+    write_atomically(os.path.join(out, "generations.yaml"),
+                     "# hideseek_pipeline selfplay: every saved generation, like a run of the registry\n" +
+                     yaml.safe_dump({"generations": generations}, sort_keys=False))
 
 
 def selfplay(ws, o, say=print):
