@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -29,12 +30,19 @@ bool exists(const std::string& path) {
 }
 
 HiderNet startingNet(const TrainingOptions& o, const std::string& resume_from) {
-  // A resumed run must be the game it was: a run's steps all come from one game.
+  // A resumed run must be the game and variant it was: a run's steps all come from one game and
+  // one variant (a checkpoint written before the variant was recorded names none).
   if (!resume_from.empty()) {
-    const std::string game = readCheckpointInfo(resume_from).game;
-    if (game != o.game) {
-      throw std::runtime_error("checkpoint " + resume_from + " was trained on game " + game + "; this run's game is " +
-                               o.game + ": a run is not resumed under another game (train it into another folder)");
+    const CheckpointInfo info = readCheckpointInfo(resume_from);
+    if (info.game != o.game) {
+      throw std::runtime_error("checkpoint " + resume_from + " was trained on game " + info.game +
+                               "; this run's game is " + o.game +
+                               ": a run is not resumed under another game (train it into another folder)");
+    }
+    if (!info.variant.empty() && !o.variant.empty() && info.variant != o.variant) {
+      throw std::runtime_error("checkpoint " + resume_from + " was trained on variant '" + info.variant +
+                               "'; this run's variant is '" + o.variant +
+                               "': a run is not resumed under another variant (train it into another folder)");
     }
   }
   // A resumed run must be the network it was: a GRU checkpoint is not resumed as feed-forward.
@@ -209,8 +217,14 @@ TrainingRun::TrainingRun(const TrainingOptions& options, const PpoOptions& ppo, 
       last_checkpoint_(start_),
       episodes_seen_(num_arenas) {
   trainer_.setCollective(collective_);
-  if (rank_ == 0 && mkdir(options_.output_dir.c_str(), 0755) != 0 && errno != EEXIST) {
-    throw std::runtime_error("cannot create output folder " + options_.output_dir + ": " + std::strerror(errno));
+  if (rank_ == 0) {
+    // With its parents, as `mkdir -p` does: the default (~/.ros/hideseek_runs/<variant>) and a
+    // user's ~/runs/basic need not exist yet.
+    std::error_code error;
+    std::filesystem::create_directories(options_.output_dir, error);
+    if (error) {
+      throw std::runtime_error("cannot create output folder " + options_.output_dir + ": " + error.message());
+    }
   }
   if (resumed_) {
     loadTrainingState(resume_from_, trainer_.optimizer());

@@ -238,6 +238,44 @@ TEST(TrainingRun, ACheckpointRecordsItsGameAndIsNotResumedUnderAnother) {
   EXPECT_EQ(same.steps(), 8);
 }
 
+TEST(TrainingRun, ACheckpointIsNotResumedUnderAnotherVariant) {
+  // train.launch variant:=fasterhider output_dir:=<a basic run's folder> trained on, and the
+  // checkpoint then called the whole run fasterhider.
+  const std::string dir = freshRun("run_variant");
+  {
+    TrainingRun run(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);  // basic
+    feed(run, 1);
+    run.saveCheckpoint();
+  }
+  TrainingOptions faster = tinyRun(dir, 80);
+  faster.variant = "fasterhider";
+  try {
+    TrainingRun wrong(faster, tinyPpo(), kArenas, torch::kCPU);
+    FAIL() << "a basic checkpoint was resumed as fasterhider";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("was trained on variant 'basic'; this run's variant is 'fasterhider'"), std::string::npos)
+        << what;
+  }
+  EXPECT_EQ(readCheckpointInfo(dir + "/checkpoint.pt").variant, "basic");
+  EXPECT_EQ(lines(dir + "/training_log.csv").size(), 2u);  // the header and the one update: untouched
+  TrainingRun same(tinyRun(dir, 80), tinyPpo(), kArenas, torch::kCPU);
+  EXPECT_TRUE(same.resumed());
+}
+
+TEST(TrainingRun, TheOutputFolderIsCreatedWithItsParents) {
+  // The default output folder (~/.ros/hideseek_runs/VARIANT) and a user's ~/runs/basic need
+  // parents that a fresh machine does not have.
+  const std::string root = testing::TempDir() + "run_nested";
+  std::filesystem::remove_all(root);
+  torch::manual_seed(0);
+  TrainingRun run(tinyRun(root + "/a/b", 16), tinyPpo(), kArenas, torch::kCPU);
+  feed(run, 1);
+  run.saveCheckpoint();
+  EXPECT_TRUE(std::filesystem::is_regular_file(root + "/a/b/checkpoint.pt"));
+  EXPECT_TRUE(std::filesystem::is_regular_file(root + "/a/b/training_log.csv"));
+}
+
 TEST(TrainingRun, ResumedLogAveragesOverTheEpisodesBeforeTheCheckpointToo) {
   const std::string dir = freshRun("run_resume_window");
   {
