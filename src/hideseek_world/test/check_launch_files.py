@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Loads every launch file of a folder with roslaunch's own loader (arguments, includes,
 substitutions) and checks that each node's package and executable exist, that every
+node that writes to the screen flushes each log line (ROSCONSOLE_STDOUT_LINE_BUFFERED), every
 argument a user can set carries a doc= (roslaunch --ros-args lists it, and must load the file to do so), and
 that the `policy`
 argument of a variant's launch file defaults to `shipped` (the policy policies/policies.yaml ships
@@ -106,6 +107,9 @@ def check(path, argv=None):
     problems += variant_problems(path, config)
     problems += training_problems(config)
     for node in config.nodes + config.tests:
+        if node.output == "screen" and ("ROSCONSOLE_STDOUT_LINE_BUFFERED", "1") not in node.env_args:
+            problems.append("node %s writes to the screen without ROSCONSOLE_STDOUT_LINE_BUFFERED=1: redirected "
+                            "to a file, its lines come in blocks, and a killed node's last ones never" % node.name)
         try:
             if not find_node(node.package, node.type):
                 problems.append("node %s: no executable '%s' in package '%s'" % (node.name, node.type, node.package))
