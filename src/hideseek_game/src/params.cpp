@@ -1,5 +1,6 @@
 #include "hideseek_game/params.h"
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "hideseek_game/config_error.h"
@@ -12,6 +13,13 @@ namespace {
 
 std::runtime_error bad(const ros::NodeHandle& nh, const std::string& name, const std::string& problem) {
   return std::runtime_error("parameter " + nh.resolveName(name) + " " + problem);
+}
+
+// A bound or a value as written: 1e+12, 0.05 and -100, not 1000000000000.000000.
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.15g", value);
+  return text;
 }
 
 }  // namespace
@@ -53,8 +61,7 @@ double readDouble(const ros::NodeHandle& nh, const std::string& name, double fal
   double value = fallback;
   if (nh.hasParam(name) && !nh.getParam(name, value)) throw bad(nh, name, "must be a number");
   if (!(value >= min && value <= max)) {
-    throw bad(nh, name,
-              "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + std::to_string(value));
+    throw bad(nh, name, "must be in [" + number(min) + ", " + number(max) + "], got " + number(value));
   }
   return value;
 }

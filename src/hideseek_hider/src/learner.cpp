@@ -1,6 +1,7 @@
 #include "hideseek_hider/learner.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -206,13 +207,20 @@ std::vector<uint8_t> Learner::trainStep(const LearnerBatch& b) {
   if (report) {
     const LoopTimes& loop = report->loop;
     const double total = std::max(loop.total(), 1e-9);
+    // Before the first episode ends there is no length or return to show (the log writes 0 there).
+    char episodes[96];
+    if (report->episodes > 0) {
+      std::snprintf(episodes, sizeof episodes, "%ld episodes, length %.1f, return %.3f",
+                    static_cast<long>(report->episodes), report->mean_length, report->mean_return);
+    } else {
+      std::snprintf(episodes, sizeof episodes, "no episode ended yet");
+    }
     ROS_INFO(
-        "train: %ld/%ld steps, %.0f steps/s, ETA %s, %ld episodes, length %.1f, return %.3f, entropy %.3f; "
+        "train: %ld/%ld steps, %.0f steps/s, ETA %s, %s, entropy %.3f; "
         "time: update %.0f %%, inference %.0f %%, waiting for the world %.0f %%, other %.0f %%",
         static_cast<long>(report->steps), static_cast<long>(training_->totalSteps()), report->steps_per_s,
-        formatDuration(report->eta_s).c_str(), static_cast<long>(report->episodes), report->mean_length,
-        report->mean_return, report->ppo.entropy, 100 * loop.update_s / total, 100 * loop.inference_s / total,
-        100 * loop.wait_s / total, 100 * loop.other_s / total);
+        formatDuration(report->eta_s).c_str(), episodes, report->ppo.entropy, 100 * loop.update_s / total,
+        100 * loop.inference_s / total, 100 * loop.wait_s / total, 100 * loop.other_s / total);
   }
   if (!training_->finished()) return actions;
   try {

@@ -146,6 +146,15 @@ TEST(Params, CheckTypeAndRangeAndNameTheParameter) {
               hideseek_game::readInt(pnh, "count", 1, 6, 10);
             }).find("params_test/count must be in [6, 10], got 5"),
             std::string::npos);
+  // A bound is written as a user writes it, not as 1000000000000.000000 (train.launch's steps:=-100).
+  EXPECT_NE(message([&] {
+              hideseek_game::readDouble(pnh, "count", 6.0, 6.0, 1e12);
+            }).find("params_test/count must be in [6, 1000000000000], got 5"),
+            std::string::npos);
+  EXPECT_NE(message([&] {
+              hideseek_game::readDouble(pnh, "count", 1.0, 0.05, 2.5);
+            }).find("params_test/count must be in [0.05, 2.5], got 5"),
+            std::string::npos);
   EXPECT_NE(message([&] { hideseek_game::readInt(pnh, "word", 1, 0, 10); }).find("params_test/word must be an integer"),
             std::string::npos);
   EXPECT_NE(message([&] { hideseek_game::readBool(pnh, "count", false); }).find("must be true or false"),
