@@ -4,12 +4,15 @@
 #include <hideseek_msgs/ObservationBatch.h>
 #include <hideseek_msgs/SeekerObservationBatch.h>
 #include <nav_msgs/OccupancyGrid.h>
+#include <ros/master.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/image_encodings.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "hideseek_game/msg_conversion.h"
 #include "hideseek_game/topic_names.h"
@@ -49,6 +52,41 @@ geometry_msgs::TransformStamped fixedTransform(const std::string& parent, const 
   return t;
 }
 
+// The nodes other than this one that the master lists as publishing `topic` (none where the master
+// cannot be asked).
+std::vector<std::string> otherPublishers(const std::string& topic) {
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  if (!ros::master::execute("getSystemState", args, result, payload, false)) return {};
+  std::vector<std::string> nodes;
+  if (payload.getType() != XmlRpc::XmlRpcValue::TypeArray || payload.size() < 1) return nodes;
+  XmlRpc::XmlRpcValue& publications = payload[0];
+  for (int i = 0; i < publications.size(); ++i) {
+    if (publications[i].size() < 2 || static_cast<std::string>(publications[i][0]) != topic) continue;
+    for (int j = 0; j < publications[i][1].size(); ++j) {
+      const std::string node = publications[i][1][j];
+      if (node != ros::this_node::getName()) nodes.push_back(node);
+    }
+  }
+  return nodes;
+}
+
+// Another game's observation topic on this master, if any (checked before this world advertises its own).
+std::string anotherGame() {
+  ros::master::V_TopicInfo topics;
+  if (!ros::master::getTopics(topics)) return "";
+  for (const ros::master::TopicInfo& t : topics) {
+    if (t.datatype == ros::message_traits::datatype<hideseek_msgs::ObservationBatch>()) return t.name;
+  }
+  return "";
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 }  // namespace
 
 WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
@@ -66,6 +104,29 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   camera_info_ = toCameraInfo(game.camera, options_.frame("hider/camera_optical_frame"));
 
   const bool lockstep = options_.loop.mode == ClockMode::kLockstep;
+  // /clock and /use_sim_time belong to the whole master: a lockstep game needs a master where
+  // nothing else sets the time, and a game beside one of the other mode leaves /use_sim_time as
+  // the last launch set it, for every tool started afterwards.
+  const std::vector<std::string> clocks = otherPublishers("/clock");
+  if (lockstep && !clocks.empty()) {
+    throw std::runtime_error("/clock is already published on this master, by " + joined(clocks) +
+                             " (another lockstep game, or a bag played with --clock): a lockstep game sets the "
+                             "master's sim time, so it needs a master of its own (roslaunch -p PORT; `rosnode "
+                             "cleanup` clears a node that died without unregistering)");
+  }
+  if (!clocks.empty()) {
+    ROS_WARN(
+        "world: /clock is published on this master, by %s (a lockstep game, or a bag played with --clock): this "
+        "game keeps wall time, but /use_sim_time is global and the last launch set it: tools started from now on "
+        "(rviz, tf_echo) read one clock for both; give a lockstep game a master of its own",
+        joined(clocks).c_str());
+  } else if (const std::string other = anotherGame(); lockstep && !other.empty()) {
+    ROS_WARN(
+        "world: another game runs on this master (%s): /use_sim_time is global and this lockstep launch set it true, "
+        "so tools started from now on (rviz, tf_echo) read this game's sim time for that game too; give a lockstep "
+        "game a master of its own",
+        other.c_str());
+  }
   hider_obs_pub_ = nh_.advertise<hideseek_msgs::ObservationBatch>(kHiderObservationsTopic, 2);
   seeker_obs_pub_ = nh_.advertise<hideseek_msgs::SeekerObservationBatch>(kSeekerObservationsTopic, 2);
   if (lockstep) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
@@ -515,6 +576,15 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
     res.success = false;
     res.message = e.what();
     return true;
+  }
+  // The episodes the reset cut short end unreported (world/episodes holds finished episodes only):
+  // say so, so that a log whose episode numbers skip one reads as it happened.
+  for (int i = 0; i < options_.loop.num_arenas; ++i) {
+    if (req.arena != -1 && req.arena != i) continue;
+    const auto level = i == 0 || req.arena == i ? ros::console::levels::Info : ros::console::levels::Debug;
+    ROS_LOG(level, ROSCONSOLE_DEFAULT_NAME,
+            "arena %d episode %u: cut short by world/reset (not on world/episodes); episode %u starts, seed %u", i,
+            game_.world().episode(i) - 1, game_.world().episode(i), game_.world().arena(i).seed());
   }
   last_finished_.reset();
   if (req.arena <= 0) startEpisodeVisuals();

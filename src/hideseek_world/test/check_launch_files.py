@@ -9,7 +9,8 @@ for the variant, else the random hider). The training parameters (output_dir, pp
 reach the agent that trains and no other: an agent that plays a policy, at random or by script
 shows none in rosparam. train.launch is loaded again with role:=seeker and with a seeker's checkpoint
 as the opponent (both given steps and checkpoint_interval), evaluate.launch with
-seeker_mode:=random.
+seeker_mode:=random, and basic.launch and play.launch with record:=true, whose world must wait for
+the recorder (one more listener of world/steps and world/episodes than without).
 Writes an xunit result. hideseek_world's package.xml declares the packages its launch files start
 (catkin_lint checks that); this checks that each named executable exists.
 
@@ -63,7 +64,30 @@ TRAINING_PARAMS = ("output_dir", "ppo_config", "num_arenas", "seed", "total_step
 # Other launch files loaded a second time, with these arguments.
 TRAINING_ARGS = ["steps:=128", "checkpoint_interval:=60"]
 EXTRA_LOADS = {"train.launch": [["role:=seeker"] + TRAINING_ARGS, ["opponent:=/tmp/seeker.pt"] + TRAINING_ARGS],
-               "evaluate.launch": [["seeker_mode:=random"]]}
+               "evaluate.launch": [["seeker_mode:=random"]],
+               "basic.launch": [["record:=true"]], "play.launch": [["record:=true"]]}
+
+
+def listeners(path, argv):
+    """The world's step_listeners and episode_listeners when `path` is loaded with `argv`."""
+    config = roslaunch.config.ROSLaunchConfig()
+    roslaunch.xmlloader.XmlLoader().load(path, config, argv=argv, verbose=False)
+    return {name.rsplit("/", 1)[-1]: int(p.value) for name, p in config.params.items()
+            if name.endswith("/world/step_listeners") or name.endswith("/world/episode_listeners")}
+
+
+def recording_problems(path, config, argv):
+    """With record:=true the world also waits for the recorder on world/steps and world/episodes, one
+    more listener of each than without, so that the bag starts at the game's first decision."""
+    if "record:=true" not in (argv or []):
+        return []
+    if not any(n.package == "rosbag" and n.type == "record" for n in config.nodes):
+        return ["record:=true starts no recorder"]
+    recording = listeners(path, argv)
+    plain = listeners(path, [a for a in argv if a != "record:=true"])
+    return ["record:=true sets %s to %s, not one more than without it (%s)" % (k, recording.get(k), v)
+            for k, v in sorted(plain.items()) if recording.get(k) != v + 1] or \
+        ([] if plain else ["no world/step_listeners or world/episode_listeners parameters"])
 
 
 def training_problems(config):
@@ -106,6 +130,7 @@ def check(path, argv=None):
         return ["does not load: %s" % e]
     problems += variant_problems(path, config)
     problems += training_problems(config)
+    problems += recording_problems(path, config, argv)
     for node in config.nodes + config.tests:
         if node.output == "screen" and ("ROSCONSOLE_STDOUT_LINE_BUFFERED", "1") not in node.env_args:
             problems.append("node %s writes to the screen without ROSCONSOLE_STDOUT_LINE_BUFFERED=1: redirected "

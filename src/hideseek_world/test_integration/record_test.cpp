@@ -1,9 +1,10 @@
 // Runs against basic.launch with record:=true (see record.test): after a few episodes it asks
 // the recorder to shut down, as Ctrl-C or `rosnode kill` would, then opens the bag with the C++
-// rosbag API and checks that every recorded topic is there.
+// rosbag API and checks that every recorded topic is there, and every decision from the first.
 #include <dirent.h>
 #include <gtest/gtest.h>
 #include <hideseek_msgs/GameState.h>
+#include <hideseek_msgs/StepBatch.h>
 #include <ros/network.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
@@ -80,6 +81,17 @@ TEST(Record, BagClosesCleanlyAndHoldsEveryListedTopic) {
     outcomes += state->outcome != hideseek_msgs::GameState::OUTCOME_RUNNING;
   }
   EXPECT_GE(outcomes, 3) << "finished episodes are in the bag";
+  // The game waits for the recorder (record:=true adds it to the world's step and episode
+  // listeners): the bag holds every decision from the first, none skipped.
+  int64_t expected = 0;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/world/steps"))) {
+    const auto steps = m.instantiate<hideseek_msgs::StepBatch>();
+    ASSERT_TRUE(steps);
+    ASSERT_EQ(static_cast<int64_t>(steps->decision), expected)
+        << (expected == 0 ? "the recording missed the game's first decisions" : "a decision is missing");
+    ++expected;
+  }
+  EXPECT_GT(expected, 0) << "no /world/steps in " << bag_path;
   bag.close();
 }
 

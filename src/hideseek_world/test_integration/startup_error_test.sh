@@ -4,7 +4,7 @@
 # asked of a hider without a GRU, a checkpoint of the other role, and a misspelt seeker mode each
 # stop the game with a FATAL line naming the problem, as does a variant file of one's own named
 # otherwise than variant:=. A variant's launch file given another variant
-# refuses before any node starts.
+# refuses before any node starts. A lockstep game refuses a master whose /clock is taken.
 # usage: startup_error_test.sh XUNIT_OUTPUT
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -16,7 +16,7 @@ failures=()
 expect_fatal() {  # name, expected text, launch arguments...
   local name=$1 expected=$2
   shift 2
-  timeout 120 roslaunch -p "$port" hideseek_world "$@" > "$dir/$name.log" 2>&1
+  timeout 120 roslaunch -p "${launch_port:-$port}" hideseek_world "$@" > "$dir/$name.log" 2>&1
   grep -F "[FATAL]" "$dir/$name.log" | grep -F -- "$expected" > /dev/null ||
     failures+=("$name: no FATAL line with '$expected' (got: $(grep -F '[FATAL]' "$dir/$name.log" | head -c 200))")
 }
@@ -62,6 +62,28 @@ expect_fatal hider_given_scripted "/hider/policy is 'scripted': name the evader,
   train.launch role:=seeker opponent:=scripted steps:=128 num_arenas:=2 output_dir:="$dir/seeker_vs_scripted"
 expect_fatal bad_seeker_mode "/seeker/mode must be one of 'scripted', 'random', 'policy', 'train', got 'learn'" \
   basic.launch seeker_mode:=learn
+# /clock belongs to the whole master: a lockstep game where something already publishes it (here
+# rostopic, as a second lockstep game or `rosbag play --clock` would) stops before it publishes,
+# naming the publisher; a realtime game beside it plays, and warns that tools read one clock.
+clock_port=$((port + 1))
+roscore -p "$clock_port" > "$dir/clock_master.log" 2>&1 &
+master_pid=$!
+export ROS_MASTER_URI=http://localhost:$clock_port
+for _ in $(seq 100); do rostopic list > /dev/null 2>&1 && break; sleep 0.2; done
+rostopic pub -r 10 /clock rosgraph_msgs/Clock "{clock: {secs: 5, nsecs: 0}}" __name:=clock_source > /dev/null 2>&1 &
+clock_pid=$!
+for _ in $(seq 100); do rostopic info /clock 2>/dev/null | grep -q clock_source && break; sleep 0.2; done
+launch_port=$clock_port expect_fatal second_clock "/clock is already published on this master, by /clock_source" \
+  basic.launch mode:=lockstep policy:=random
+timeout 20 roslaunch -p "$clock_port" hideseek_world basic.launch policy:=random > "$dir/realtime_beside_clock.log" 2>&1
+grep -F "[ WARN]" "$dir/realtime_beside_clock.log" | grep -qF "/clock is published on this master, by /clock_source" ||
+  failures+=("realtime_beside_clock: no warning that /clock is published (got: $(grep -F 'WARN' "$dir/realtime_beside_clock.log" | head -c 300))")
+grep -qF "both agents connected, starting realtime" "$dir/realtime_beside_clock.log" ||
+  failures+=("realtime_beside_clock: the realtime game beside /clock did not start")
+kill "$clock_pid" 2> /dev/null
+kill "$master_pid" 2> /dev/null
+wait "$clock_pid" "$master_pid" 2> /dev/null
+export ROS_MASTER_URI=http://localhost:$port
 write_xunit "$out" startup StartupErrorsAreShownByRoslaunch "${failures[@]}"
 printf 'failure: %s\n' "${failures[@]}"
 rm -rf "$dir"

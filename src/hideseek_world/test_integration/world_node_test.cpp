@@ -2,10 +2,12 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <hideseek_msgs/ActionBatch.h>
+#include <hideseek_msgs/EpisodeResult.h>
 #include <hideseek_msgs/GameState.h>
 #include <hideseek_msgs/ObservationBatch.h>
 #include <hideseek_msgs/Reset.h>
 #include <hideseek_msgs/SeekerObservationBatch.h>
+#include <hideseek_msgs/StepBatch.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -365,10 +367,13 @@ TEST_F(WorldNodeTest, AnAnswerOvertakenByAResetIsDroppedWithoutAWarning) {
 // action and observation topics one after the other; a world that started on the first would play
 // step 0 before the agent could see it, and warn that the agent stood still.
 // (realtime_start.test: a real-time world of its own, on the wall clock.)
-TEST(RealtimeStart, TheWorldWaitsUntilEachAgentListens) {
+TEST(RealtimeStart, TheWorldWaitsUntilEachAgentAndEachRequiredRecorderListens) {
+  // realtime_start.test's world wants one listener of world/steps and one of world/episodes, as
+  // record:=true asks for its recorder.
   ros::NodeHandle nh;
   int seeker_batches = 0;
   std::vector<uint32_t> hider_steps;
+  std::vector<uint64_t> decisions;
   ros::Subscriber seeker_sub = nh.subscribe<hideseek_msgs::SeekerObservationBatch>(
       "seeker/observations", 10, [&](const hideseek_msgs::SeekerObservationBatch::ConstPtr&) { ++seeker_batches; });
   ros::Publisher hider_pub = nh.advertise<hideseek_msgs::ActionBatch>("hider/actions", 1);
@@ -383,11 +388,23 @@ TEST(RealtimeStart, TheWorldWaitsUntilEachAgentListens) {
       << "the real-time world did not connect";
   waitFor([] { return false; }, 1.5);
   EXPECT_EQ(seeker_batches, 0) << "the world started before the hider listened";
+  // Both agents listen; the recorder does not yet.
   ros::Subscriber hider_sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
       "hider/observations", 10,
       [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) { hider_steps.push_back(m->step[0]); });
-  ASSERT_TRUE(waitFor([&] { return !hider_steps.empty(); }, 30.0)) << "no observation once the hider listened";
+  ASSERT_TRUE(waitFor([&] { return hider_sub.getNumPublishers() > 0; }, 30.0));
+  waitFor([] { return false; }, 1.5);
+  EXPECT_EQ(seeker_batches, 0) << "the world started before its recorder listened";
+  EXPECT_TRUE(hider_steps.empty()) << "the world started before its recorder listened";
+  int episodes = 0;
+  ros::Subscriber episodes_sub = nh.subscribe<hideseek_msgs::EpisodeResult>(
+      "world/episodes", 10, [&](const hideseek_msgs::EpisodeResult::ConstPtr&) { ++episodes; });
+  ros::Subscriber steps_sub = nh.subscribe<hideseek_msgs::StepBatch>(
+      "world/steps", 100, [&](const hideseek_msgs::StepBatch::ConstPtr& m) { decisions.push_back(m->decision); });
+  ASSERT_TRUE(waitFor([&] { return !hider_steps.empty() && !decisions.empty(); }, 30.0))
+      << "no observation and step record once everyone listened";
   EXPECT_EQ(hider_steps.front(), 0u) << "step 0 was played before the hider could see it";
+  EXPECT_EQ(decisions.front(), 0u) << "the recorder missed the game's first decisions";
   EXPECT_GT(seeker_batches, 0);
 }
 
