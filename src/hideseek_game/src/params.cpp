@@ -15,7 +15,7 @@ std::runtime_error bad(const ros::NodeHandle& nh, const std::string& name, const
   return std::runtime_error("parameter " + nh.resolveName(name) + " " + problem);
 }
 
-// A bound or a value as written: 1e+12, 0.05 and -100, not 1000000000000.000000.
+// A bound or a value as a user writes it: 1000000000000, 0.05 and -100, not 1000000000000.000000.
 std::string number(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.15g", value);

@@ -48,7 +48,8 @@ EvaluatorOptions loadEvaluatorOptions(const ros::NodeHandle& pnh) {
         hideseek_game::readString(pnh, "network", "auto") == "gru" ? "gru" : "ff", played.game.name);
     if (o.policy.empty()) o.policy = "random";
   }
-  if (o.policy != "random" && o.policy != "human") {
+  // random, a person (play.launch) and a node of one's own (policy:=external) have no greedy form.
+  if (o.policy != "random" && o.policy != "human" && o.policy != "external") {
     o.policy += hideseek_game::readBool(pnh, "greedy", true) ? " (greedy" : " (sampled";
     o.policy += hideseek_game::readBool(pnh, "memoryless", false) ? ", memoryless)" : ")";
   }

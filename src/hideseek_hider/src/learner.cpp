@@ -207,9 +207,10 @@ std::vector<uint8_t> Learner::trainStep(const LearnerBatch& b) {
   if (report) {
     const LoopTimes& loop = report->loop;
     const double total = std::max(loop.total(), 1e-9);
-    // Before the first episode ends there is no length or return to show (the log writes 0 there).
+    // Until an episode ends (in this run, or in the window a checkpoint kept) there is no length
+    // or return to show (the log writes 0 there); every episode lasts a step at least.
     char episodes[96];
-    if (report->episodes > 0) {
+    if (report->mean_length > 0.0) {
       std::snprintf(episodes, sizeof episodes, "%ld episodes, length %.1f, return %.3f",
                     static_cast<long>(report->episodes), report->mean_length, report->mean_return);
     } else {

@@ -105,20 +105,14 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
   const bool lockstep = options_.loop.mode == ClockMode::kLockstep;
   // /clock and /use_sim_time belong to the whole master: a lockstep game needs a master where
-  // nothing else sets the time, and a game beside one of the other mode leaves /use_sim_time as
-  // the last launch set it, for every tool started afterwards.
-  const std::vector<std::string> clocks = otherPublishers("/clock");
-  if (lockstep && !clocks.empty()) {
-    throw std::runtime_error("/clock is already published on this master, by " + joined(clocks) +
-                             " (another lockstep game, or a bag played with --clock): a lockstep game sets the "
-                             "master's sim time, so it needs a master of its own (roslaunch -p PORT; `rosnode "
-                             "cleanup` clears a node that died without unregistering)");
-  }
-  if (!clocks.empty()) {
+  // nothing else sets the time (checked once its own /clock is advertised, below), and a game
+  // beside one of the other mode leaves /use_sim_time as the last launch set it, for every tool
+  // started afterwards.
+  if (const std::vector<std::string> clocks = otherPublishers("/clock"); !lockstep && !clocks.empty()) {
     ROS_WARN(
-        "world: /clock is published on this master, by %s (a lockstep game, or a bag played with --clock): this "
-        "game keeps wall time, but /use_sim_time is global and the last launch set it: tools started from now on "
-        "(rviz, tf_echo) read one clock for both; give a lockstep game a master of its own",
+        "world: /clock is published on this master, by %s (a lockstep game, or a bag played with --clock): "
+        "/use_sim_time is global and the last launch set it: tools started from now on (rviz, tf_echo) read one "
+        "clock for both games; give a lockstep game a master of its own",
         joined(clocks).c_str());
   } else if (const std::string other = anotherGame(); lockstep && !other.empty()) {
     ROS_WARN(
@@ -127,9 +121,24 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
         "game a master of its own",
         other.c_str());
   }
+  if (!lockstep && ros::Time::isSimTime()) {
+    ROS_WARN(
+        "world: /use_sim_time is true, so this realtime game stamps its messages with /clock's time, not the wall "
+        "clock's (its pace stays the wall clock's): start it with a launch file, which sets /use_sim_time false");
+  }
   hider_obs_pub_ = nh_.advertise<hideseek_msgs::ObservationBatch>(kHiderObservationsTopic, 2);
   seeker_obs_pub_ = nh_.advertise<hideseek_msgs::SeekerObservationBatch>(kSeekerObservationsTopic, 2);
-  if (lockstep) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  if (lockstep) {
+    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    // Checked once this world is itself registered: of two lockstep worlds starting together, the
+    // later to look sees the other (and if both look at once, both stop).
+    if (const std::vector<std::string> clocks = otherPublishers("/clock"); !clocks.empty()) {
+      throw std::runtime_error("/clock is already published on this master, by " + joined(clocks) +
+                               " (another lockstep game, or a bag played with --clock): a lockstep game sets the "
+                               "master's sim time, so it needs a master of its own (roslaunch -p PORT; `rosnode "
+                               "cleanup` clears a node that died without unregistering)");
+    }
+  }
   // image_raw with its camera_info beside it, and every transport plugin installed (compressed, ...).
   hider_camera_pub_ = image_transport_.advertiseCamera(kHiderImageTopic, 2);
   seeker_camera_pub_ = image_transport_.advertiseCamera(kSeekerImageTopic, 2);
@@ -199,6 +208,31 @@ bool WorldNode::everyoneListens() const {
          hider_sub_.getNumPublishers() > 0 && seeker_sub_.getNumPublishers() > 0 &&
          episodes_pub_.getNumSubscribers() >= static_cast<uint32_t>(options_.episode_listeners) &&
          steps_pub_.getNumSubscribers() >= static_cast<uint32_t>(options_.step_listeners);
+}
+
+void WorldNode::reportWaiting() {
+  constexpr double kWaitingReportAfter = 5.0;  // s: agents and recorders connect within a few seconds
+  const ros::WallTime now = ros::WallTime::now();
+  if (!waiting_since_) waiting_since_ = now;
+  const double waited = (now - *waiting_since_).toSec();
+  if (waited < kWaitingReportAfter || !throttles_.waiting.ready()) return;
+  std::vector<std::string> missing;
+  auto need = [&](bool present, const std::string& what) {
+    if (!present) missing.push_back(what);
+  };
+  need(hider_obs_pub_.getNumSubscribers() > 0, "the hider to listen on " + hider_obs_pub_.getTopic());
+  need(hider_sub_.getNumPublishers() > 0, "the hider to publish on " + hider_sub_.getTopic());
+  need(seeker_obs_pub_.getNumSubscribers() > 0, "the seeker to listen on " + seeker_obs_pub_.getTopic());
+  need(seeker_sub_.getNumPublishers() > 0, "the seeker to publish on " + seeker_sub_.getTopic());
+  auto listeners = [&](const ros::Publisher& pub, int wanted, const char* param) {
+    need(pub.getNumSubscribers() >= static_cast<uint32_t>(wanted),
+         std::to_string(wanted) + " listener(s) of " + pub.getTopic() + " (" + param + ", " +
+             std::to_string(pub.getNumSubscribers()) +
+             " so far: an evaluator, an analysis or record:=true's recorder)");
+  };
+  listeners(episodes_pub_, options_.episode_listeners, "episode_listeners");
+  listeners(steps_pub_, options_.step_listeners, "step_listeners");
+  ROS_WARN("world: waiting %.0f s to start, for %s", waited, joined(missing).c_str());
 }
 
 bool WorldNode::reachedMaxDecisions() const {
@@ -331,6 +365,7 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
     // The first episode starts when both players are there (a person's keyboard hider may take
     // seconds to open), and when every listener that must see it listens.
     if (!everyoneListens()) {
+      reportWaiting();
       publishAgentTransforms(ros::Time::now());
       return;
     }
@@ -386,7 +421,10 @@ void WorldNode::warnStale() {
 void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
   const ros::WallTime now = ros::WallTime::now();
   if (!started_) {
-    if (!everyoneListens()) return;
+    if (!everyoneListens()) {
+      reportWaiting();
+      return;
+    }
     started_ = true;
     ROS_INFO("world: both agents connected, starting lockstep");
     publishObservations();
@@ -570,17 +608,24 @@ bool WorldNode::onReset(hideseek_msgs::Reset::Request& req, hideseek_msgs::Reset
   // A decision step in progress is played to its end first, with the hider's action and the
   // seeker's latest: every arena's step stays whole, and an episode it ends is reported like any
   // other.
+  const bool mid_step = !game_.atStepStart();
+  std::vector<int> steps_before;
+  for (int i = 0; i < options_.loop.num_arenas; ++i) steps_before.push_back(game_.world().arena(i).stepCount());
+  std::optional<Decision> finished_step;
   try {
-    if (const std::optional<Decision> decision = game_.reset(req.arena, req.seed)) publishDecision(*decision);
+    finished_step = game_.reset(req.arena, req.seed);
+    if (finished_step) publishDecision(*finished_step);
   } catch (const std::invalid_argument& e) {
     res.success = false;
     res.message = e.what();
     return true;
   }
   // The episodes the reset cut short end unreported (world/episodes holds finished episodes only):
-  // say so, so that a log whose episode numbers skip one reads as it happened.
+  // say so, so that a log whose episode numbers skip one reads as it happened. An episode that the
+  // step in progress ended was reported; one that had not played a step is not mentioned.
   for (int i = 0; i < options_.loop.num_arenas; ++i) {
     if (req.arena != -1 && req.arena != i) continue;
+    if ((finished_step && finished_step->steps[i].finished) || (steps_before[i] == 0 && !mid_step)) continue;
     const auto level = i == 0 || req.arena == i ? ros::console::levels::Info : ros::console::levels::Debug;
     ROS_LOG(level, ROSCONSOLE_DEFAULT_NAME,
             "arena %d episode %u: cut short by world/reset (not on world/episodes); episode %u starts, seed %u", i,

@@ -4,7 +4,8 @@
 # asked of a hider without a GRU, a checkpoint of the other role, and a misspelt seeker mode each
 # stop the game with a FATAL line naming the problem, as does a variant file of one's own named
 # otherwise than variant:=. A variant's launch file given another variant
-# refuses before any node starts. A lockstep game refuses a master whose /clock is taken.
+# refuses before any node starts, as train.launch does a misspelt role. A lockstep game refuses a
+# master whose /clock is taken.
 # usage: startup_error_test.sh XUNIT_OUTPUT
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -26,6 +27,11 @@ expect_fatal bad_memory_format "/hider/memory_format must be auto, channels_last
   variant:=basic memory_format:=nhwc
 expect_fatal unknown_game "game names no game: " basic.launch game:=v9
 expect_fatal unknown_variant "'nosuch' is not a variant here (basic, " game.launch.xml variant:=nosuch
+# train.launch names a role that is neither hider nor seeker before any node starts.
+timeout 120 roslaunch -p "$port" hideseek_world train.launch role:=learner > "$dir/bad_role.log" 2>&1
+if grep -q "^process\[" "$dir/bad_role.log" || ! grep -qF "role:=learner is neither hider nor seeker" "$dir/bad_role.log"; then
+  failures+=("bad_role: train.launch role:=learner was not refused by name before any node started (got: $(tail -c 300 "$dir/bad_role.log"))")
+fi
 # A variant's launch file plays its own variant: variant:= naming another is refused before any node starts.
 timeout 120 roslaunch -p "$port" hideseek_world slowerhider.launch variant:=basic > "$dir/other_variant.log" 2>&1
 rc=$?
@@ -65,17 +71,22 @@ expect_fatal bad_seeker_mode "/seeker/mode must be one of 'scripted', 'random', 
 # /clock belongs to the whole master: a lockstep game where something already publishes it (here
 # rostopic, as a second lockstep game or `rosbag play --clock` would) stops before it publishes,
 # naming the publisher; a realtime game beside it plays, and warns that tools read one clock.
-clock_port=$((port + 1))
+clock_port=$((13200 + RANDOM % 100))
 roscore -p "$clock_port" > "$dir/clock_master.log" 2>&1 &
 master_pid=$!
 export ROS_MASTER_URI=http://localhost:$clock_port
 for _ in $(seq 100); do rostopic list > /dev/null 2>&1 && break; sleep 0.2; done
+kill -0 "$master_pid" 2> /dev/null || failures+=("second_clock: roscore -p $clock_port did not start: $(tail -c 200 "$dir/clock_master.log")")
 rostopic pub -r 10 /clock rosgraph_msgs/Clock "{clock: {secs: 5, nsecs: 0}}" __name:=clock_source > /dev/null 2>&1 &
 clock_pid=$!
 for _ in $(seq 100); do rostopic info /clock 2>/dev/null | grep -q clock_source && break; sleep 0.2; done
 launch_port=$clock_port expect_fatal second_clock "/clock is already published on this master, by /clock_source" \
   basic.launch mode:=lockstep policy:=random
-timeout 20 roslaunch -p "$clock_port" hideseek_world basic.launch policy:=random > "$dir/realtime_beside_clock.log" 2>&1
+roslaunch -p "$clock_port" hideseek_world basic.launch policy:=random > "$dir/realtime_beside_clock.log" 2>&1 &
+beside=$!
+for _ in $(seq 600); do grep -qF "starting realtime" "$dir/realtime_beside_clock.log" && break; sleep 0.2; done
+kill -INT "$beside" 2> /dev/null
+wait "$beside" 2> /dev/null
 grep -F "[ WARN]" "$dir/realtime_beside_clock.log" | grep -qF "/clock is published on this master, by /clock_source" ||
   failures+=("realtime_beside_clock: no warning that /clock is published (got: $(grep -F 'WARN' "$dir/realtime_beside_clock.log" | head -c 300))")
 grep -qF "both agents connected, starting realtime" "$dir/realtime_beside_clock.log" ||

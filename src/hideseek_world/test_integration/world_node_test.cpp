@@ -171,25 +171,6 @@ TEST(Params, CheckTypeAndRangeAndNameTheParameter) {
             std::string::npos);
 }
 
-TEST_F(WorldNodeTest, TfPrefixPutsASecondGamesFramesApart) {
-  tf2_ros::Buffer buffer;
-  tf2_ros::TransformListener listener(buffer);
-  nav_msgs::OccupancyGrid::ConstPtr map;
-  auto sub = nh_.subscribe<nav_msgs::OccupancyGrid>("/second/map", 1,
-                                                    [&](const nav_msgs::OccupancyGrid::ConstPtr& m) { map = m; });
-  ASSERT_TRUE(waitFor([&] { return map != nullptr; }, 20.0)) << "no latched map from the second game";
-  EXPECT_EQ(map->header.frame_id, "game2/map");
-  for (const std::string agent : {"hider", "seeker"}) {
-    ASSERT_TRUE(waitFor(
-        [&] {
-          return buffer.canTransform("game2/" + agent + "/base_link", "game2/" + agent + "/camera_optical_frame",
-                                     ros::Time(0));
-        },
-        10.0))
-        << agent;
-  }
-}
-
 TEST_F(WorldNodeTest, TfTreeJoinsMapToBothCameraOpticalFrames) {
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);
@@ -388,19 +369,23 @@ TEST(RealtimeStart, TheWorldWaitsUntilEachAgentAndEachRequiredRecorderListens) {
       << "the real-time world did not connect";
   waitFor([] { return false; }, 1.5);
   EXPECT_EQ(seeker_batches, 0) << "the world started before the hider listened";
-  // Both agents listen; the recorder does not yet.
+  // Both agents listen; neither recorder does yet.
   ros::Subscriber hider_sub = nh.subscribe<hideseek_msgs::ObservationBatch>(
       "hider/observations", 10,
       [&](const hideseek_msgs::ObservationBatch::ConstPtr& m) { hider_steps.push_back(m->step[0]); });
   ASSERT_TRUE(waitFor([&] { return hider_sub.getNumPublishers() > 0; }, 30.0));
   waitFor([] { return false; }, 1.5);
-  EXPECT_EQ(seeker_batches, 0) << "the world started before its recorder listened";
-  EXPECT_TRUE(hider_steps.empty()) << "the world started before its recorder listened";
+  EXPECT_EQ(seeker_batches, 0) << "the world started before its step recorder listened";
+  EXPECT_TRUE(hider_steps.empty()) << "the world started before its step recorder listened";
+  // The step recorder listens; the episode recorder does not yet.
+  ros::Subscriber steps_sub = nh.subscribe<hideseek_msgs::StepBatch>(
+      "world/steps", 100, [&](const hideseek_msgs::StepBatch::ConstPtr& m) { decisions.push_back(m->decision); });
+  ASSERT_TRUE(waitFor([&] { return steps_sub.getNumPublishers() > 0; }, 30.0));
+  waitFor([] { return false; }, 1.5);
+  EXPECT_TRUE(hider_steps.empty()) << "the world started before its episode recorder listened";
   int episodes = 0;
   ros::Subscriber episodes_sub = nh.subscribe<hideseek_msgs::EpisodeResult>(
       "world/episodes", 10, [&](const hideseek_msgs::EpisodeResult::ConstPtr&) { ++episodes; });
-  ros::Subscriber steps_sub = nh.subscribe<hideseek_msgs::StepBatch>(
-      "world/steps", 100, [&](const hideseek_msgs::StepBatch::ConstPtr& m) { decisions.push_back(m->decision); });
   ASSERT_TRUE(waitFor([&] { return !hider_steps.empty() && !decisions.empty(); }, 30.0))
       << "no observation and step record once everyone listened";
   EXPECT_EQ(hider_steps.front(), 0u) << "step 0 was played before the hider could see it";

@@ -65,7 +65,7 @@ struct AgentChannel {
 // The warnings the node repeats at most once per period each, with how many it held back.
 struct WarningThrottles {
   WallThrottle malformed{2.0}, second_publisher{2.0}, wrong_arena_count{2.0}, invalid_action{2.0}, late{2.0},
-      wrong_step{2.0}, stale{2.0}, resend{10.0};
+      wrong_step{2.0}, stale{2.0}, resend{10.0}, waiting{10.0};
 };
 
 // The game loop (hideseek_game::GameLoop) served over ROS: the node turns action messages into
@@ -106,6 +106,8 @@ class WorldNode {
   ros::Time simTime(uint64_t decisions) const;
   ros::Time simNow() const { return simTime(game_.decisions()); }
   bool everyoneListens() const;
+  // Before the start: after kWaitingReportAfter s of waiting, says every 10 s whom the world waits for.
+  void reportWaiting();
   bool reachedMaxDecisions() const;
 
   ros::NodeHandle nh_;
@@ -120,6 +122,7 @@ class WorldNode {
   uint64_t batches_published_ = 0;
   ros::WallTime last_visuals_;
   bool started_ = false;
+  std::optional<ros::WallTime> waiting_since_;           // when the world first found someone missing
   std::optional<EpisodeSummary> last_finished_;          // arena 0's episode that ended in the last step
   std::optional<hideseek_msgs::StepBatch> step_record_;  // world/steps: the decision being taken
 
