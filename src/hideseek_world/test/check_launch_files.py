@@ -10,7 +10,8 @@ reach the agent that trains and no other: an agent that plays a policy, at rando
 shows none in rosparam. train.launch is loaded again with role:=seeker and with a seeker's checkpoint
 as the opponent (both given steps and checkpoint_interval), evaluate.launch with
 seeker_mode:=random, and basic.launch and play.launch with record:=true, whose world must wait for
-the recorder (one more listener of world/steps and world/episodes than without).
+the recorder (one more listener of world/steps and world/episodes than without); and that a path
+argument starting with ~/ reaches its node under $HOME.
 Writes an xunit result. hideseek_world's package.xml declares the packages its launch files start
 (catkin_lint checks that); this checks that each named executable exists.
 
@@ -66,6 +67,26 @@ TRAINING_ARGS = ["steps:=128", "checkpoint_interval:=60"]
 EXTRA_LOADS = {"train.launch": [["role:=seeker"] + TRAINING_ARGS, ["opponent:=/tmp/seeker.pt"] + TRAINING_ARGS],
                "evaluate.launch": [["seeker_mode:=random"]],
                "basic.launch": [["record:=true"]], "play.launch": [["record:=true"]]}
+
+
+# Loads whose path argument starts with ~/: the parameter a node reads is under $HOME, as a shell
+# would have written it (the shell does not expand ~ after :=).
+HOME_LOADS = {"train.launch": ("output_dir:=~/hs_check/run", "/hider/output_dir"),
+              "evaluate.launch": ("output_dir:=~/hs_check/eval", "/evaluator/output_dir"),
+              "basic.launch": ("policy:=~/hs_check/policy.pt", "/hider/policy")}
+
+
+def home_problems(path):
+    """A leading ~/ in a path argument is the home folder."""
+    name = os.path.basename(path)
+    if name not in HOME_LOADS:
+        return []
+    argument, param = HOME_LOADS[name]
+    config = roslaunch.config.ROSLaunchConfig()
+    roslaunch.xmlloader.XmlLoader().load(path, config, argv=[argument], verbose=False)
+    got = config.params[param].value if param in config.params else None
+    want = os.path.expanduser(argument.split(":=", 1)[1])
+    return [] if got == want else ["%s gives %s = %s, not %s" % (argument, param, got, want)]
 
 
 def listeners(path, argv):
@@ -131,6 +152,8 @@ def check(path, argv=None):
     problems += variant_problems(path, config)
     problems += training_problems(config)
     problems += recording_problems(path, config, argv)
+    if argv is None:
+        problems += home_problems(path)
     for node in config.nodes + config.tests:
         if node.output == "screen" and ("ROSCONSOLE_STDOUT_LINE_BUFFERED", "1") not in node.env_args:
             problems.append("node %s writes to the screen without ROSCONSOLE_STDOUT_LINE_BUFFERED=1: redirected "
