@@ -211,7 +211,7 @@ bool WorldNode::everyoneListens() const {
 }
 
 void WorldNode::reportWaiting() {
-  constexpr double kWaitingReportAfter = 5.0;  // s: agents and recorders connect within a few seconds
+  constexpr double kWaitingReportAfter = 10.0;  // s: agents and recorders connect within a few seconds
   const ros::WallTime now = ros::WallTime::now();
   if (!waiting_since_) waiting_since_ = now;
   const double waited = (now - *waiting_since_).toSec();

@@ -106,7 +106,7 @@ class WorldNode {
   ros::Time simTime(uint64_t decisions) const;
   ros::Time simNow() const { return simTime(game_.decisions()); }
   bool everyoneListens() const;
-  // Before the start: after kWaitingReportAfter s of waiting, says every 10 s whom the world waits for.
+  // Before the start: after 10 s of waiting, says every 10 s whom the world waits for.
   void reportWaiting();
   bool reachedMaxDecisions() const;
 
