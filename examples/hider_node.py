@@ -8,17 +8,17 @@ evaluating: while the seeker's red back or yellow front is in view, turn away fr
 go forward.
 
     source devel/setup.bash
-    roslaunch hideseek_world basic.launch start_hider:=false &      # the game, waiting for a hider
+    roslaunch hideseek_world basic.launch policy:=external &        # the game, waiting for a hider
     /usr/bin/python3 examples/hider_node.py                          # this node plays it
-    roslaunch hideseek_world evaluate.launch policy:=external        # or: evaluated on seeds 0-99
+    # or, instead of basic.launch: evaluated on seeds 0-99, as a policy is
+    roslaunch hideseek_world evaluate.launch policy:=external
 
+In a namespaced game (ns:=game1), start it there: examples/hider_node.py __ns:=game1.
 docs/launch_files.md, "A hider of your own", states the exchange.
 """
 import numpy as np
 import rospy
 from hideseek_msgs.msg import ActionBatch, ObservationBatch
-
-STAY, FORWARD, BACKWARD, TURN_LEFT, TURN_RIGHT = range(5)  # ActionBatch's constants
 
 
 def seeker_columns(image):
@@ -31,9 +31,9 @@ def seeker_columns(image):
 def act(image):
     columns = seeker_columns(image)
     if len(columns) == 0:
-        return FORWARD
+        return ActionBatch.FORWARD
     # The seeker's image lies left of the middle: turn right, away from it; and the other way.
-    return TURN_RIGHT if columns.mean() < image.shape[1] / 2 else TURN_LEFT
+    return ActionBatch.TURN_RIGHT if columns.mean() < image.shape[1] / 2 else ActionBatch.TURN_LEFT
 
 
 def main():
@@ -41,12 +41,18 @@ def main():
     actions = rospy.Publisher("hider/actions", ActionBatch, queue_size=2, tcp_nodelay=True)
 
     def answer(batch):
-        images = np.frombuffer(batch.images, np.uint8).reshape(batch.num_arenas, batch.height, batch.width, 3)
+        try:
+            images = np.frombuffer(batch.images, np.uint8).reshape(batch.num_arenas, batch.height, batch.width, 3)
+        except ValueError as e:  # a batch whose image bytes do not fit its sizes: say so and wait for the next
+            rospy.logwarn_throttle(5.0, "my_hider: skipped a malformed observation batch: %s" % e)
+            return
         reply = ActionBatch(actions=bytes(act(image) for image in images), step=list(batch.step))
         reply.header.stamp = batch.header.stamp
         actions.publish(reply)
 
-    rospy.Subscriber("hider/observations", ObservationBatch, answer, queue_size=2, tcp_nodelay=True)
+    # A batch of 16 arenas is about 340 kB: a receive buffer that holds one whole.
+    rospy.Subscriber("hider/observations", ObservationBatch, answer, queue_size=2, buff_size=2 ** 24,
+                     tcp_nodelay=True)
     rospy.spin()
 
 

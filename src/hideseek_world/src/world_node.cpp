@@ -114,7 +114,7 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
         "/use_sim_time is global and the last launch set it: tools started from now on (rviz, tf_echo) read one "
         "clock for both games; give a lockstep game a master of its own",
         joined(clocks).c_str());
-  } else if (const std::string other = anotherGame(); lockstep && !other.empty()) {
+  } else if (const std::string other = lockstep && clocks.empty() ? anotherGame() : std::string(); !other.empty()) {
     ROS_WARN(
         "world: another game runs on this master (%s): /use_sim_time is global and this lockstep launch set it true, "
         "so tools started from now on (rviz, tf_echo) read this game's sim time for that game too; give a lockstep "

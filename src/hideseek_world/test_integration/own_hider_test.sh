@@ -15,7 +15,7 @@ example="$(cd "$(dirname "$(readlink -f "$0")")/../../.." && pwd)/examples/hider
 roslaunch -p "$port" hideseek_world evaluate.launch policy:=external episodes:=6 num_arenas:=3 \
   output_dir:="$dir" > "$dir/launch.log" 2>&1 &
 launch=$!
-timeout 60 rostopic echo -n 1 /diagnostics > /dev/null 2>&1  # the master and the world are up
+for _ in $(seq 1 300); do rostopic list 2>/dev/null | grep -q /hider/observations && break; sleep 0.2; done  # the world is up
 /usr/bin/python3 "$example" > "$dir/hider.log" 2>&1 &
 hider=$!
 for _ in $(seq 1 900); do kill -0 "$launch" 2>/dev/null || break; sleep 0.2; done  # the evaluator ends it

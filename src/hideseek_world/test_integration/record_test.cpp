@@ -94,6 +94,9 @@ TEST(Record, BagClosesCleanlyAndHoldsEveryListedTopic) {
   }
   ASSERT_FALSE(decisions.empty()) << "no /world/steps in " << bag_path;
   EXPECT_EQ(decisions.front(), 0u) << "the recording missed the game's first decisions";
+  for (size_t k = 1; k < decisions.size(); ++k) {
+    ASSERT_GT(decisions[k], decisions[k - 1]) << "step records out of order at " << k;
+  }
   std::cout << "record_test: " << decisions.size() << " step records, decisions " << decisions.front() << ".."
             << decisions.back() << ", " << (decisions.back() + 1 - decisions.size()) << " missing\n";
   bag.close();

@@ -171,7 +171,7 @@ TEST(Variant, ResetDoesNotStallTheGame) {
 }
 
 // A game names its frames with its prefix (two_games.test: game1/map, ...), or none at the root
-// (map, hider/base_link, ...): its latched map and the TF chain from its map to its hider's camera.
+// (map, hider/base_link, ...): its latched map and the TF chains from its map to both cameras.
 TEST(Variant, FramesCarryTheGamesTfPrefix) {
   ros::NodeHandle nh, pnh("~");
   const std::string prefix = pnh.param<std::string>("expect_tf_prefix", "");
@@ -184,9 +184,11 @@ TEST(Variant, FramesCarryTheGamesTfPrefix) {
   ASSERT_TRUE(hideseek_test::waitFor([&] { return map != nullptr; }, 20.0))
       << "no latched map in " << nh.getNamespace();
   EXPECT_EQ(map->header.frame_id, frame("map"));
-  EXPECT_TRUE(hideseek_test::waitFor(
-      [&] { return buffer.canTransform(frame("map"), frame("hider/camera_optical_frame"), ros::Time(0)); }, 10.0))
-      << frame("map") << " to " << frame("hider/camera_optical_frame");
+  for (const std::string agent : {"hider", "seeker"}) {
+    const std::string camera = frame(agent + "/camera_optical_frame");
+    EXPECT_TRUE(hideseek_test::waitFor([&] { return buffer.canTransform(frame("map"), camera, ros::Time(0)); }, 10.0))
+        << frame("map") << " to " << camera;
+  }
 }
 
 }  // namespace
