@@ -200,22 +200,10 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
            options_.loop.seed, game.camera.width, game.camera.height);
 }
 
-bool WorldNode::everyoneListens() const {
+bool WorldNode::readyToStart() {
   // Both agents listen and both can answer, so neither the first observation nor the first answer
   // is lost (an agent connects its two topics one after the other), and every listener that must
   // see the first episodes listens.
-  return hider_obs_pub_.getNumSubscribers() > 0 && seeker_obs_pub_.getNumSubscribers() > 0 &&
-         hider_sub_.getNumPublishers() > 0 && seeker_sub_.getNumPublishers() > 0 &&
-         episodes_pub_.getNumSubscribers() >= static_cast<uint32_t>(options_.episode_listeners) &&
-         steps_pub_.getNumSubscribers() >= static_cast<uint32_t>(options_.step_listeners);
-}
-
-void WorldNode::reportWaiting() {
-  constexpr double kWaitingReportAfter = 10.0;  // s: agents and recorders connect within a few seconds
-  const ros::WallTime now = ros::WallTime::now();
-  if (!waiting_since_) waiting_since_ = now;
-  const double waited = (now - *waiting_since_).toSec();
-  if (waited < kWaitingReportAfter || !throttles_.waiting.ready()) return;
   std::vector<std::string> missing;
   auto need = [&](bool present, const std::string& what) {
     if (!present) missing.push_back(what);
@@ -232,7 +220,16 @@ void WorldNode::reportWaiting() {
   };
   listeners(episodes_pub_, options_.episode_listeners, "episode_listeners");
   listeners(steps_pub_, options_.step_listeners, "step_listeners");
-  ROS_WARN("world: waiting %.0f s to start, for %s", waited, joined(missing).c_str());
+  if (missing.empty()) return true;
+  // After 10 s of waiting, say every 10 s whom for: agents and recorders connect within seconds.
+  constexpr double kWaitingReportAfter = 10.0;
+  const ros::WallTime now = ros::WallTime::now();
+  if (!waiting_since_) waiting_since_ = now;
+  const double waited = (now - *waiting_since_).toSec();
+  if (waited >= kWaitingReportAfter && throttles_.waiting.ready()) {
+    ROS_WARN("world: waiting %.0f s to start, for %s", waited, joined(missing).c_str());
+  }
+  return false;
 }
 
 bool WorldNode::reachedMaxDecisions() const {
@@ -364,8 +361,7 @@ void WorldNode::onRealtimeTick(const ros::WallTimerEvent&) {
   if (!started_) {
     // The first episode starts when both players are there (a person's keyboard hider may take
     // seconds to open), and when every listener that must see it listens.
-    if (!everyoneListens()) {
-      reportWaiting();
+    if (!readyToStart()) {
       publishAgentTransforms(ros::Time::now());
       return;
     }
@@ -421,10 +417,7 @@ void WorldNode::warnStale() {
 void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
   const ros::WallTime now = ros::WallTime::now();
   if (!started_) {
-    if (!everyoneListens()) {
-      reportWaiting();
-      return;
-    }
+    if (!readyToStart()) return;
     started_ = true;
     ROS_INFO("world: both agents connected, starting lockstep");
     publishObservations();

@@ -105,9 +105,9 @@ class WorldNode {
   // Sim time after `decisions` decision steps (lockstep), or wall time (realtime).
   ros::Time simTime(uint64_t decisions) const;
   ros::Time simNow() const { return simTime(game_.decisions()); }
-  bool everyoneListens() const;
-  // Before the start: after 10 s of waiting, says every 10 s whom the world waits for.
-  void reportWaiting();
+  // Before the start: may the game start (every agent and required listener there)? While it may
+  // not, says every 10 s, after the first 10, whom it waits for.
+  bool readyToStart();
   bool reachedMaxDecisions() const;
 
   ros::NodeHandle nh_;
