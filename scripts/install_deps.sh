@@ -8,7 +8,7 @@ PACKAGES=(
   ros-base-dev catkin python3-catkin-pkg python3-rospkg python3-rostest rosbash
   librosbag-dev libimage-transport-dev libtf2-ros-dev libtf2-geometry-msgs-dev libstd-srvs-dev ros-std-srvs libdiagnostic-msgs-dev
   rviz
-  tf-tools      # rosrun tf tf_echo map hider/base_link, view_frames: the usual ways to look at the frames
+  tf-tools      # rosrun tf tf_echo map hider/base_link, tf_monitor: the usual ways to look at the frames (Debian's view_frames fails under Python 3)
   python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-nav-msgs python3-visualization-msgs
   python3-diagnostic-msgs python3-tf2-msgs python3-rosgraph-msgs
   libosmesa6-dev libeigen3-dev libyaml-cpp-dev
