@@ -205,6 +205,10 @@ def distance_time(trained, layouts, out, title):
     plt.close(fig)
 
 
+# Below this many episodes with images the report warns that its probes rest on too few.
+FEW_EPISODES = 20
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("input")
@@ -239,6 +243,11 @@ def main():
     print("report: state statistics over %d whole episodes (%d steps) of the policy, %d (%d steps) of the random "
           "policy" % (len(set(trained_whole["episode"])), len(trained_whole["episode"]),
                       len(set(random_whole["episode"])), len(random_whole["episode"])))
+    episodes = len(set(labels["episode"]))
+    if episodes < FEW_EPISODES:
+        print("report: warning: the images come from %d episodes only (%d images): the probes hold out 30 %% of the "
+              "episodes, so their scores rest on a handful of episodes and move by many points between splits; "
+              "record more (analyze.launch's steps)" % (episodes, len(labels["episode"])))
     print("report: probes of the %s, %d splits by episode" %
           (" and the ".join(r.replace("_", " ") for r in representations), a.probe_splits))
     probes(labels, representations, a.output, a.probe_splits)
@@ -253,4 +262,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except ValueError as e:  # a recording the analysis cannot use (one class only, too few episodes): one line
+        raise SystemExit("report: %s" % e)

@@ -210,15 +210,15 @@ def test_report_probes_the_gru_state_of_a_recurrent_policy(tmp_path):
     assert got["gru_state", "H", "random_init"] < 0.7
 
 
-def run_report_on_synthetic_inputs(tmp_path, with_memory):
-    import subprocess
-    import sys
-    import os
+def write_synthetic_inputs(tmp_path, with_memory, n_episodes=20, one_class=False):
+    """What analyze_bag hands report.py, made up: n_episodes of 30 steps; one_class: S never set."""
     rng = np.random.default_rng(2)
-    inp, out = tmp_path / "in", tmp_path / "out"
+    inp = tmp_path / "in"
     inp.mkdir()
-    episodes = np.repeat(np.arange(20), 30)
+    episodes = np.repeat(np.arange(n_episodes), 30)
     s, h, o = (rng.random((3, len(episodes))) < 0.4).astype(int)
+    if one_class:
+        s[:] = 0
     for name in ("trained", "random"):
         with open(inp / ("steps_%s.csv" % name), "w") as f:
             f.write("arena,episode,step,S,H,O,distance,hider_x,hider_y,hider_yaw,seeker_x,seeker_y,seeker_yaw,"
@@ -241,10 +241,21 @@ def run_report_on_synthetic_inputs(tmp_path, with_memory):
         memory[:, :8] += 3.0 * h[:, None]
         np.save(inp / "memory_trained.npy", memory)
         np.save(inp / "memory_random.npy", rng.normal(size=(len(episodes), 512)).astype(np.float32))
-    here = SCRIPTS
-    subprocess.run([sys.executable, os.path.join(here, "report.py"), str(inp), str(out), "--variant", "basic",
-                    "--policy", "synthetic", "--steps", "0", "--tsne-samples", "200",
-                    "--probe-splits", "3"], check=True, cwd=here)
+    return inp
+
+
+def run_report(inp, out, check=True):
+    import subprocess
+    import sys
+    import os
+    return subprocess.run([sys.executable, os.path.join(SCRIPTS, "report.py"), str(inp), str(out), "--variant",
+                           "basic", "--policy", "synthetic", "--steps", "0", "--tsne-samples", "200",
+                           "--probe-splits", "3"], check=check, cwd=SCRIPTS, capture_output=not check, text=True)
+
+
+def run_report_on_synthetic_inputs(tmp_path, with_memory):
+    out = tmp_path / "out"
+    run_report(write_synthetic_inputs(tmp_path, with_memory), out)
     for name in ("probes.csv", "probes.md", "tsne_S.png", "tsne_H.png", "state_frequencies.csv",
                  "state_frequencies.md", "state_frequencies.png", "transitions.csv", "transitions.png",
                  "distance_time.png"):
@@ -350,3 +361,15 @@ def test_the_survival_figure_s_legend_hides_no_point_and_is_not_cut_off(tmp_path
     assert not any(legend.contains(x, y) for x, y in points), "the legend hides a point"
     assert figure.x0 <= legend.x0 and legend.x1 <= figure.x1 and figure.y0 <= legend.y0 and legend.y1 <= figure.y1
     assert (tmp_path / "survival_representation.png").stat().st_size > 0
+
+
+def test_report_stops_in_one_line_where_a_label_has_one_class_and_warns_on_few_episodes(tmp_path):
+    # A short recording where the hider never sees the seeker: the probe cannot be fitted. The
+    # report used to end in a Python traceback.
+    r = run_report(write_synthetic_inputs(tmp_path, False, n_episodes=4, one_class=True), tmp_path / "out",
+                   check=False)
+    assert r.returncode == 1
+    assert "Traceback" not in r.stderr
+    assert r.stderr.strip().splitlines()[-1] == "report: probe: the train split holds one class only; " \
+        "record more episodes"
+    assert "warning: the images come from 4 episodes only (120 images)" in r.stdout

@@ -90,3 +90,17 @@ def test_an_evaluation_without_episodes_is_refused_by_name(checkout):
                        timeout=120)
     assert r.returncode != 0
     assert "slowerhider_trained/episodes.csv: no episodes" in r.stderr
+
+
+def test_a_folder_of_evaluations_named_otherwise_is_refused_naming_what_it_holds(checkout):
+    # Evaluations of one's own under other names ("shipped", "flee") used to give a table of the
+    # paper's rows alone and exit 0.
+    ev = checkout / "mine"
+    write_episodes(ev / "shipped", [100] * 4)
+    write_episodes(ev / "flee", [50] * 4)
+    r = subprocess.run([sys.executable, TABLE2, "--root", str(checkout), "--evaluations", str(ev), "--reps", "50"],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2
+    assert "holds no evaluation named VARIANT_trained" in r.stderr
+    assert "it holds: flee, shipped" in r.stderr
+    assert not (checkout / "table2_shipped").exists()

@@ -312,20 +312,23 @@ def tsne_figure(root, out, R, variants, seed, reps):
     save(fig, out, "tsne_seeds", table, rect=(0, 0.9 / (2.5 * nrows + 1.5), 1, 1 - top / (2.5 * nrows + 1.5)))
 
 
-def performance_profile(out, data, present, seed, reps):
+def performance_profile(out, data, present, seed, reps,
+                        title="Performance profiles, greedy, evaluation seeds 0-99 (bands: 95 % two-level bootstrap)"):
     """Table 2's performance profiles: the fraction of greedy episodes living longer than tau, per
-    variant, with two-level bootstrap bands (performance_profile.png). data: {(variant, "greedy"): runs}."""
+    variant, with two-level bootstrap bands (performance_profile.png). data: {(label, "greedy"): runs},
+    each runs a list of per-run arrays of living steps (or one array: one run); present: the labels
+    to draw, in order; title: the figure's (say which episodes it holds)."""
     taus = np.arange(0, 1001, 10)
     fig, ax = plt.subplots(figsize=(8, 5))
     for v in present:
         prof, lo, hi = st.performance_profile(data[(v, "greedy")], taus, st.keyed_rng(seed, "profile", v),
                                               max(200, reps // 4))
-        n = len(data[(v, "greedy")])
+        n = len(st.as_runs(data[(v, "greedy")]))
         line, = ax.plot(taus, prof, label="%s (%d run%s)" % (v, n, "" if n == 1 else "s"))
         ax.fill_between(taus, lo, hi, color=line.get_color(), alpha=0.15)
     ax.set_xlabel("living steps tau")
     ax.set_ylabel("fraction of episodes living more than tau")
-    ax.set_title("Performance profiles, greedy, evaluation seeds 0-99 (bands: 95 % two-level bootstrap)")
+    ax.set_title(title)
     ax.set_xlim(0, 1000)
     ax.set_ylim(0, 1)
     ax.grid(alpha=0.3)

@@ -72,19 +72,40 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def load_episodes(path):
-    """(living steps, success) arrays of an evaluation's episodes.csv, one entry per episode."""
+EPISODE_COLUMNS = ("seed", "living_steps", "outcome")
+OUTCOMES = ("captured", "survived")
+
+
+def episode_rows(path):
+    """The rows of an evaluation's episodes.csv (evaluate.launch's: seed, living_steps, outcome per
+    episode), checked: a missing file, a missing column, an outcome other than captured or survived
+    or an empty file is refused, naming the file."""
     rows = read_csv(path)
+    if rows is None:
+        raise FileNotFoundError("%s: no such file (an evaluation's episodes.csv, as evaluate.launch writes it)" % path)
     if not rows:
         raise ValueError("%s: no episodes" % path)
+    missing = [c for c in EPISODE_COLUMNS if c not in rows[0]]
+    if missing:
+        raise ValueError("%s: no column %s (an episodes.csv has %s)" % (path, ", ".join(missing), ", ".join(EPISODE_COLUMNS)))
+    for line, r in enumerate(rows, start=2):
+        if r["outcome"] not in OUTCOMES:
+            raise ValueError("%s, line %d: outcome %r is neither %s" % (path, line, r["outcome"], " nor ".join(OUTCOMES)))
+    return rows
+
+
+def load_episodes(path):
+    """(living steps, success) arrays of an evaluation's episodes.csv, one entry per episode (success:
+    the hider survived)."""
+    rows = episode_rows(path)
     living = np.array([float(r["living_steps"]) for r in rows])
-    success = np.array([1.0 if r["outcome"] != "captured" else 0.0 for r in rows])
+    success = np.array([1.0 if r["outcome"] == "survived" else 0.0 for r in rows])
     return living, success
 
 
 def evaluation_by_seed(path):
     """{evaluation seed: living steps} of an evaluation's episodes.csv."""
-    return {int(r["seed"]): float(r["living_steps"]) for r in read_csv(path)}
+    return {int(r["seed"]): float(r["living_steps"]) for r in episode_rows(path)}
 
 
 def calibration_file(game="v2"):

@@ -27,6 +27,31 @@ def mean(values):
     return float(np.mean(values))
 
 
+def as_runs(runs, name="runs"):
+    """A sample as the functions below take it: a list of per-run arrays of episode scores. One run
+    may be given as a plain sequence of numbers (an evaluation of one policy); a run without
+    episodes is refused, naming it."""
+    if len(runs) and np.ndim(runs[0]) == 0:
+        runs = [runs]
+    out = [np.asarray(r, dtype=np.float64) for r in runs]
+    if not out:
+        raise ValueError("%s: no runs" % name)
+    for i, r in enumerate(out):
+        if r.ndim != 1 or r.size == 0:
+            raise ValueError("%s: run %d holds %s, not a non-empty sequence of episode scores"
+                             % (name, i, "no episodes" if r.size == 0 else "an array of shape %s" % (r.shape,)))
+    return out
+
+
+def generator(rng):
+    """`rng` as a numpy Generator: a Generator is used as it is, an integer seeds a new one."""
+    if isinstance(rng, np.random.Generator):
+        return rng
+    if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
+        return np.random.default_rng(int(rng))
+    raise TypeError("rng: a numpy Generator (keyed_rng(seed, key...)) or an integer seed, not %s" % type(rng).__name__)
+
+
 def keyed_rng(seed, *key):
     """A generator of its own for one estimate, seeded from `seed` and a stable key (a variant, a
     claim): an interval then depends only on its own data and the seed, so a run added to one
@@ -37,7 +62,8 @@ def keyed_rng(seed, *key):
 def two_level_samples(runs, rng, reps=BOOTSTRAP):
     """Yields `reps` bootstrap samples of a variant: runs drawn with replacement, then episodes
     drawn with replacement within each drawn run; each sample is a list of per-run arrays."""
-    runs = [np.asarray(r, dtype=np.float64) for r in runs]
+    runs = as_runs(runs)
+    rng = generator(rng)
     for _ in range(reps):
         picked = rng.integers(0, len(runs), size=len(runs))
         yield [runs[i][rng.integers(0, len(runs[i]), size=len(runs[i]))] for i in picked]
@@ -52,7 +78,8 @@ def interval(estimates):
 def pooled_statistic(runs, statistic, rng, reps=BOOTSTRAP):
     """(point estimate, (low, high)) of `statistic` over the pooled episodes of `runs`, with the
     two-level bootstrap interval."""
-    point = statistic(np.concatenate([np.asarray(r, dtype=np.float64) for r in runs]))
+    runs = as_runs(runs)
+    point = statistic(np.concatenate(runs))
     boot = [statistic(np.concatenate(s)) for s in two_level_samples(runs, rng, reps)]
     return point, interval(boot)
 
@@ -65,7 +92,8 @@ def performance_profile(runs, taus, rng, reps=BOOTSTRAP):
     def profile(x):
         return (x[None, :] > taus[:, None]).mean(axis=1)
 
-    point = profile(np.concatenate([np.asarray(r, dtype=np.float64) for r in runs]))
+    runs = as_runs(runs)
+    point = profile(np.concatenate(runs))
     boot = np.array([profile(np.concatenate(s)) for s in two_level_samples(runs, rng, reps)])
     lo, hi = np.percentile(boot, [50 * (1 - CONFIDENCE), 100 - 50 * (1 - CONFIDENCE)], axis=0)
     return point, lo, hi
@@ -90,6 +118,7 @@ def probability_of_improvement(runs_x, runs_y, rng, reps=BOOTSTRAP):
 
     Both intervals come from the same two-level bootstrap (each side's runs, then episodes within
     them). Returns {"runs": (p, (lo, hi)), "episodes": (p, (lo, hi))}."""
+    runs_x, runs_y, rng = as_runs(runs_x, "runs_x"), as_runs(runs_y, "runs_y"), generator(rng)
     mx = [float(np.mean(r)) for r in runs_x]
     my = [float(np.mean(r)) for r in runs_y]
     run_boot, ep_boot = [], []
@@ -105,10 +134,26 @@ def probability_of_improvement(runs_x, runs_y, rng, reps=BOOTSTRAP):
 def mean_difference(runs_x, runs_y, rng, reps=BOOTSTRAP):
     """The difference of the pooled means, X minus Y, with the two-level bootstrap interval (each
     side's runs, then episodes within them, resampled on their own). Returns (d, (lo, hi))."""
+    runs_x, runs_y, rng = as_runs(runs_x, "runs_x"), as_runs(runs_y, "runs_y"), generator(rng)
     point = float(np.mean(np.concatenate(runs_x)) - np.mean(np.concatenate(runs_y)))
     boot = [np.mean(np.concatenate(sx)) - np.mean(np.concatenate(sy))
             for sx, sy in zip(two_level_samples(runs_x, rng, reps), two_level_samples(runs_y, rng, reps))]
     return point, interval(boot)
+
+
+def paired_difference(by_seed_x, by_seed_y, rng, reps=BOOTSTRAP):
+    """The mean difference X minus Y over the evaluation seeds both played ({seed: score}, as
+    runs.evaluation_by_seed gives), with a bootstrap interval over those seeds. For one run of each
+    side (two policies evaluated on the same seeds): pairing by seed takes out what the seeds' maps
+    and spawns do to both sides alike, and the interval covers the evaluation episodes only, never
+    the spread between training seeds. Returns (d, (lo, hi), seeds)."""
+    common = sorted(set(by_seed_x) & set(by_seed_y))
+    if not common:
+        raise ValueError("paired_difference: the two sides share no evaluation seed")
+    diffs = np.array([by_seed_x[s] - by_seed_y[s] for s in common], dtype=np.float64)
+    rng = generator(rng)
+    boot = [diffs[rng.integers(0, len(diffs), len(diffs))].mean() for _ in range(reps)]
+    return float(diffs.mean()), interval(boot), len(common)
 
 
 def rank_correlation(runs_by_variant, reference, rng, reps=BOOTSTRAP):

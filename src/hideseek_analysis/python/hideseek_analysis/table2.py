@@ -84,6 +84,20 @@ class EvaluationsSource:
     def run_count(self):
         return len([n for n in os.listdir(self.folder) if not n.endswith("_random")])
 
+    def check(self, variants):
+        """Refuses a folder that holds no evaluation this table reads (its folders are named
+        <variant>_trained, <variant>_gru_trained, <variant>_gru_memoryless and <variant>_random)."""
+        if not os.path.isdir(self.folder):
+            raise ValueError("--evaluations %s: no such folder" % self.folder)
+        known = {"%s_%s" % (v, sub) for v in variants for sub in [m[1] for m in self.modes] + ["random"]}
+        found = sorted(os.listdir(self.folder))
+        if not any(n in known for n in found):
+            raise ValueError("--evaluations %s holds no evaluation named VARIANT_trained (or VARIANT_gru_trained, "
+                             "VARIANT_gru_memoryless, VARIANT_random, VARIANT one of %s), as hideseek_pipeline report "
+                             "--from-scratch writes them; it holds: %s. To compare evaluations of your own, use the "
+                             "library (docs/analysis.md, The analysis as a library)"
+                             % (self.folder, ", ".join(variants), ", ".join(found) or "nothing"))
+
 
 MEASURES = (("living_mean", 0, st.mean), ("living_iqm", 0, st.iqm), ("success_mean", 1, st.mean),
             ("success_iqm", 1, st.iqm))
@@ -331,6 +345,11 @@ def main(argv=None):
     cfg = Config(args.root)
     if args.evaluations:
         source = EvaluationsSource(os.path.abspath(args.evaluations))
+        try:
+            source.check(cfg.table_order())
+        except ValueError as e:
+            print("table2: %s" % e, file=sys.stderr)
+            return 2
         made = [(source, args.out or os.path.join(os.path.dirname(source.folder), "table2_shipped"))]
     else:
         made = [(SweepSource(args.root, sweep_runs(args.root, args.steps, set(args.extra), game=game), game), out)
