@@ -17,7 +17,12 @@ DecisionScheduler::DecisionScheduler(ClockMode mode, int num_arenas, double stal
 
 Verdict DecisionScheduler::offer(Player player, int arena, uint8_t action, uint32_t step_id, uint32_t current_step) {
   if (action >= actions(player)) return Verdict::kInvalidAction;
-  if (mode_ == ClockMode::kRealtime && executing_ && player == Player::kHider) return Verdict::kLate;
+  if (mode_ == ClockMode::kRealtime) {
+    // The hider answers a step's start only; the seeker may be asked again inside the step, so
+    // only an answer to the seeker decision being played is late.
+    if (player == Player::kHider && executing_) return Verdict::kLate;
+    if (player == Player::kSeeker && seeker_executing_ && step_id == current_step) return Verdict::kLate;
+  }
   std::optional<uint32_t>& superseded = superseded_[index(player, arena)];
   if (step_id != current_step) {
     if (superseded != step_id) return Verdict::kWrongStep;
@@ -59,6 +64,7 @@ std::vector<Action> DecisionScheduler::takeSeekerDecision() {
     a.reset();
   }
   waiting_since_.reset();
+  seeker_executing_ = mode_ == ClockMode::kRealtime;
   return seeker;
 }
 
@@ -70,7 +76,7 @@ DecisionActions DecisionScheduler::takeDecision() {
   }
   for (auto& a : pending_) a.reset();
   waiting_since_.reset();
-  executing_ = mode_ == ClockMode::kRealtime;
+  executing_ = seeker_executing_ = mode_ == ClockMode::kRealtime;
   return d;
 }
 

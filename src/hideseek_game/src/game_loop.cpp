@@ -77,7 +77,10 @@ std::optional<Decision> GameLoop::playFrame() {
   if (!decided_) throw std::logic_error("GameLoop: a frame played before its decision was taken");
   std::optional<std::vector<ArenaStep>> steps = world_.advanceFrame(step_hider_, seeker_now_);
   // The next frame needs a decision first: a new step's, or the seeker's inside this one.
-  if (world_.seekerDecisionDue()) decided_ = false;
+  if (world_.seekerDecisionDue()) {
+    decided_ = false;
+    scheduler_.finishSeekerDecision();
+  }
   if (!steps) return std::nullopt;
   scheduler_.finishDecision();
   return conclude(std::move(*steps));

@@ -135,6 +135,10 @@ TEST(DecisionScheduler, RealtimeTakesTheSeekersAnswersWhileTheHidersStepPlays) {
   s.takeDecision();
   ASSERT_TRUE(s.executing());
   EXPECT_EQ(s.offer(Player::kHider, 0, kForwardId, 0, 0), Verdict::kLate);
+  // The seeker's decision 0 plays its frames: an answer to it now is late, not kept for decision 1.
+  EXPECT_EQ(s.offer(Player::kSeeker, 0, kForwardId, 0, 0), Verdict::kLate);
+  s.finishSeekerDecision();  // its frames played: decision 1 is due
+  EXPECT_FALSE(s.answered(Player::kSeeker, 0));
   EXPECT_EQ(s.realtimeSeekerStart(1.0, true), RealtimeStart::kWait);
   EXPECT_EQ(s.offer(Player::kSeeker, 0, kForwardId, 1, 1), Verdict::kAccepted);
   EXPECT_EQ(s.realtimeSeekerStart(1.1, true), RealtimeStart::kReady);

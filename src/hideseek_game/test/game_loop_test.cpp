@@ -193,6 +193,27 @@ TEST(GameLoop, RealtimeRefusesTheHidersAnswerWhileAStepPlaysAndStartsWithoutASil
   EXPECT_EQ(game.offer(Player::kHider, 0, 1, 1), Verdict::kAccepted);
 }
 
+// A seeker that decides once a step (a learned one, or one of your own with seeker_decides:=step)
+// and answers after stale_action_timeout: its answer is late, as the hider's is, and is not played
+// in the next step in place of the answer to that step.
+TEST(GameLoop, RealtimeRefusesALateAnswerOfASeekerThatDecidesOnceAStep) {
+  VariantConfig v = loadVariant("basic");
+  GameLoopOptions o = unrendered(1, 0, ClockMode::kRealtime);
+  o.stale_action_timeout = 0.5;
+  GameLoop game(withLearnedSeeker(v.game), loadMap("deterministic"), o);
+  ASSERT_EQ(game.offer(Player::kHider, 0, 1, 0), Verdict::kAccepted);
+  EXPECT_EQ(game.realtimeStart(10.0, true, true), RealtimeStart::kWait);
+  EXPECT_EQ(game.realtimeStart(10.6, true, true), RealtimeStart::kStale);  // the seeker is slow
+  game.takeDecision();
+  EXPECT_FALSE(game.playFrame());
+  EXPECT_EQ(game.offer(Player::kSeeker, 0, 3, 0), Verdict::kLate);  // its answer to step 0, too late
+  std::optional<Decision> d;
+  while (!(d = game.playFrame())) ASSERT_FALSE(game.decisionDue());  // one decision for the whole step
+  EXPECT_EQ(d->seeker[0], Action::kStay);
+  EXPECT_FALSE(game.decisionReady());  // nothing kept for step 1
+  EXPECT_EQ(game.offer(Player::kSeeker, 0, 4, 1), Verdict::kAccepted);
+}
+
 TEST(GameLoop, AResetInsideAStepPlaysItToItsEndFirst) {
   VariantConfig v = loadVariant("basic");
   GameLoop game(v.game, loadMap("deterministic"), unrendered(2, 7));

@@ -430,15 +430,29 @@ void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
       publishSeekerObservations();
       return;
     }
+    // Re-sent only to the agent that has not answered every arena: the other's answer is in, and a
+    // second one could arrive after the step moved on (a wrong step, no fault of that agent).
+    int unanswered[2] = {0, 0};
+    for (int i = 0; i < options_.loop.num_arenas; ++i) {
+      for (const Player p : {Player::kHider, Player::kSeeker}) unanswered[static_cast<int>(p)] += !game_.answered(p, i);
+    }
+    auto status = [&](const AgentChannel& c) {
+      const int left = unanswered[static_cast<int>(c.player)];
+      return c.name + (c.owner.empty() ? " (no publisher)" : " (" + c.owner + ")") +
+             (left ? ": " + std::to_string(left) + " of " + std::to_string(options_.loop.num_arenas) +
+                         " arenas unanswered"
+                   : ": answered");
+    };
     WallThrottle& throttle = throttles_.resend;
     if (throttle.ready()) {
       ROS_WARN(
-          "world: no complete action batches for %.1f s (hider %s, seeker %s); re-sending step (%lu more like it since "
-          "the last)",
-          game_.sinceSent(now.toSec()), hider_.owner.empty() ? "silent" : hider_.owner.c_str(),
-          seeker_.owner.empty() ? "silent" : seeker_.owner.c_str(), static_cast<unsigned long>(throttle.suppressed()));
+          "world: waiting %.1f s for step answers, %s; %s; re-sending the step to %s (%lu more like it since the last)",
+          game_.sinceSent(now.toSec()), status(hider_).c_str(), status(seeker_).c_str(),
+          unanswered[0] && unanswered[1] ? "both" : (unanswered[0] ? hider_ : seeker_).name.c_str(),
+          static_cast<unsigned long>(throttle.suppressed()));
     }
-    publishObservations();
+    publishObservations(unanswered[static_cast<int>(Player::kHider)] > 0,
+                        unanswered[static_cast<int>(Player::kSeeker)] > 0);
   }
 }
 
@@ -486,7 +500,7 @@ void WorldNode::publishAgentTransforms(const ros::Time& stamp) {
                      agentTransform(a.seeker(), options_.frame_id, options_.frame("seeker/base_link"), stamp)});
 }
 
-void WorldNode::publishObservations() {
+void WorldNode::publishObservations(bool to_hider, bool to_seeker) {
   const ros::Time stamp = simNow();
   if (options_.loop.mode == ClockMode::kLockstep) {
     rosgraph_msgs::Clock clock;
@@ -497,8 +511,13 @@ void WorldNode::publishObservations() {
       toObservationBatch(game_.world(), game_.hiderImages(), game_.rewards(), game_.done(), game_.outcomes());
   obs.header.stamp = stamp;
   obs.header.frame_id = options_.frame_id;
-  hider_obs_pub_.publish(obs);
-  publishSeekerObservations(obs.header, game_.done(), game_.seekerRewards(), game_.outcomes(), game_.seekerImages());
+  if (to_hider) hider_obs_pub_.publish(obs);
+  if (to_seeker) {
+    publishSeekerObservations(obs.header, game_.done(), game_.seekerRewards(), game_.outcomes(), game_.seekerImages());
+  } else {
+    game_.observationSent(ros::WallTime::now().toSec());
+    ++batches_published_;
+  }
 }
 
 void WorldNode::publishSeekerObservations() {

@@ -9,8 +9,9 @@ for the variant, else the random hider). The training parameters (output_dir, pp
 reach the agent that trains and no other: an agent that plays a policy, at random or by script
 shows none in rosparam. train.launch is loaded again with role:=seeker and with a seeker's checkpoint
 as the opponent (both given steps and checkpoint_interval), evaluate.launch with
-seeker_mode:=random, and basic.launch and play.launch with record:=true, whose world must wait for
-the recorder (one more listener of world/steps and world/episodes than without); and that a path
+seeker_mode:=random and with external sides, and basic.launch and play.launch with record:=true, whose world must wait for
+the recorder (one more listener of world/steps and world/episodes than without); policy:=external
+and seeker_mode:=external start no node for that side; and that a path
 argument starting with ~/ reaches its node under $HOME.
 Writes an xunit result. hideseek_world's package.xml declares the packages its launch files start
 (catkin_lint checks that); this checks that each named executable exists.
@@ -65,8 +66,10 @@ TRAINING_PARAMS = ("output_dir", "ppo_config", "num_arenas", "seed", "total_step
 # Other launch files loaded a second time, with these arguments.
 TRAINING_ARGS = ["steps:=128", "checkpoint_interval:=60"]
 EXTRA_LOADS = {"train.launch": [["role:=seeker"] + TRAINING_ARGS, ["opponent:=/tmp/seeker.pt"] + TRAINING_ARGS],
-               "evaluate.launch": [["seeker_mode:=random"]],
-               "basic.launch": [["record:=true"]], "play.launch": [["record:=true"]]}
+               "evaluate.launch": [["seeker_mode:=random"], ["policy:=external", "seeker_mode:=external"],
+                                   ["seeker_mode:=external", "seeker_decides:=step"]],
+               "basic.launch": [["record:=true"], ["policy:=external"], ["seeker_mode:=external"]],
+               "play.launch": [["record:=true"]]}
 
 
 # Loads whose path argument starts with ~/: the parameter a node reads is under $HOME, as a shell
@@ -111,6 +114,32 @@ def recording_problems(path, config, argv):
         ([] if plain else ["no world/step_listeners or world/episode_listeners parameters"])
 
 
+def external_problems(config, argv):
+    """policy:=external starts no hider node, seeker_mode:=external no seeker node: a node of one's
+    own plays that side. The world asks an external seeker when the scripted seeker would be asked
+    (seeker_decides game: learned_seeker false, no seeker images) or once a step, with its camera
+    (seeker_decides step), and an evaluator names it."""
+    argv = argv or []
+    problems = []
+    started = {n.name for n in config.nodes}
+    for side, argument in (("hider", "policy:=external"), ("seeker", "seeker_mode:=external")):
+        if argument in argv and side in started:
+            problems.append("%s starts a %s node" % (argument, side))
+    if "seeker_mode:=external" in argv:
+        step = "seeker_decides:=step" in argv
+        world = {k.rsplit("/", 1)[-1]: v.value for k, v in config.params.items()
+                 if k.rsplit("/", 2)[-2:-1] == ["world"]}
+        for key in ("learned_seeker", "seeker_images"):
+            if world.get(key) != step:
+                problems.append("seeker_mode:=external %s sets the world's %s to %s, not %s"
+                                % (" ".join(a for a in argv if a.startswith("seeker_decides")) or "(decides: game)",
+                                   key, world.get(key), step))
+        label = [v.value for k, v in config.params.items() if k.endswith("/evaluator/seeker")]
+        if label and not str(label[0]).startswith("external"):
+            problems.append("the evaluator names the external seeker '%s'" % label[0])
+    return problems
+
+
 def training_problems(config):
     """An agent node (hider, seeker) gets the training parameters if and only if its mode is train."""
     problems = []
@@ -152,6 +181,7 @@ def check(path, argv=None):
     problems += variant_problems(path, config)
     problems += training_problems(config)
     problems += recording_problems(path, config, argv)
+    problems += external_problems(config, argv)
     if argv is None:
         problems += home_problems(path)
     for node in config.nodes + config.tests:

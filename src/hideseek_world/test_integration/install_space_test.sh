@@ -6,6 +6,8 @@
 # 3. With only the prefix's setup.bash sourced (a clean environment: the checkout is on no path),
 #    basic.launch plays a lockstep game with the shipped policy to finished episodes while recording
 #    a bag, evaluate.launch evaluates the shipped basic policy, and replay.launch replays the bag.
+#    examples/cpp_hider, a package of one's own, builds on the prefix alone and, as an external
+#    hider, plays the shipped policy's episodes exactly.
 # 4. Every file those graphs open (strace) lies outside the checkout; a failure names each file.
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -104,6 +106,29 @@ case "$named" in
   *) failures+=("evaluate.launch's shipped policy is '$named', not a file of the prefix") ;;
 esac
 cat "$tmp/eval/evaluation.md" 2>/dev/null
+
+# A package of one's own on top of the prefix (examples/cpp_hider: a plain catkin CMakeLists that
+# names hideseek_hider and nothing of libtorch), built in a clean environment, then playing the
+# shipped basic policy through the library as an external hider: the same 4 episodes as above.
+say "examples/cpp_hider built on the prefix alone, then evaluated as policy:=external"
+mkdir -p "$tmp/mine/src"
+cp -a "$workspace/examples/cpp_hider" "$tmp/mine/src/my_hider"
+if ! env -i HOME="$HOME" PATH=/usr/bin:/bin LANG=C.UTF-8 bash -c "source '$prefix/setup.bash' && cd '$tmp/mine' && \
+    catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 -j$(nproc)" > "$tmp/mine.log" 2>&1; then
+  failures+=("examples/cpp_hider did not build on the prefix: $(grep -m 3 -E 'rror' "$tmp/mine.log" | tr '\n' ' ')")
+else
+  (cd "$tmp" && exec env -i HOME="$HOME" PATH=/usr/bin:/bin LANG=C.UTF-8 ROSCONSOLE_STDOUT_LINE_BUFFERED=1 \
+    ROS_MASTER_URI=http://localhost:$port bash -c "source '$tmp/mine/devel/setup.bash' && \
+    exec timeout 600 rosrun my_hider policy_hider_node") > "$tmp/my_hider.log" 2>&1 &
+  mine=$!
+  launch evaluate_mine 600 "" evaluate.launch variant:=basic policy:=external episodes:=4 output_dir:="$tmp/eval_mine"
+  kill $mine 2> /dev/null
+  wait $mine 2> /dev/null
+  cmp -s "$tmp/eval/episodes.csv" "$tmp/eval_mine/episodes.csv" ||
+    failures+=("examples/cpp_hider's episodes differ from the shipped policy's: $(tr '\n' ' ' < "$tmp/eval_mine/episodes.csv" 2>/dev/null) against $(tr '\n' ' ' < "$tmp/eval/episodes.csv") ($(grep -m 2 -E 'FATAL|ERROR' "$tmp/my_hider.log" | tr '\n' ' '))")
+  grep -m 1 "my_hider: playing" "$tmp/my_hider.log"
+  cat "$tmp/eval_mine/evaluation.md" 2>/dev/null
+fi
 
 bag=$(ls "$tmp"/bags/*.bag 2>/dev/null | head -n 1)
 if [ -z "$bag" ]; then

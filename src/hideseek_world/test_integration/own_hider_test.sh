@@ -2,7 +2,8 @@
 # A hider of your own: examples/hider_node.py, a rospy node, plays the hider that
 # evaluate.launch policy:=external leaves out, and is evaluated as a policy is: seeds 0.. in
 # lockstep, the table naming it "external". In lockstep the world advances only on an answer it
-# accepts, so six finished episodes are six episodes of the example's own actions.
+# accepts, so six finished episodes are six episodes of the example's own actions. Then a seeker
+# of your own, examples/seeker_node.py, with seeker_mode:=external, both ways it may decide.
 # usage: own_hider_test.sh XUNIT_OUTPUT
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -26,7 +27,33 @@ wait "$launch" "$hider" 2>/dev/null
 [ "$(tail -n +2 "$dir/episodes.csv" 2>/dev/null | cut -d, -f1 | sort -n | tr '\n' ' ')" = "0 1 2 3 4 5 " ] ||
   failures+=("the external hider's episodes are not seeds 0-5: $(tr '\n' ' ' < "$dir/episodes.csv" 2>/dev/null)")
 grep -q "Traceback" "$dir/hider.log" && failures+=("the example hider failed: $(tail -c 300 "$dir/hider.log")")
-write_xunit "$out" own_hider ExampleHiderNodeIsEvaluatedLikeAPolicy "${failures[@]}"
+
+# A seeker of your own: examples/seeker_node.py plays the seeker that seeker_mode:=external leaves
+# out, against the random hider, deciding when the scripted seeker would (every frame) and then
+# once a step. The table names it; every episode it ends is its own catch or the hider's survival.
+for decides in game step; do
+  eval_dir="$dir/seeker_$decides"
+  roslaunch -p "$port" hideseek_world evaluate.launch policy:=random seeker_mode:=external seeker_decides:=$decides \
+    episodes:=4 num_arenas:=2 output_dir:="$eval_dir" > "$dir/seeker_$decides.launch.log" 2>&1 &
+  launch=$!
+  for _ in $(seq 1 300); do rostopic list 2>/dev/null | grep -q /seeker/observations && break; sleep 0.2; done
+  /usr/bin/python3 "$(dirname "$example")/seeker_node.py" > "$dir/seeker_$decides.log" 2>&1 &
+  seeker=$!
+  for _ in $(seq 1 1500); do kill -0 "$launch" 2>/dev/null || break; sleep 0.2; done
+  kill "$launch" "$seeker" 2>/dev/null
+  wait "$launch" "$seeker" 2>/dev/null
+  row=$(tail -n 1 "$eval_dir/evaluation.csv" 2>/dev/null)
+  want="against the seeker external"
+  [ "$decides" = step ] && want="against the seeker external, deciding once a step"
+  case "$row" in
+    "basic,random $want,4,"*) ;;
+    *) failures+=("seeker_decides:=$decides: no evaluation of 4 episodes against the external seeker: '$row'") ;;
+  esac
+  grep -q "Traceback" "$dir/seeker_$decides.log" &&
+    failures+=("the example seeker failed: $(tail -c 300 "$dir/seeker_$decides.log")")
+  echo "seeker_decides:=$decides: $row"
+done
+write_xunit "$out" own_hider ExampleHiderAndSeekerNodesAreEvaluatedLikePolicies "${failures[@]}"
 printf 'failure: %s\n' "${failures[@]}"
 [ ${#failures[@]} -eq 0 ] && rm -rf "$dir"
 [ ${#failures[@]} -eq 0 ]

@@ -24,8 +24,10 @@ enum class ClockMode { kRealtime, kLockstep };
 
 enum class Player { kHider = 0, kSeeker = 1 };
 
-// What became of an offered action. kSupersededByReset: the answer to the step an arena awaited
-// when a reset restarted it (sent before the agent saw the reset); dropped, no fault of the agent.
+// What became of an offered action. kLate (realtime): an answer to a decision already taken,
+// without it, after stale_action_timeout. kSupersededByReset: the answer to the step an arena
+// awaited when a reset restarted it (sent before the agent saw the reset); dropped, no fault of
+// the agent.
 enum class Verdict { kAccepted, kInvalidAction, kWrongStep, kLate, kSupersededByReset };
 
 // A realtime decision's start: wait for answers, start with them, or start without some.
@@ -66,6 +68,9 @@ class DecisionScheduler {
   std::vector<Action> takeSeekerDecision();
   void finishDecision() { executing_ = false; }
   bool executing() const { return executing_; }
+  // The seeker's decision taken last has played its frames: its next one is due. Until then, in
+  // realtime, an answer to the decision already taken is late (not kept for the next one).
+  void finishSeekerDecision() { seeker_executing_ = false; }
 
   // Forgets the answers of `arena` (-1: all) after a reset; a realtime wait starts afresh.
   // `awaited[player * num_arenas + arena]`: the step id each arena awaited from each player (none
@@ -91,6 +96,7 @@ class DecisionScheduler {
   std::vector<std::optional<Action>> pending_;       // [player][arena]
   std::vector<std::optional<uint32_t>> superseded_;  // [player][arena]: the step id a reset left unanswered
   bool executing_ = false;
+  bool seeker_executing_ = false;        // realtime: the seeker's decision is taken and its frames play
   std::optional<double> waiting_since_;  // realtime: when the next decision could first have started
   double last_sent_ = 0.0;
 };

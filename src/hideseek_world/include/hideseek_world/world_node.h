@@ -89,7 +89,9 @@ class WorldNode {
   // The state half of world/steps' record of the decision about to be taken, when someone listens.
   void beginStepRecord();
   void publishAgentTransforms(const ros::Time& stamp);
-  void publishObservations();
+  // Both agents' observation batches of the decision due; a lockstep re-send goes only to the
+  // agent that has not answered.
+  void publishObservations(bool to_hider = true, bool to_seeker = true);
   // The seeker's observation alone: its later decisions inside a step.
   void publishSeekerObservations();
   void publishSeekerObservations(const std_msgs::Header& header, const std::vector<uint8_t>& done,
