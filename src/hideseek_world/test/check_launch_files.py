@@ -37,7 +37,7 @@ def undocumented_arguments(path):
             if a.get("value") is None and a.get("doc") is None]
 
 
-def variant_problems(path, config):
+def variant_problems(path, config, argv=None):
     """A variant's launch file (named for a config/variants file) plays that variant, and its hider
     plays the policy the run registry ships for it (`shipped`: else the random hider) by default."""
     package = rospkg.RosPack().get_path("hideseek_game")
@@ -54,7 +54,7 @@ def variant_problems(path, config):
     if files:
         problems.append("overrides the resolver with files: %s" % ", ".join(files))
     policy = [v.value for k, v in config.params.items() if k.endswith("/hider/policy")]
-    if policy != ["shipped"]:
+    if policy != ["shipped"] and not any(a.startswith("policy:=") for a in argv or []):
         problems.append("the hider's policy defaults to %s, not 'shipped' (the registry's shipped policy, else "
                         "the random hider)" % policy)
     return problems
@@ -178,7 +178,7 @@ def check(path, argv=None):
         loader.load(path, config, argv=argv or [], verbose=False)
     except Exception as e:  # roslaunch raises several unrelated exception types
         return ["does not load: %s" % e]
-    problems += variant_problems(path, config)
+    problems += variant_problems(path, config, argv)
     problems += training_problems(config)
     problems += recording_problems(path, config, argv)
     problems += external_problems(config, argv)
