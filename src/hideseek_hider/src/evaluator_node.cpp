@@ -48,8 +48,9 @@ EvaluatorOptions loadEvaluatorOptions(const ros::NodeHandle& pnh) {
         hideseek_game::readString(pnh, "network", "auto") == "gru" ? "gru" : "ff", played.game.name);
     if (o.policy.empty()) o.policy = "random";
   }
-  // random, a person (play.launch) and a node of one's own (policy:=external) have no greedy form.
-  if (o.policy != "random" && o.policy != "human" && o.policy != "external") {
+  // random, a person (play.launch), a node of one's own (policy:=external) and the scripted
+  // evaders (scripted/NAME, deterministic rules) have no greedy form.
+  if (o.policy != "random" && o.policy != "human" && o.policy != "external" && o.policy.rfind("scripted/", 0) != 0) {
     o.policy += hideseek_game::readBool(pnh, "greedy", true) ? " (greedy" : " (sampled";
     o.policy += hideseek_game::readBool(pnh, "memoryless", false) ? ", memoryless)" : ")";
   }
