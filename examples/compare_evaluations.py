@@ -40,9 +40,13 @@ def main(argv=None):
     a = p.parse_args(argv)
     paths = [episodes_csv(a.first), episodes_csv(a.second)]
     labels = a.labels or [os.path.basename(os.path.dirname(os.path.abspath(x))) for x in paths]
+    if labels[0] == labels[1]:
+        print("compare_evaluations: both are named %s: give them names with --labels" % labels[0], file=sys.stderr)
+        return 2
     try:
         living = [load_episodes(x)[0] for x in paths]
         by_seed = [evaluation_by_seed(x) for x in paths]
+        paired = st.paired_difference(by_seed[0], by_seed[1], st.keyed_rng(a.seed, "paired"), a.reps)
     except (OSError, ValueError) as e:
         print("compare_evaluations: %s" % e, file=sys.stderr)
         return 2
@@ -53,7 +57,7 @@ def main(argv=None):
               % (label, len(x), m, lo, hi, q, qlo, qhi))
     d, (lo, hi) = st.mean_difference(living[0], living[1], st.keyed_rng(a.seed, "difference"), a.reps)
     print("%s minus %s: %.1f [%.1f, %.1f] living steps (unpaired)" % (labels[0], labels[1], d, lo, hi))
-    d, (lo, hi), n = st.paired_difference(by_seed[0], by_seed[1], st.keyed_rng(a.seed, "paired"), a.reps)
+    d, (lo, hi), n = paired
     print("%s minus %s: %.1f [%.1f, %.1f] living steps (paired over the %d seeds both played)"
           % (labels[0], labels[1], d, lo, hi, n))
     p_better, (lo, hi) = st.probability_of_improvement(living[0], living[1], st.keyed_rng(a.seed, "poi"),

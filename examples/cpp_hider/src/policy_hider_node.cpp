@@ -9,6 +9,7 @@
 // own), then: roslaunch hideseek_world evaluate.launch policy:=external & rosrun my_hider policy_hider_node
 #include <hideseek_game/game_selection.h>
 #include <hideseek_game/package_paths.h>
+#include <hideseek_game/reply_cache.h>
 #include <hideseek_hider/checkpoint.h>
 #include <hideseek_hider/hider_policy.h>
 #include <hideseek_msgs/ActionBatch.h>
@@ -42,11 +43,16 @@ int main(int argc, char** argv) {
   std::string policy = pnh.param<std::string>("policy", "");
   const bool greedy = pnh.param("greedy", true);
   std::unique_ptr<hideseek_hider::NetworkHiderPolicy> hider;
+  hideseek_game::ReplyCache answered;  // a batch the world re-sends gets the same answer, not a new act()
   ros::Publisher actions = nh.advertise<hideseek_msgs::ActionBatch>("hider/actions", 2);
   auto on_batch = [&](const hideseek_msgs::ObservationBatch::ConstPtr& batch) {
     const size_t n = batch->num_arenas, image_bytes = size_t{batch->height} * batch->width * 3;
     if (batch->images.size() != n * image_bytes || batch->step.size() != n || batch->seed.size() != n) {
       ROS_WARN_THROTTLE(2.0, "my_hider: skipped a malformed batch");
+      return;
+    }
+    if (const hideseek_msgs::ActionBatch* again = answered.find(batch->header.stamp, batch->step, batch->seed)) {
+      actions.publish(*again);  // a GRU's state must not advance twice on one observation
       return;
     }
     std::vector<hideseek_hider::ArenaObservation> arenas(n);
@@ -73,6 +79,7 @@ int main(int argc, char** argv) {
       ros::shutdown();
       return;
     }
+    answered.keep(batch->header.stamp, batch->seed, reply);
     actions.publish(reply);
   };
   try {

@@ -264,5 +264,5 @@ def main():
 if __name__ == "__main__":
     try:
         main()
-    except ValueError as e:  # a recording the analysis cannot use (one class only, too few episodes): one line
+    except ha.UnusableRecording as e:  # a recording the analysis cannot use (a label with one class): one line
         raise SystemExit("report: %s" % e)

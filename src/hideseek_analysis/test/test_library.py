@@ -78,3 +78,25 @@ def test_the_example_compares_two_evaluations_as_their_files_say(tmp_path):
     r = subprocess.run([sys.executable, EXAMPLE, str(tmp_path / "nosuch"), a], capture_output=True, text=True,
                        timeout=120)
     assert r.returncode == 2 and "nosuch: no such file" in r.stderr
+
+
+def test_every_estimate_takes_an_integer_seed_and_draws_each_variant_on_its_own():
+    assert st.mean_over_runs([1.0, 2.0, 4.0], 0, 100)[0] == pytest.approx(7 / 3)
+    assert st.boot_runs({"a": [1.0, 2.0, 6.0]}, lambda d: d["a"].mean(), 0, 100)[0] == pytest.approx(3.0)
+    # Three variants of the same shape, shifted: had each its own generator from the same integer,
+    # every resample would keep their order and the interval would be [1, 1].
+    runs = [[np.arange(10.0) + shift] for shift in (0.0, 0.5, 1.0)]
+    rho, (lo, hi) = st.rank_correlation(runs, [1, 2, 3], 0, 300)
+    assert rho == pytest.approx(1.0) and lo < 1.0
+
+
+def test_the_example_refuses_two_evaluations_of_one_name(tmp_path):
+    for side in ("a", "b"):
+        (tmp_path / side / "eval").mkdir(parents=True)
+        write(tmp_path / side / "eval" / "episodes.csv", "seed,living_steps,outcome\n0,12,captured\n")
+    r = subprocess.run([sys.executable, EXAMPLE, str(tmp_path / "a" / "eval"), str(tmp_path / "b" / "eval")],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2 and "both are named eval: give them names with --labels" in r.stderr
+    r = subprocess.run([sys.executable, EXAMPLE, str(tmp_path / "a" / "eval"), str(tmp_path / "b" / "eval"),
+                        "--labels", "a", "b", "--reps", "50"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and "a minus b: 0.0" in r.stdout

@@ -93,6 +93,9 @@ void DecisionScheduler::reset(int arena, const std::vector<std::optional<uint32_
     }
   }
   waiting_since_.reset();
+  // A decision taken but not played (a reset between takeDecision and its first frame) is dropped:
+  // the answers to the next one are not late.
+  executing_ = seeker_executing_ = false;
 }
 
 }  // namespace hideseek_game

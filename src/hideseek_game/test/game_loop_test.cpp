@@ -210,7 +210,7 @@ TEST(GameLoop, RealtimeRefusesALateAnswerOfASeekerThatDecidesOnceAStep) {
   std::optional<Decision> d;
   while (!(d = game.playFrame())) ASSERT_FALSE(game.decisionDue());  // one decision for the whole step
   EXPECT_EQ(d->seeker[0], Action::kStay);
-  EXPECT_FALSE(game.decisionReady());  // nothing kept for step 1
+  EXPECT_FALSE(game.answered(Player::kSeeker, 0));  // nothing kept for step 1
   EXPECT_EQ(game.offer(Player::kSeeker, 0, 4, 1), Verdict::kAccepted);
 }
 

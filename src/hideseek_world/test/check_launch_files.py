@@ -135,8 +135,9 @@ def external_problems(config, argv):
                                 % (" ".join(a for a in argv if a.startswith("seeker_decides")) or "(decides: game)",
                                    key, world.get(key), step))
         label = [v.value for k, v in config.params.items() if k.endswith("/evaluator/seeker")]
-        if label and not str(label[0]).startswith("external"):
-            problems.append("the evaluator names the external seeker '%s'" % label[0])
+        if label and (not str(label[0]).startswith("external") or "," in str(label[0])):
+            problems.append("the evaluator names the external seeker '%s' (a name without a comma, which "
+                            "would split evaluation.csv's columns, starting with external)" % label[0])
     return problems
 
 

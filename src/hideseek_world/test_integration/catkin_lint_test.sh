@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # catkin_lint over every package of the workspace: no error and no warning (-W1).
-# usage: catkin_lint_test.sh SOURCE_DIR XUNIT_OUTPUT
+# usage: catkin_lint_test.sh SOURCE_DIR XUNIT_OUTPUT [PACKAGE_DIR ...]   (more packages: the examples)
 # Each problem becomes a failure message naming its package, file, line and text. catkin_lint's
 # note that it cannot load a rosdep database (Debian ships none offline) is not a problem of ours.
 set -uo pipefail
@@ -8,7 +8,7 @@ source "$(dirname "$0")/xunit.sh"
 src=$1
 out=$2
 failures=()
-report=$(PATH=/usr/bin:$PATH catkin_lint -W1 "$src" 2>&1)
+report=$(PATH=/usr/bin:$PATH catkin_lint -W1 "$src" "${@:3}" 2>&1)
 status=$?
 echo "$report"
 while IFS= read -r line; do

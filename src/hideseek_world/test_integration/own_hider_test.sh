@@ -44,9 +44,10 @@ for decides in game step; do
   wait "$launch" "$seeker" 2>/dev/null
   row=$(tail -n 1 "$eval_dir/evaluation.csv" 2>/dev/null)
   want="against the seeker external"
-  [ "$decides" = step ] && want="against the seeker external, deciding once a step"
+  [ "$decides" = step ] && want="against the seeker external (deciding once a step)"
   case "$row" in
-    "basic,random $want,4,"*) ;;
+    "basic,random $want,4,"*)  # and five columns, as the header has
+      [ "$(echo "$row" | tr -cd , | wc -c)" = 4 ] || failures+=("seeker_decides:=$decides: the row has other columns than the header: '$row'") ;;
     *) failures+=("seeker_decides:=$decides: no evaluation of 4 episodes against the external seeker: '$row'") ;;
   esac
   grep -q "Traceback" "$dir/seeker_$decides.log" &&

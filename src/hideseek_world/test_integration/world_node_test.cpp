@@ -295,6 +295,26 @@ TEST_F(WorldNodeTest, MalformedInputIsRejectedCountedAndTheWorldKeepsServing) {
       << counts["rejected_second_publisher"];
 }
 
+// In lockstep an unanswered step is re-sent after resend_period, to the agent that has not
+// answered only: the other's answer is in, and a second answer from it could arrive after the step
+// moved on, to be refused as a wrong step.
+TEST_F(WorldNodeTest, ALockstepReSendGoesOnlyToTheAgentThatHasNotAnswered) {
+  int hider_batches = 0, seeker_batches = 0;
+  auto hider_count = nh_.subscribe<hideseek_msgs::ObservationBatch>(
+      "hider/observations", 10, [&](const hideseek_msgs::ObservationBatch::ConstPtr&) { ++hider_batches; });
+  auto seeker_count = nh_.subscribe<hideseek_msgs::SeekerObservationBatch>(
+      "seeker/observations", 10, [&](const hideseek_msgs::SeekerObservationBatch::ConstPtr&) { ++seeker_batches; });
+  ASSERT_TRUE(waitFor([&] { return hider_count.getNumPublishers() > 0 && seeker_count.getNumPublishers() > 0; }, 5.0));
+  const auto step = hider_obs_;
+  seeker_pub_.publish(batch(0, seeker_obs_->step));  // the seeker answers the step; the hider stays silent
+  waitFor([] { return false; }, 0.3);                // what was already on its way arrives
+  hider_batches = seeker_batches = 0;
+  ASSERT_TRUE(waitFor([&] { return hider_batches >= 2; }, 10.0)) << "the silent hider's step was not re-sent";
+  EXPECT_EQ(seeker_batches, 0) << "the seeker, which had answered, was sent the step again";
+  EXPECT_EQ(hider_obs_->header.stamp, step->header.stamp) << "the step moved on without the hider";
+  ASSERT_TRUE(playStep(0, 0));  // and the game plays on once the hider answers
+}
+
 TEST_F(WorldNodeTest, AnAnswerOvertakenByAResetIsDroppedWithoutAWarning) {
   // world/reset restarts arena 0 while both agents' answers to its step are on the way: they are
   // expected, so they are dropped and counted apart, not as wrong steps (which would warn).

@@ -17,6 +17,10 @@ from sklearn.preprocessing import StandardScaler
 STATE_NAMES = ["S%d H%d O%d" % ((i >> 2) & 1, (i >> 1) & 1, i & 1) for i in range(8)]
 
 
+class UnusableRecording(ValueError):
+    """A recording the analysis cannot use as it is (a label with one class only): record more."""
+
+
 def probe(features, labels, groups, test_size=0.3, seed=0, splits=5):
     """Fits a logistic-regression probe on a train split and scores it on a test split, over
     `splits` random splits, and returns the mean scores with the spread of the balanced accuracy.
@@ -39,7 +43,7 @@ def probe(features, labels, groups, test_size=0.3, seed=0, splits=5):
     for train, test in GroupShuffleSplit(n_splits=splits, test_size=test_size, random_state=seed).split(
             features, labels, groups):
         if len(np.unique(labels[train])) < 2:
-            raise ValueError("probe: the train split holds one class only; record more episodes")
+            raise UnusableRecording("probe: the train split holds one class only; record more episodes")
         # Classes weighted by their inverse frequency: in a policy's own games one class can be rare
         # (a hider that is almost always in the seeker's view), and an unweighted fit would mostly
         # learn the prior. Balanced accuracy is then the score to read.

@@ -31,7 +31,8 @@ def as_runs(runs, name="runs"):
     """A sample as the functions below take it: a list of per-run arrays of episode scores. One run
     may be given as a plain sequence of numbers (an evaluation of one policy); a run without
     episodes is refused, naming it."""
-    if len(runs) and np.ndim(runs[0]) == 0:
+    runs = list(runs)
+    if runs and np.ndim(runs[0]) == 0:
         runs = [runs]
     out = [np.asarray(r, dtype=np.float64) for r in runs]
     if not out:
@@ -79,6 +80,7 @@ def pooled_statistic(runs, statistic, rng, reps=BOOTSTRAP):
     """(point estimate, (low, high)) of `statistic` over the pooled episodes of `runs`, with the
     two-level bootstrap interval."""
     runs = as_runs(runs)
+    rng = generator(rng)
     point = statistic(np.concatenate(runs))
     boot = [statistic(np.concatenate(s)) for s in two_level_samples(runs, rng, reps)]
     return point, interval(boot)
@@ -92,7 +94,7 @@ def performance_profile(runs, taus, rng, reps=BOOTSTRAP):
     def profile(x):
         return (x[None, :] > taus[:, None]).mean(axis=1)
 
-    runs = as_runs(runs)
+    runs, rng = as_runs(runs), generator(rng)
     point = profile(np.concatenate(runs))
     boot = np.array([profile(np.concatenate(s)) for s in two_level_samples(runs, rng, reps)])
     lo, hi = np.percentile(boot, [50 * (1 - CONFIDENCE), 100 - 50 * (1 - CONFIDENCE)], axis=0)
@@ -160,6 +162,7 @@ def rank_correlation(runs_by_variant, reference, rng, reps=BOOTSTRAP):
     """Spearman's rho between the variants' mean scores (pooled episodes) and `reference` (the
     paper's figures, same order), with a two-level bootstrap interval (each variant resampled on its
     own). Returns (rho, (lo, hi))."""
+    rng = generator(rng)  # one generator for every variant's sampler (an integer would give each the same draws)
     point = stats.spearmanr([np.mean(np.concatenate(r)) for r in runs_by_variant], reference)[0]
     generators = [two_level_samples(r, rng, reps) for r in runs_by_variant]
     boot = []
@@ -176,6 +179,7 @@ def boot_runs(per_variant, stat, rng, reps=BOOTSTRAP):
     """A statistic of per-variant lists of per-run values, with its bootstrap interval: each variant's
     runs resampled on their own. per_variant: {variant: [value per run]}; stat: dict -> number. With
     one run of a variant there is no interval over seeds: (point, (nan, nan))."""
+    rng = generator(rng)
     point = stat({v: np.asarray(x, dtype=float) for v, x in per_variant.items()})
     if min(len(x) for x in per_variant.values()) < 2:
         return float(point), (np.nan, np.nan)
@@ -188,7 +192,7 @@ def boot_runs(per_variant, stat, rng, reps=BOOTSTRAP):
 
 def mean_over_runs(values, rng, reps=BOOTSTRAP):
     """The mean of per-run values and its bootstrap interval over runs ((nan, nan) with one run)."""
-    values = np.asarray(values, dtype=float)
+    values, rng = np.asarray(values, dtype=float), generator(rng)
     if len(values) < 2:
         return float(values.mean()), (np.nan, np.nan)
     boot = [values[rng.integers(0, len(values), len(values))].mean() for _ in range(reps)]
