@@ -10,7 +10,9 @@ that file itself, of one policy each, evaluated on the same seeds:
     /usr/bin/python3 examples/compare_evaluations.py /tmp/cmp/shipped /tmp/cmp/flee --out /tmp/cmp
 
 It prints each side's mean and interquartile mean of living steps with 95 % bootstrap intervals,
-the difference of the means (unpaired, and paired by evaluation seed) and the probability that an
+the difference of the means (unpaired, and paired by evaluation seed: where the two played other
+variants, as their evaluation.csv files say, it notes that a seed pairs like starts only on one
+map) and the probability that an
 episode of the first lives longer than one of the second, and draws their performance profiles.
 With one run (one trained policy) a side, every interval covers the evaluation episodes only, not
 the spread between training seeds: for that, evaluate several runs of each and pass stats.* a list
@@ -22,11 +24,17 @@ import sys
 
 from hideseek_analysis import stats as st
 from hideseek_analysis.figures import performance_profile
-from hideseek_analysis.runs import evaluation_by_seed, load_episodes
+from hideseek_analysis.runs import evaluation_by_seed, load_episodes, read_csv
 
 
 def episodes_csv(path):
     return os.path.join(path, "episodes.csv") if os.path.isdir(path) else path
+
+
+def variant_of(episodes):
+    """The variant evaluate.launch names in the evaluation.csv beside `episodes`, or None."""
+    rows = read_csv(os.path.join(os.path.dirname(os.path.abspath(episodes)), "evaluation.csv"))
+    return rows[-1].get("variant") if rows else None
 
 
 def main(argv=None):
@@ -60,6 +68,11 @@ def main(argv=None):
     d, (lo, hi), n = paired
     print("%s minus %s: %.1f [%.1f, %.1f] living steps (paired over the %d seeds both played)"
           % (labels[0], labels[1], d, lo, hi, n))
+    variants = [variant_of(x) for x in paths]
+    if None not in variants and variants[0] != variants[1]:
+        # A seed draws its variant's layout and spawns: on two maps one seed is two other starts.
+        print("  (%s and %s are other variants: a seed pairs like starts only where both play one map)"
+              % tuple(variants))
     p_better, (lo, hi) = st.probability_of_improvement(living[0], living[1], st.keyed_rng(a.seed, "poi"),
                                                        a.reps)["episodes"]
     print("P(an episode of %s lives longer than one of %s) = %.2f [%.2f, %.2f]" % (labels[0], labels[1],

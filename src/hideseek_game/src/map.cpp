@@ -1,5 +1,6 @@
 #include "hideseek_game/map.h"
 
+#include <filesystem>
 #include <sstream>
 
 #include "hideseek_game/yaml_fields.h"
@@ -26,8 +27,18 @@ MapSpec readMapFile(const std::string& path) {
     for (size_t i = 0; i < obstacles.size(); ++i) {
       const std::string name = "obstacles[" + std::to_string(i) + "]";
       YamlFields b(obstacles[i], path, name);
-      if (!b.has("center")) throw ConfigError(path, name + ".center", "is required");
-      if (!b.has("size")) throw ConfigError(path, name + ".size", "is required");
+      for (const char* key : {"center", "size"}) {
+        if (!b.has(key)) {
+          // A misspelt key ("centre") is the likelier cause: say it beside the missing one.
+          std::string unknown;
+          for (const auto& kv : obstacles[i]) {
+            const std::string k = kv.first.as<std::string>();
+            if (k != "center" && k != "size" && k != "yaw" && k != "height" && k != "wall") unknown += " '" + k + "'";
+          }
+          throw ConfigError(path, name + "." + key,
+                            "is required" + (unknown.empty() ? "" : " (the box has an unknown field" + unknown + ")"));
+        }
+      }
       // Ranges in units of the arena: a centre within three half-extents of the middle, sides from
       // kMinObstacleSide up to the arena's width twice over; then the box must overlap the arena.
       const double h = spec.half_extent;
@@ -110,6 +121,11 @@ MapSpec readMapFile(const std::string& path) {
 }  // namespace
 
 MapSpec loadMapFile(const std::string& path) {
+  if (!std::filesystem::exists(path)) {
+    throw ConfigError(path, "<file>",
+                      "no such file (a variant file's relative map name is taken from its game's maps folder; "
+                      "give a map of your own by its absolute path)");
+  }
   try {
     return readMapFile(path);
   } catch (const YAML::Exception& e) {  // what the fields' checks did not foresee still names the file

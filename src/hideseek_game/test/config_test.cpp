@@ -138,7 +138,11 @@ TEST(BadConfig, ErrorsNameTheFileAndTheField) {
   const std::string inside =
       writeTemp("inside.yaml", "name: m\nobstacles:\n  - {center: [0, 0], size: [2, 2]}\nwaypoints: [[0.5, 0]]\n");
   EXPECT_NE(errorOf([&] { loadMapFile(inside); }).find("'waypoints[0]': lies inside an obstacle"), std::string::npos);
-  EXPECT_NE(errorOf([&] { loadMapFile("/nonexistent/map.yaml"); }).find("/nonexistent/map.yaml"), std::string::npos);
+  const std::string missing = errorOf([&] { loadMapFile("/nonexistent/map.yaml"); });
+  EXPECT_NE(missing.find("/nonexistent/map.yaml: field '<file>': no such file (a variant file's relative map name is "
+                         "taken from its game's maps folder"),
+            std::string::npos)
+      << missing;
   const std::string syntax = writeTemp("syntax.yaml", "name: [unclosed\n");
   EXPECT_NE(errorOf([&] { loadMapFile(syntax); }).find("not valid YAML"), std::string::npos);
 }
@@ -171,6 +175,11 @@ TEST(BadConfig, MapVectorsAreCheckedLikeScalarsAndObstaclesMustMeetTheArena) {
       << e;
   e = refusal("corner.yaml", "  - {center: [8.3, 8.3], size: [2, 2], yaw: 0.785398}\n", "[[1, 1]]");
   EXPECT_NE(e.find("field 'obstacles[0]': lies wholly outside"), std::string::npos) << e;
+  // A misspelt key: the missing field is named, and the unknown one beside it.
+  e = refusal("centre.yaml", "  - {centre: [3, 3], size: [1, 1]}\n", "[[1, 1]]");
+  EXPECT_NE(e.find("field 'obstacles[0].center': is required (the box has an unknown field 'centre')"),
+            std::string::npos)
+      << e;
   e = refusal("nan_waypoint.yaml", box, "[[.nan, 1]]");
   EXPECT_NE(e.find("field 'waypoints[0]': must hold two numbers in [-7, 7], got [nan, 1]"), std::string::npos) << e;
   // A generator whose largest draw could cover more than half the floor.
