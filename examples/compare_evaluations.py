@@ -48,15 +48,15 @@ def main(argv=None):
     a = p.parse_args(argv)
     paths = [episodes_csv(a.first), episodes_csv(a.second)]
     labels = a.labels or [os.path.basename(os.path.dirname(os.path.abspath(x))) for x in paths]
-    if labels[0] == labels[1]:
-        print("compare_evaluations: both are named %s: give them names with --labels" % labels[0], file=sys.stderr)
-        return 2
     try:
         living = [load_episodes(x)[0] for x in paths]
         by_seed = [evaluation_by_seed(x) for x in paths]
         paired = st.paired_difference(by_seed[0], by_seed[1], st.keyed_rng(a.seed, "paired"), a.reps)
     except (OSError, ValueError) as e:
         print("compare_evaluations: %s" % e, file=sys.stderr)
+        return 2
+    if labels[0] == labels[1]:
+        print("compare_evaluations: both are named %s: give them names with --labels" % labels[0], file=sys.stderr)
         return 2
     for label, x in zip(labels, living):
         m, (lo, hi) = st.pooled_statistic(x, st.mean, st.keyed_rng(a.seed, "mean", label), a.reps)
@@ -71,8 +71,8 @@ def main(argv=None):
     variants = [variant_of(x) for x in paths]
     if None not in variants and variants[0] != variants[1]:
         # A seed draws its variant's layout and spawns: on two maps one seed is two other starts.
-        print("  (%s and %s are other variants: a seed pairs like starts only where both play one map)"
-              % tuple(variants))
+        print("  (%s and %s are other variants: a seed is the same start only where both play one map;"
+              " otherwise the pairing pairs nothing)" % tuple(variants))
     p_better, (lo, hi) = st.probability_of_improvement(living[0], living[1], st.keyed_rng(a.seed, "poi"),
                                                        a.reps)["episodes"]
     print("P(an episode of %s lives longer than one of %s) = %.2f [%.2f, %.2f]" % (labels[0], labels[1],

@@ -97,6 +97,10 @@ def test_the_example_refuses_two_evaluations_of_one_name(tmp_path):
     r = subprocess.run([sys.executable, EXAMPLE, str(tmp_path / "a" / "eval"), str(tmp_path / "b" / "eval")],
                        capture_output=True, text=True, timeout=120)
     assert r.returncode == 2 and "both are named eval: give them names with --labels" in r.stderr
+    # Two folders that do not exist: that is said first, whatever their names.
+    r = subprocess.run([sys.executable, EXAMPLE, str(tmp_path / "c" / "shipped"), str(tmp_path / "c" / "flee")],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2 and "shipped: no such file" in r.stderr
     r = subprocess.run([sys.executable, EXAMPLE, str(tmp_path / "a" / "eval"), str(tmp_path / "b" / "eval"),
                         "--labels", "a", "b", "--reps", "50"], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0 and "a minus b: 0.0" in r.stdout

@@ -121,7 +121,8 @@ MapSpec readMapFile(const std::string& path) {
 }  // namespace
 
 MapSpec loadMapFile(const std::string& path) {
-  if (!std::filesystem::exists(path)) {
+  std::error_code unreadable;  // a folder that cannot be searched: left to the reader's own message
+  if (!std::filesystem::exists(path, unreadable) && !unreadable) {
     throw ConfigError(path, "<file>",
                       "no such file (a variant file's relative map name is taken from its game's maps folder; "
                       "give a map of your own by its absolute path)");
