@@ -432,12 +432,13 @@ void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
     }
     // Re-sent only to the agent that has not answered every arena: the other's answer is in, and a
     // second one could arrive after the step moved on (a wrong step, no fault of that agent).
-    int unanswered[2] = {0, 0};
-    for (int i = 0; i < options_.loop.num_arenas; ++i) {
-      for (const Player p : {Player::kHider, Player::kSeeker}) unanswered[static_cast<int>(p)] += !game_.answered(p, i);
-    }
-    auto status = [&](const AgentChannel& c) {
-      const int left = unanswered[static_cast<int>(c.player)];
+    auto unanswered = [&](const AgentChannel& c) {
+      int left = 0;
+      for (int i = 0; i < options_.loop.num_arenas; ++i) left += !game_.answered(c.player, i);
+      return left;
+    };
+    const int hider_left = unanswered(hider_), seeker_left = unanswered(seeker_);
+    auto status = [&](const AgentChannel& c, int left) {
       return c.name + (c.owner.empty() ? " (no publisher)" : " (" + c.owner + ")") +
              (left ? ": " + std::to_string(left) + " of " + std::to_string(options_.loop.num_arenas) +
                          " arenas unanswered"
@@ -447,12 +448,11 @@ void WorldNode::onWatchdog(const ros::WallTimerEvent&) {
     if (throttle.ready()) {
       ROS_WARN(
           "world: waiting %.1f s for step answers, %s; %s; re-sending the step to %s (%lu more like it since the last)",
-          game_.sinceSent(now.toSec()), status(hider_).c_str(), status(seeker_).c_str(),
-          unanswered[0] && unanswered[1] ? "both" : (unanswered[0] ? hider_ : seeker_).name.c_str(),
+          game_.sinceSent(now.toSec()), status(hider_, hider_left).c_str(), status(seeker_, seeker_left).c_str(),
+          hider_left && seeker_left ? "both" : (hider_left ? hider_ : seeker_).name.c_str(),
           static_cast<unsigned long>(throttle.suppressed()));
     }
-    publishObservations(unanswered[static_cast<int>(Player::kHider)] > 0,
-                        unanswered[static_cast<int>(Player::kSeeker)] > 0);
+    publishObservations(hider_left > 0, seeker_left > 0);
   }
 }
 
@@ -507,13 +507,17 @@ void WorldNode::publishObservations(bool to_hider, bool to_seeker) {
     clock.clock = stamp;
     clock_pub_.publish(clock);
   }
-  hideseek_msgs::ObservationBatch obs =
-      toObservationBatch(game_.world(), game_.hiderImages(), game_.rewards(), game_.done(), game_.outcomes());
-  obs.header.stamp = stamp;
-  obs.header.frame_id = options_.frame_id;
-  if (to_hider) hider_obs_pub_.publish(obs);
+  std_msgs::Header header;
+  header.stamp = stamp;
+  header.frame_id = options_.frame_id;
+  if (to_hider) {  // the batch, every arena's image in it, is built only to be sent
+    hideseek_msgs::ObservationBatch obs =
+        toObservationBatch(game_.world(), game_.hiderImages(), game_.rewards(), game_.done(), game_.outcomes());
+    obs.header = header;
+    hider_obs_pub_.publish(obs);
+  }
   if (to_seeker) {
-    publishSeekerObservations(obs.header, game_.done(), game_.seekerRewards(), game_.outcomes(), game_.seekerImages());
+    publishSeekerObservations(header, game_.done(), game_.seekerRewards(), game_.outcomes(), game_.seekerImages());
   } else {
     game_.observationSent(ros::WallTime::now().toSec());
     ++batches_published_;
