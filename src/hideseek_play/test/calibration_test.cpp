@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <set>
@@ -240,6 +241,74 @@ TEST(Orbit, GameV2sSeekerLetsATightOrbitSurvive) {
   int survived = 0;
   for (const auto& e : playOrbitAngles(v2, OrbitShape{3}, 12)) survived += e.survived;
   EXPECT_GT(survived, 0) << "game v2's seeker caught the k = 3 orbit from all 12 start angles";
+}
+
+}  // namespace hideseek_play
+
+// The scripted seeker's stalls (docs/calibration.md, "The scripted seeker's stalls"). The seeker
+// drops only its path's next point once within reach of it; a point it passed further off stays
+// first on its path and, whenever the later points are out of straight sight, becomes its target
+// again. Game v3's wandering seeker, which turns while it moves, then circles a point inside its
+// turning circle on the spot for the rest of the episode (seed 46 of stochasticseeker against
+// scripted/hide), and a hider that is nowhere near survives. seeker.path_following: forward never
+// heads back to a point before one it has reached or had in sight; games v1-v3 keep next_point, so
+// that what was trained and recorded on them replays.
+namespace hideseek_play {
+namespace {
+
+// stalled_at: the first step of a window of `window` steps in which the seeker never sees the hider
+// and moves less than `still` metres along either axis (a stall), or -1.
+struct StallScan {
+  int stalled_at = -1;
+};
+
+StallScan scanForStall(const hideseek_game::VariantConfig& v, uint32_t seed, int window = 200, double still = 0.05) {
+  const auto map = std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(v.map_file));
+  std::vector<ScriptedStep> steps;
+  playScriptedHider(v, map, EvaderKind::kHide, seed, 1, [&](const ScriptedStep& s) { steps.push_back(s); });
+  StallScan scan;
+  for (size_t i = 0; i + window < steps.size() && scan.stalled_at < 0; ++i) {
+    double min_x = 1e9, max_x = -1e9, min_y = 1e9, max_y = -1e9;
+    bool seen = false;
+    for (size_t j = i; j <= i + window; ++j) {
+      const auto& p = steps[j].seeker.position;
+      min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
+      min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
+      seen = seen || steps[j].labels.seeker_sees_hider;
+    }
+    if (!seen && max_x - min_x < still && max_y - min_y < still) scan.stalled_at = steps[i].step;
+  }
+  return scan;
+}
+
+}  // namespace
+
+TEST(SeekerStall, GameV3sWanderingSeekerCirclesAPassedPathPointUnlessItFollowsItsPathForward) {
+  auto v = gameVariant("v3", "stochasticseeker");
+  ASSERT_EQ(v.game.seeker_path_following, hideseek_game::SeekerPathFollowing::kNextPoint)
+      << "game v3 must replay as it was trained";
+  const StallScan before = scanForStall(v, 46);
+  EXPECT_GE(before.stalled_at, 0) << "seed 46 no longer stalls in game v3: the game changed, or this seed "
+                                     "no longer shows the stall and the test needs another";
+  v.game.seeker_path_following = hideseek_game::SeekerPathFollowing::kForward;
+  const StallScan after = scanForStall(v, 46);
+  EXPECT_LT(after.stalled_at, 0) << "the seeker stands still from step " << after.stalled_at
+                                 << " although it follows its path forward";
+}
+
+// The other face of the same rule: the patrolling seeker on a maze passes round a wall's end within
+// reach of a later path point but not of the first, which stays its target once the later ones
+// are out of sight, behind the wall it has just gone round: it drives against that wall for the
+// rest of the episode (seed 8 of scripted/hide from step 119).
+TEST(SeekerStall, GameV3sPatrollingSeekerPressesAgainstAWallOnAMazeUnlessItFollowsItsPathForward) {
+  auto v = gameVariant("v3", "basic");
+  v.map_file = std::string(HIDESEEK_TEST_DATA_DIR) + "/serpentine_map.yaml";
+  const StallScan before = scanForStall(v, 8);
+  EXPECT_GE(before.stalled_at, 0) << "seed 8 no longer stalls on the maze in game v3";
+  v.game.seeker_path_following = hideseek_game::SeekerPathFollowing::kForward;
+  const StallScan after = scanForStall(v, 8);
+  EXPECT_LT(after.stalled_at, 0) << "the seeker stands still from step " << after.stalled_at
+                                 << " although it follows its path forward";
 }
 
 }  // namespace hideseek_play

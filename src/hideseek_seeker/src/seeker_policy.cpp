@@ -1,6 +1,7 @@
 #include "hideseek_seeker/seeker_policy.h"
 
 #include <cmath>
+#include <cstddef>
 
 namespace hideseek_seeker {
 
@@ -15,6 +16,7 @@ SeekerOptions seekerOptionsFor(const hideseek_game::VariantConfig& variant, doub
   o.turn_per_step = variant.game.seeker.turn_rate * variant.game.physics_dt * variant.game.seeker_decision_frames;
   o.turn_while_moving = variant.game.seeker_steering == hideseek_game::SeekerSteering::kTurnWhileMoving;
   o.move_angle = variant.game.seeker_move_angle;
+  o.path_following = variant.game.seeker_path_following;
   o.grid_resolution = grid_resolution;
   return o;
 }
@@ -137,10 +139,24 @@ Action SeekerPolicy::decide(const SeekerPerception& p) {
     }
   }
   // Follow the path: drop reached points, then head for the farthest one in straight sight.
-  while (path_.size() > 1 && distance(here, path_.front()) <= 0.5 * options_.goal_tolerance) path_.erase(path_.begin());
+  const double reach = 0.5 * options_.goal_tolerance;
+  const bool forward = options_.path_following == hideseek_game::SeekerPathFollowing::kForward;
+  if (forward) {
+    size_t passed = 0;  // every point up to the last one within reach; the goal, last, stays
+    for (size_t i = 0; i + 1 < path_.size(); ++i) {
+      if (distance(here, path_[i]) <= reach) passed = i + 1;
+    }
+    path_.erase(path_.begin(), path_.begin() + static_cast<std::ptrdiff_t>(passed));
+  } else {
+    while (path_.size() > 1 && distance(here, path_.front()) <= reach) path_.erase(path_.begin());
+  }
   if (path_.empty()) return Action::kStay;
   size_t target = 0;
   while (target + 1 < path_.size() && planner_->lineOfSight(here, path_[target + 1])) ++target;
+  if (forward) {  // the points before one in sight are passed: the seeker does not come back for them
+    path_.erase(path_.begin(), path_.begin() + static_cast<std::ptrdiff_t>(target));
+    target = 0;
+  }
   return steerTowards(p.pose, path_[target]);
 }
 

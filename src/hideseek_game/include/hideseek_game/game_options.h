@@ -40,6 +40,13 @@ enum class SeekerSteering {
                      // when its target lies within move_angle of its heading
 };
 
+// How the scripted seeker follows its planned path (docs/calibration.md, "The scripted seeker's stalls").
+enum class SeekerPathFollowing {
+  kNextPoint,  // games v1-v3: the path's next point is dropped once within reach; a point passed further
+               // off stays first and becomes the target again whenever the later ones are out of sight
+  kForward,    // it never heads back to a point before one it has come within reach of or had in sight
+};
+
 struct CameraOptions {
   int width{};
   int height{};
@@ -84,6 +91,7 @@ struct GameOptions {
   bool seeker_knows_spawn{};
   SeekerSteering seeker_steering{};
   double seeker_move_angle{};  // rad, turn-while-moving steering: the target's bearing within which it moves
+  SeekerPathFollowing seeker_path_following{};
   CameraOptions camera;
   RewardOptions rewards;
   RewardOptions seeker_rewards;  // a learning seeker's (the seeker node's train mode); the scripted one has none

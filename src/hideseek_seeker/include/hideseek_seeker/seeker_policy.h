@@ -35,6 +35,13 @@ struct SeekerOptions {
   // (Action::kForwardLeft, kForwardRight); games v1 and v2 turn on the spot.
   bool turn_while_moving = false;
   double move_angle = 0.0;  // rad
+  // kNextPoint (games v1-v3): the path's next point is dropped once within half goal_tolerance, and
+  // the seeker heads for the farthest point in straight sight. A point it passed further off stays
+  // first on the path and is its target again whenever the later points drop out of sight (a 3 cm
+  // step can do it): the seeker may then circle it on the spot, or drive against the wall it has
+  // just gone round, for the rest of an episode. kForward: a point within reach, or one in straight
+  // sight, is the seeker's progress; it never heads back to a point before it.
+  hideseek_game::SeekerPathFollowing path_following = hideseek_game::SeekerPathFollowing::kNextPoint;
 };
 
 // The seeker of a variant, as the seeker node builds it: its policy type, radius and turn from the
