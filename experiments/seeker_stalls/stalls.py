@@ -7,12 +7,14 @@ Only an episode with 200 consecutive steps unseen can show one (its "chances"). 
 prints where it starts, how far the seeker stands from the nearest obstacle footprint or the
 arena's wall (from the CSV's _layouts.yaml files), and how much it turns per step meanwhile.
 
-usage: stalls.py STEPS.csv [STEPS.csv ...]   (each with STEPS_layouts.yaml beside it)
+usage: stalls.py STEPS.csv [STEPS.csv ...]   (each with STEPS_layouts.yaml beside it; NAME_a.csv and
+NAME_b.csv, a play's two halves, are counted together as NAME)
 """
 import collections
 import csv
 import math
 import os
+import re
 import sys
 
 import yaml
@@ -41,9 +43,20 @@ def episodes(path):
     return rows, layouts
 
 
-def main(paths):
+def grouped(paths):
+    """NAME_a.csv and NAME_b.csv as one play NAME: its episodes and layouts, by seed."""
+    groups = collections.OrderedDict()
     for path in paths:
+        name = re.sub(r"_[ab]$", "", os.path.splitext(os.path.basename(path))[0])
         rows, layouts = episodes(path)
+        g = groups.setdefault(name, ({}, {}))
+        g[0].update(rows)
+        g[1].update(layouts)
+    return groups
+
+
+def main(paths):
+    for name, (rows, layouts) in grouped(paths).items():
         chances = survived = 0
         stalls = []
         for seed, rs in sorted(rows.items()):
@@ -66,8 +79,8 @@ def main(paths):
                                                   sum(turned(a, b) for a, b in zip(w, w[1:])) / WINDOW,
                                                   rs[-1]["outcome"]))
                 break
-        print("%s: %d episodes, %d survived, %d could show a stall, %d stalled" % (
-            os.path.basename(path), len(rows), survived, chances, len(stalls)))
+        print("%s: %d episodes, %.2f living steps, %d survived, %d could show a stall, %d stalled" % (
+            name, len(rows), sum(len(rs) for rs in rows.values()) / len(rows), survived, chances, len(stalls)))
         for s in stalls:
             print("  " + s)
 
