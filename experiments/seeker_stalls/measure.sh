@@ -1,53 +1,73 @@
 #!/usr/bin/env bash
-# The scripted seeker's stalls on every shipped variant of both games, evaluation seeds 0-99:
-# the random hider and scripted/hide, and the shipped policies of v3's wandering-seeker variants.
-# usage: measure.sh OUT_DIR [--forward]   (after `source devel/setup.bash`; about 20 min on 2 cores).
-# With --forward every variant plays with seeker.path_following: forward (docs/calibration.md, "The
-# scripted seeker's stalls"), through variant files of its own written to OUT_DIR/variants/.
+# The scripted seeker's stalls (docs/calibration.md, "The scripted seeker's stalls"): every shipped
+# variant of both games against the random hider and scripted/hide, the shipped policies of v3's
+# wandering-seeker variants, and a serpentine maze (game v3, basic's rules, scripted/hide, 32 seeds).
+# usage: measure.sh OUT_DIR [--no-backtrack] [--validation]   (after `source devel/setup.bash`;
+# about 20 min on 2 cores)
+#   --no-backtrack  every game plays with seeker.path_following: no_backtrack, through variant files
+#                   of its own written to OUT_DIR/variants/
+#   --validation    the validation seeds 1000-1099 (the maze: 1000-1031) instead of 0-99 (0-31)
+#   GAMES="v3" VARIANTS="stochasticseeker ..." (environment) narrow the plays to those games and variants
 set -euo pipefail
-out=$1
-forward=${2:-}
-if [[ -n "$forward" && "$forward" != --forward ]]; then
-  echo "measure.sh: the second argument is --forward or nothing, got '$forward'" >&2
+shopt -s inherit_errexit
+usage() {
+  echo "usage: measure.sh OUT_DIR [--no-backtrack] [--validation]: $1" >&2
   exit 2
-fi
+}
+[[ $# -ge 1 ]] || usage "no output folder"
+out=$1
+shift
+no_backtrack=false
+first=0
+for arg in "$@"; do
+  case "$arg" in
+    --no-backtrack) no_backtrack=true ;;
+    --validation) first=1000 ;;
+    *) usage "unknown argument '$arg'" ;;
+  esac
+done
 here=$(cd "$(dirname "$0")" && pwd)
 config="$here/../../config"
 registry="$here/../../src/hideseek_analysis/scripts/hideseek_registry.py"
-mkdir -p "$out"
-variant_args() {  # GAME VARIANT: the play_episodes arguments that choose the variant
-  if [[ -z "$forward" ]]; then
-    echo "--variant $2"
-    return
-  fi
-  local file="$out/variants/$2.yaml"
-  mkdir -p "$(dirname "$file")"
-  /usr/bin/python3 - "$config/variants/$2.yaml" "$file" <<'PY'
+games=${GAMES:-v2 v3}
+variants=${VARIANTS:-$("$registry" variants)}
+mkdir -p "$out/variants"
+# A variant file of its own: SOURCE plus, with --no-backtrack, the setting; MAP replaces its map.
+own_variant() {  # SOURCE NAME [MAP]
+  /usr/bin/python3 - "$1" "$out/variants/$2.yaml" "$no_backtrack" "${3:-}" <<'PY'
 import sys
 import yaml
 variant = yaml.safe_load(open(sys.argv[1]))
-variant.setdefault("seeker", {})["path_following"] = "forward"
+if sys.argv[3] == "true":
+    variant.setdefault("seeker", {})["path_following"] = "no_backtrack"
+if sys.argv[4]:
+    variant["map"] = sys.argv[4]
 yaml.safe_dump(variant, open(sys.argv[2], "w"), sort_keys=False)
 PY
-  echo "--variant $2 --variant-config $file"
 }
-play() {  # GAME VARIANT POLICY NAME: seeds 0-99 in two calls (play_episodes takes 64 at most)
-  local args
-  args=$(variant_args "$1" "$2")
-  # shellcheck disable=SC2086
-  rosrun hideseek_play play_episodes --game "$1" $args --policy "$3" --first-seed 0 --count 64 \
+for variant in $variants; do own_variant "$config/variants/$variant.yaml" "$variant"; done
+own_variant "$config/variants/basic.yaml" maze "$(cd "$here/../.." && pwd)/src/hideseek_play/test/data/serpentine_map.yaml"
+play() {  # GAME VARIANT POLICY NAME [COUNT]: in two calls of at most 64 episodes
+  local count=${5:-100}
+  local args=(--game "$1" --variant "$2" --variant-config "$out/variants/$2.yaml" --policy "$3")
+  rosrun hideseek_play play_episodes "${args[@]}" --first-seed "$first" --count $((count < 64 ? count : 64)) \
     --output "$out/$4_a.csv" > /dev/null
-  # shellcheck disable=SC2086
-  rosrun hideseek_play play_episodes --game "$1" $args --policy "$3" --first-seed 64 --count 36 \
-    --output "$out/$4_b.csv" > /dev/null
+  if ((count > 64)); then
+    rosrun hideseek_play play_episodes "${args[@]}" --first-seed $((first + 64)) --count $((count - 64)) \
+      --output "$out/$4_b.csv" > /dev/null
+  fi
 }
-for game in v2 v3; do
-  for variant in $("$registry" variants); do
+for game in $games; do
+  for variant in $variants; do
     play "$game" "$variant" random "${game}_${variant}_random"
     play "$game" "$variant" scripted/hide "${game}_${variant}_hide"
   done
 done
-for variant in stochasticseeker stochasticseeker_explore stochasticmaps; do
-  play v3 "$variant" "$("$registry" shipped "$variant")" "v3_${variant}_shipped"
-done
+if [[ " $games " == *" v3 "* ]]; then
+  for variant in stochasticseeker stochasticseeker_explore stochasticmaps; do
+    [[ " $variants " == *" $variant "* ]] || continue
+    play v3 "$variant" "$("$registry" shipped "$variant")" "v3_${variant}_shipped"
+  done
+  play v3 maze scripted/hide v3_maze_hide 32
+fi
 /usr/bin/python3 "$here/stalls.py" "$out"/*_[ab].csv

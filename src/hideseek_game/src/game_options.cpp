@@ -97,11 +97,11 @@ void applyGameFields(const YAML::Node& root, const std::string& source, GameOpti
                {"turn_or_move", "turn_while_moving"});
     g.seeker_steering = steering == "turn_or_move" ? SeekerSteering::kTurnOrMove : SeekerSteering::kTurnWhileMoving;
     g.seeker_move_angle = s.number("move_angle_deg", g.seeker_move_angle * 180.0 / kPi, 0.0, 180.0) * kPi / 180.0;
-    const std::string following =
-        s.text("path_following", g.seeker_path_following == SeekerPathFollowing::kNextPoint ? "next_point" : "forward",
-               {"next_point", "forward"});
+    const std::string following = s.text(
+        "path_following", g.seeker_path_following == SeekerPathFollowing::kNextPoint ? "next_point" : "no_backtrack",
+        {"next_point", "no_backtrack"});
     g.seeker_path_following =
-        following == "next_point" ? SeekerPathFollowing::kNextPoint : SeekerPathFollowing::kForward;
+        following == "next_point" ? SeekerPathFollowing::kNextPoint : SeekerPathFollowing::kNoBacktrack;
     s.rejectUnknown();
   }
   {

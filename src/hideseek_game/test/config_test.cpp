@@ -117,22 +117,23 @@ TEST(ShippedConfig, VariantsMatchSpecTable) {
 }
 
 // seeker.path_following (docs/calibration.md, "The scripted seeker's stalls"): next_point in every
-// shipped game, which replays as it was trained; a variant or game file of one's own asks for forward.
-TEST(ShippedConfig, TheSeekerFollowsItsPathForwardOnlyWhereAFileAsksForIt) {
+// shipped game, which replays as it was trained; a variant or game file of one's own asks for no_backtrack.
+TEST(ShippedConfig, TheSeekerNeverBacktracksOnlyWhereAFileAsksForIt) {
   for (const std::string game : {"game_v1.yaml", "game.yaml", "game_v3.yaml"}) {
     EXPECT_EQ(loadVariantConfig(test::configPath(game), test::configPath("variants/stochasticseeker.yaml"))
                   .game.seeker_path_following,
               SeekerPathFollowing::kNextPoint)
         << game;
   }
-  const std::string forward = writeTemp(
-      "forward.yaml", "variant: x\nmap: deterministic.yaml\nseeker: {policy: stochastic, path_following: forward}\n");
-  EXPECT_EQ(loadVariantConfig(test::configPath("game_v3.yaml"), forward).game.seeker_path_following,
-            SeekerPathFollowing::kForward);
+  const std::string own =
+      writeTemp("no_backtrack.yaml",
+                "variant: x\nmap: deterministic.yaml\nseeker: {policy: stochastic, path_following: no_backtrack}\n");
+  EXPECT_EQ(loadVariantConfig(test::configPath("game_v3.yaml"), own).game.seeker_path_following,
+            SeekerPathFollowing::kNoBacktrack);
   const std::string bad =
       writeTemp("following_bad.yaml", "variant: x\nmap: deterministic.yaml\nseeker: {path_following: onward}\n");
   const std::string e = errorOf([&] { loadVariantConfig(test::configPath("game_v3.yaml"), bad); });
-  EXPECT_NE(e.find("following_bad.yaml: field 'seeker.path_following': must be one of {forward, next_point}, got "
+  EXPECT_NE(e.find("following_bad.yaml: field 'seeker.path_following': must be one of {next_point, no_backtrack}, got "
                    "'onward'"),
             std::string::npos)
       << e;

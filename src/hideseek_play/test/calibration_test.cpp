@@ -246,18 +246,19 @@ TEST(Orbit, GameV2sSeekerLetsATightOrbitSurvive) {
 }  // namespace hideseek_play
 
 // The scripted seeker's stalls (docs/calibration.md, "The scripted seeker's stalls"). The seeker
-// drops only its path's next point once within reach of it; a point it passed further off stays
-// first on its path and, whenever the later points are out of straight sight, becomes its target
-// again. Game v3's wandering seeker, which turns while it moves, then circles a point inside its
-// turning circle on the spot for the rest of the episode (seed 46 of stochasticseeker against
-// scripted/hide), and a hider that is nowhere near survives. seeker.path_following: forward never
-// heads back to a point before one it has reached or had in sight; games v1-v3 keep next_point, so
-// that what was trained and recorded on them replays.
+// drops only its path's next point once within reach of it; a point it passed further off stays on
+// its path, with every point after it, and the target can flip between a point inside its turning
+// circle and a later one as a 3 cm step gives or takes the later one's straight line. Game v3's
+// wandering seeker, which turns while it moves, then spins on the spot for the rest of the episode
+// (seed 46 of stochasticseeker against scripted/hide: 8 cm from a point it cannot reach), and a
+// hider that is nowhere near survives. seeker.path_following: no_backtrack drops every point before
+// the last one reached and before the one it heads for; games v1-v3 keep next_point, so that what
+// was trained and recorded on them replays.
 namespace hideseek_play {
 namespace {
 
 // stalled_at: the first step of a window of `window` steps in which the seeker never sees the hider
-// and moves less than `still` metres along either axis (a stall), or -1.
+// and its positions span less than `still` metres on each axis (a stall), or -1.
 struct StallScan {
   int stalled_at = -1;
 };
@@ -283,32 +284,32 @@ StallScan scanForStall(const hideseek_game::VariantConfig& v, uint32_t seed, int
 
 }  // namespace
 
-TEST(SeekerStall, GameV3sWanderingSeekerCirclesAPassedPathPointUnlessItFollowsItsPathForward) {
+TEST(SeekerStall, GameV3sWanderingSeekerCirclesAPassedPathPointUnlessItNeverBacktracks) {
   auto v = gameVariant("v3", "stochasticseeker");
   ASSERT_EQ(v.game.seeker_path_following, hideseek_game::SeekerPathFollowing::kNextPoint)
       << "game v3 must replay as it was trained";
   const StallScan before = scanForStall(v, 46);
   EXPECT_GE(before.stalled_at, 0) << "seed 46 no longer stalls in game v3: the game changed, or this seed "
                                      "no longer shows the stall and the test needs another";
-  v.game.seeker_path_following = hideseek_game::SeekerPathFollowing::kForward;
+  v.game.seeker_path_following = hideseek_game::SeekerPathFollowing::kNoBacktrack;
   const StallScan after = scanForStall(v, 46);
   EXPECT_LT(after.stalled_at, 0) << "the seeker stands still from step " << after.stalled_at
-                                 << " although it follows its path forward";
+                                 << " although it never backtracks";
 }
 
 // The other face of the same rule: the patrolling seeker on a maze passes round a wall's end within
 // reach of a later path point but not of the first, which stays its target once the later ones
 // are out of sight, behind the wall it has just gone round: it drives against that wall for the
 // rest of the episode (seed 8 of scripted/hide from step 119).
-TEST(SeekerStall, GameV3sPatrollingSeekerPressesAgainstAWallOnAMazeUnlessItFollowsItsPathForward) {
+TEST(SeekerStall, GameV3sPatrollingSeekerPressesAgainstAWallOnAMazeUnlessItNeverBacktracks) {
   auto v = gameVariant("v3", "basic");
   v.map_file = std::string(HIDESEEK_TEST_DATA_DIR) + "/serpentine_map.yaml";
   const StallScan before = scanForStall(v, 8);
   EXPECT_GE(before.stalled_at, 0) << "seed 8 no longer stalls on the maze in game v3";
-  v.game.seeker_path_following = hideseek_game::SeekerPathFollowing::kForward;
+  v.game.seeker_path_following = hideseek_game::SeekerPathFollowing::kNoBacktrack;
   const StallScan after = scanForStall(v, 8);
   EXPECT_LT(after.stalled_at, 0) << "the seeker stands still from step " << after.stalled_at
-                                 << " although it follows its path forward";
+                                 << " although it never backtracks";
 }
 
 }  // namespace hideseek_play

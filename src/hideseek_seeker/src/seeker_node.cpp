@@ -1,7 +1,10 @@
 #include "hideseek_seeker/seeker_node.h"
 
+#include <geometry_msgs/PointStamped.h>
 #include <hideseek_msgs/ActionBatch.h>
+#include <nav_msgs/Path.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "hideseek_game/game_selection.h"
@@ -100,6 +103,11 @@ SeekerNode::SeekerNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
       break;
   }
   actions_pub_ = nh_.advertise<hideseek_msgs::ActionBatch>(hideseek_game::kSeekerActionsTopic, 2);
+  if (mode_ == SeekerNodeOptions::Mode::kScripted) {
+    // Latched: rviz started later shows the plan being followed.
+    plan_pub_ = nh_.advertise<nav_msgs::Path>(hideseek_game::kSeekerPlanTopic, 2, true);
+    target_pub_ = nh_.advertise<geometry_msgs::PointStamped>(hideseek_game::kSeekerTargetTopic, 2, true);
+  }
   observations_sub_ = nh_.subscribe(hideseek_game::kSeekerObservationsTopic, 2, &SeekerNode::onObservations, this,
                                     ros::TransportHints().tcpNoDelay());
 }
@@ -142,6 +150,41 @@ void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::Con
     out.actions[i] = static_cast<uint8_t>(policies_[i].act(toPerception(*msg, i)));
   }
   actions_pub_.publish(out);
+  if (n > 0) publishPlan(msg->header, policies_[0]);
+}
+
+void SeekerNode::publishPlan(const std_msgs::Header& header, const SeekerPolicy& policy) {
+  // Only when it changed (the seeker decides every physics frame), at most 30 times a wall second, as
+  // the world sends its own rviz topics: a change held back goes out with the next decision after.
+  const ros::WallTime now = ros::WallTime::now();
+  if (now < last_plan_publish_ + ros::WallDuration(1.0 / 30.0)) return;
+  auto same = [](Vec2 a, Vec2 b) { return a.x == b.x && a.y == b.y; };
+  const std::vector<Vec2>& path = policy.path();
+  if (path.size() != shown_path_.size() || !std::equal(path.begin(), path.end(), shown_path_.begin(), same)) {
+    nav_msgs::Path plan;
+    plan.header = header;
+    for (const Vec2& p : path) {
+      geometry_msgs::PoseStamped pose;
+      pose.header = header;
+      pose.pose.position.x = p.x;
+      pose.pose.position.y = p.y;
+      pose.pose.orientation.w = 1.0;
+      plan.poses.push_back(pose);
+    }
+    plan_pub_.publish(plan);
+    shown_path_ = path;
+    last_plan_publish_ = now;
+  }
+  const std::optional<Vec2> target = policy.target();
+  if (target && (!shown_target_ || !same(*target, *shown_target_))) {
+    geometry_msgs::PointStamped point;
+    point.header = header;
+    point.point.x = target->x;
+    point.point.y = target->y;
+    target_pub_.publish(point);
+    shown_target_ = target;
+    last_plan_publish_ = now;
+  }
 }
 
 std::vector<uint8_t> SeekerNode::learnedOrRandom(const hideseek_msgs::SeekerObservationBatch& msg) {

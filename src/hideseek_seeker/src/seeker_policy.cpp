@@ -45,6 +45,7 @@ void SeekerPolicy::reset(const Layout& layout, uint32_t seed) {
   last_known_.reset();
   goal_.reset();
   path_.clear();
+  target_.reset();
   mode_ = options_.type == SeekerPolicyType::kDeterministic ? SeekerMode::kPatrol : SeekerMode::kWander;
   rng_.seed(seed ^ 0x5eed5eedu);
   last_action_ = Action::kStay;
@@ -103,6 +104,7 @@ Action SeekerPolicy::act(const SeekerPerception& p) {
 }
 
 Action SeekerPolicy::decide(const SeekerPerception& p) {
+  target_.reset();
   if (!planner_) return Action::kStay;
   const Vec2 here = p.pose.position;
   if (p.hider_position) {
@@ -138,10 +140,10 @@ Action SeekerPolicy::decide(const SeekerPerception& p) {
       mode_ = SeekerMode::kWander;
     }
   }
-  // Follow the path: drop reached points, then head for the farthest one in straight sight.
+  // Follow the path: drop reached points, then head for the farthest one in a straight line.
   const double reach = 0.5 * options_.goal_tolerance;
-  const bool forward = options_.path_following == hideseek_game::SeekerPathFollowing::kForward;
-  if (forward) {
+  const bool no_backtrack = options_.path_following == hideseek_game::SeekerPathFollowing::kNoBacktrack;
+  if (no_backtrack) {
     size_t passed = 0;  // every point up to the last one within reach; the goal, last, stays
     for (size_t i = 0; i + 1 < path_.size(); ++i) {
       if (distance(here, path_[i]) <= reach) passed = i + 1;
@@ -153,10 +155,11 @@ Action SeekerPolicy::decide(const SeekerPerception& p) {
   if (path_.empty()) return Action::kStay;
   size_t target = 0;
   while (target + 1 < path_.size() && planner_->lineOfSight(here, path_[target + 1])) ++target;
-  if (forward) {  // the points before one in sight are passed: the seeker does not come back for them
+  if (no_backtrack) {  // the points before the one it heads for are passed: it does not come back for them
     path_.erase(path_.begin(), path_.begin() + static_cast<std::ptrdiff_t>(target));
     target = 0;
   }
+  target_ = path_[target];
   return steerTowards(p.pose, path_[target]);
 }
 

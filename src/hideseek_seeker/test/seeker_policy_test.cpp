@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <optional>
 #include <random>
 #include <set>
+#include <vector>
 
 #include "hideseek_game/arena.h"
 #include "hideseek_game/visibility.h"
@@ -167,6 +170,56 @@ TEST(SeekerPolicy, DeterministicSeekerCatchesAStandingHiderItCanSee) {
     advance(s, seeker.act({s, sees ? std::optional<Vec2>(hider.position) : std::nullopt}), open);
   }
   EXPECT_LE(hideseek_game::distance(s.position, hider.position), g.capture_distance) << "after " << step << " steps";
+}
+
+// seeker.path_following (docs/calibration.md, "The scripted seeker's stalls"), game v3's wandering
+// seeker moving frame by frame: the point it heads for is always on its path; under no_backtrack it
+// is the path's first point, and until the seeker plans afresh the path only loses points from its
+// front, so the seeker never turns back for a point it has passed.
+TEST(SeekerPolicy, UnderNoBacktrackTheSeekerNeverTurnsBackForAPassedPoint) {
+  auto v3 = hideseek_game::loadVariantConfig(kConfig + "/game_v3.yaml", kConfig + "/variants/stochasticseeker.yaml");
+  const Layout layout = deterministicLayout();
+  for (const auto following :
+       {hideseek_game::SeekerPathFollowing::kNextPoint, hideseek_game::SeekerPathFollowing::kNoBacktrack}) {
+    const bool no_backtrack = following == hideseek_game::SeekerPathFollowing::kNoBacktrack;
+    SCOPED_TRACE(no_backtrack ? "no_backtrack" : "next_point");
+    v3.game.seeker_path_following = following;
+    SeekerPolicy seeker(seekerOptionsFor(v3));
+    seeker.reset(layout, 7);
+    AgentState s{{-6.0, -6.0}, 0.0, 0.0, {}};
+    std::vector<Vec2> before;
+    std::optional<Vec2> goal_before;
+    int targets = 0, passed = 0;
+    for (int frame = 0; frame < 6000; ++frame) {
+      const Action a = seeker.act({s, std::nullopt});
+      const std::vector<Vec2>& path = seeker.path();
+      if (const auto target = seeker.target()) {
+        ++targets;
+        const auto on_path =
+            std::find_if(path.begin(), path.end(), [&](Vec2 p) { return p.x == target->x && p.y == target->y; });
+        ASSERT_NE(on_path, path.end()) << "frame " << frame << ": the target is not on the path";
+        if (no_backtrack) {
+          EXPECT_EQ(on_path, path.begin()) << "frame " << frame << ": a point before the target is kept";
+        }
+      }
+      const bool same_goal =
+          goal_before && seeker.goal() && goal_before->x == seeker.goal()->x && goal_before->y == seeker.goal()->y;
+      if (no_backtrack && same_goal && path.size() <= before.size()) {
+        // The same plan: what is left is the end of what was there.
+        EXPECT_TRUE(std::equal(path.begin(), path.end(), before.end() - static_cast<std::ptrdiff_t>(path.size()),
+                               [](Vec2 p, Vec2 q) { return p.x == q.x && p.y == q.y; }))
+            << "frame " << frame << ": the path regained a point it had dropped";
+        passed += static_cast<int>(before.size() - path.size());
+      }
+      before = path;
+      goal_before = seeker.goal();
+      hideseek_game::advanceAgent(s, a, v3.game.seeker, v3.game.physics_dt, layout, v3.game.agent_radius);
+    }
+    EXPECT_GT(targets, 5000) << "the seeker should be on its way nearly every frame";
+    if (no_backtrack) {
+      EXPECT_GT(passed, 10) << "the seeker should pass points on its paths";
+    }
+  }
 }
 
 }  // namespace hideseek_seeker

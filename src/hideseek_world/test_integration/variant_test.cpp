@@ -3,15 +3,19 @@
 // decision applies the action chosen for its own step, a reset does not stall the game, and the
 // frames carry the game's prefix. Every check runs on every launch: none is skipped.
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/PointStamped.h>
 #include <gtest/gtest.h>
 #include <hideseek_msgs/GameState.h>
 #include <hideseek_msgs/ObservationBatch.h>
 #include <hideseek_msgs/Reset.h>
 #include <hideseek_msgs/StepBatch.h>
 #include <nav_msgs/OccupancyGrid.h>
+#include <nav_msgs/Path.h>
 #include <ros/ros.h>
 #include <tf2_ros/transform_listener.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -188,6 +192,48 @@ TEST(Variant, FramesCarryTheGamesTfPrefix) {
     const std::string camera = frame(agent + "/camera_optical_frame");
     EXPECT_TRUE(hideseek_test::waitFor([&] { return buffer.canTransform(frame("map"), camera, ros::Time(0)); }, 10.0))
         << frame("map") << " to " << camera;
+  }
+}
+
+// The scripted seeker shows what it follows (docs/architecture.md, topics): arena 0's plan on
+// seeker/plan and the point it heads for on seeker/target, in the game's map frame, inside the
+// arena, the target always one of the plan's points.
+TEST(Variant, TheSeekerShowsItsPlanAndTargetInTheMapFrame) {
+  ros::NodeHandle nh, pnh("~");
+  const std::string prefix = pnh.param<std::string>("expect_tf_prefix", "");
+  const std::string map_frame = prefix.empty() ? "map" : prefix + "/map";
+  nav_msgs::OccupancyGrid::ConstPtr map;
+  auto map_sub =
+      nh.subscribe<nav_msgs::OccupancyGrid>("map", 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& m) { map = m; });
+  ASSERT_TRUE(hideseek_test::waitFor([&] { return map != nullptr; }, 20.0)) << "no latched map";
+  const double half_extent = 0.5 * map->info.width * map->info.resolution;
+  std::vector<nav_msgs::Path::ConstPtr> plans;
+  std::vector<geometry_msgs::PointStamped::ConstPtr> targets;
+  auto plan_sub = nh.subscribe<nav_msgs::Path>(hideseek_game::kSeekerPlanTopic, 100,
+                                               [&](const nav_msgs::Path::ConstPtr& m) { plans.push_back(m); });
+  auto target_sub = nh.subscribe<geometry_msgs::PointStamped>(
+      hideseek_game::kSeekerTargetTopic, 100,
+      [&](const geometry_msgs::PointStamped::ConstPtr& m) { targets.push_back(m); });
+  ASSERT_TRUE(hideseek_test::waitFor([&] { return plans.size() >= 3 && targets.size() >= 3; }, 30.0))
+      << plans.size() << " plans and " << targets.size() << " targets in 30 s on " << nh.resolveName("seeker/plan");
+  plan_sub.shutdown();
+  target_sub.shutdown();
+  std::vector<std::pair<double, double>> points;
+  for (const auto& plan : plans) {
+    EXPECT_EQ(plan->header.frame_id, map_frame);
+    for (const auto& pose : plan->poses) {
+      EXPECT_LT(std::max(std::abs(pose.pose.position.x), std::abs(pose.pose.position.y)), half_extent)
+          << "a plan point outside the arena";
+      points.emplace_back(pose.pose.position.x, pose.pose.position.y);
+    }
+  }
+  EXPECT_FALSE(points.empty()) << "every plan was empty";
+  for (const auto& t : targets) {
+    EXPECT_EQ(t->header.frame_id, map_frame);
+    const bool on_a_plan = std::any_of(points.begin(), points.end(), [&](const std::pair<double, double>& p) {
+      return std::abs(p.first - t->point.x) < 1e-6 && std::abs(p.second - t->point.y) < 1e-6;
+    });
+    EXPECT_TRUE(on_a_plan) << "target (" << t->point.x << ", " << t->point.y << ") lies on no plan published";
   }
 }
 

@@ -40,11 +40,13 @@ enum class SeekerSteering {
                      // when its target lies within move_angle of its heading
 };
 
-// How the scripted seeker follows its planned path (docs/calibration.md, "The scripted seeker's stalls").
+// How the scripted seeker drops the points of its planned path (docs/calibration.md, "The scripted
+// seeker's stalls"). Either way it heads for the farthest point it has a straight line to, clear on
+// the planner's grid, and a point counts as reached within half its goal tolerance (0.25 m).
 enum class SeekerPathFollowing {
-  kNextPoint,  // games v1-v3: the path's next point is dropped once within reach; a point passed further
-               // off stays first and becomes the target again whenever the later ones are out of sight
-  kForward,    // it never heads back to a point before one it has come within reach of or had in sight
+  kNextPoint,    // games v1-v3: only the path's next point is dropped once reached; points it passed
+                 // further off, and any after them, stay, and can become its target again
+  kNoBacktrack,  // every point before the last one reached, and before the one it heads for, is dropped
 };
 
 struct CameraOptions {

@@ -35,12 +35,15 @@ struct SeekerOptions {
   // (Action::kForwardLeft, kForwardRight); games v1 and v2 turn on the spot.
   bool turn_while_moving = false;
   double move_angle = 0.0;  // rad
-  // kNextPoint (games v1-v3): the path's next point is dropped once within half goal_tolerance, and
-  // the seeker heads for the farthest point in straight sight. A point it passed further off stays
-  // first on the path and is its target again whenever the later points drop out of sight (a 3 cm
-  // step can do it): the seeker may then circle it on the spot, or drive against the wall it has
-  // just gone round, for the rest of an episode. kForward: a point within reach, or one in straight
-  // sight, is the seeker's progress; it never heads back to a point before it.
+  // Which path points it drops. Either way it heads for the farthest point it has a straight line
+  // to, clear on the planner's grid, and a point counts as reached within half goal_tolerance.
+  // kNextPoint (games v1-v3): only the path's next point is dropped once reached. Points it passed
+  // further off, cutting a corner, stay, with any after them (even one it stands on), and become its
+  // target again whenever the later points lose their straight line, which a 3 cm step can do: it
+  // may then spin on the spot, the target flipping between a point inside its turning circle and a
+  // later one, or drive back against the wall it has just gone round, for the rest of an episode.
+  // kNoBacktrack: every point before the last one reached, and before the one it heads for, is
+  // dropped, so it never turns back for a point it has passed.
   hideseek_game::SeekerPathFollowing path_following = hideseek_game::SeekerPathFollowing::kNextPoint;
 };
 
@@ -62,7 +65,10 @@ class SeekerPolicy {
   Action act(const SeekerPerception& perception);
 
   SeekerMode mode() const { return mode_; }
+  // The path it follows, points not yet passed first (under next_point the ones before its target
+  // may lie behind it), and the point it headed for at its last decision (none when it stayed).
   const std::vector<Vec2>& path() const { return path_; }
+  std::optional<Vec2> target() const { return target_; }
   std::optional<Vec2> goal() const { return goal_; }
 
  private:
@@ -78,6 +84,7 @@ class SeekerPolicy {
   std::optional<Vec2> last_known_;
   std::optional<Vec2> goal_;
   std::vector<Vec2> path_;
+  std::optional<Vec2> target_;
   SeekerMode mode_ = SeekerMode::kPatrol;
   Action last_action_ = Action::kStay;  // what act() answered last, for steering hysteresis
   std::mt19937 rng_;
