@@ -4,7 +4,7 @@
 #include <hideseek_msgs/ActionBatch.h>
 #include <nav_msgs/Path.h>
 
-#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "hideseek_game/game_selection.h"
@@ -150,40 +150,35 @@ void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::Con
     out.actions[i] = static_cast<uint8_t>(policies_[i].act(toPerception(*msg, i)));
   }
   actions_pub_.publish(out);
-  if (n > 0) publishPlan(msg->header, policies_[0]);
+  if (n > 0) publishPlan(msg->header, toPerception(*msg, 0).pose, policies_[0]);
 }
 
-void SeekerNode::publishPlan(const std_msgs::Header& header, const SeekerPolicy& policy) {
-  // Only when it changed (the seeker decides every physics frame), at most 30 times a wall second, as
-  // the world sends its own rviz topics: a change held back goes out with the next decision after.
+void SeekerNode::publishPlan(const std_msgs::Header& header, const AgentState& seeker, const SeekerPolicy& policy) {
+  // At most 30 times a wall second, as the world sends its own rviz topics: the seeker decides every
+  // physics frame.
   const ros::WallTime now = ros::WallTime::now();
   if (now < last_plan_publish_ + ros::WallDuration(1.0 / 30.0)) return;
-  auto same = [](Vec2 a, Vec2 b) { return a.x == b.x && a.y == b.y; };
-  const std::vector<Vec2>& path = policy.path();
-  if (path.size() != shown_path_.size() || !std::equal(path.begin(), path.end(), shown_path_.begin(), same)) {
-    nav_msgs::Path plan;
-    plan.header = header;
-    for (const Vec2& p : path) {
-      geometry_msgs::PoseStamped pose;
-      pose.header = header;
-      pose.pose.position.x = p.x;
-      pose.pose.position.y = p.y;
-      pose.pose.orientation.w = 1.0;
-      plan.poses.push_back(pose);
-    }
-    plan_pub_.publish(plan);
-    shown_path_ = path;
-    last_plan_publish_ = now;
-  }
-  const std::optional<Vec2> target = policy.target();
-  if (target && (!shown_target_ || !same(*target, *shown_target_))) {
+  last_plan_publish_ = now;
+  nav_msgs::Path plan;  // from the seeker, as a navigation stack's global plan starts at the robot
+  plan.header = header;
+  auto pose = [&](Vec2 p, double yaw) {
+    geometry_msgs::PoseStamped out;
+    out.header = header;
+    out.pose.position.x = p.x;
+    out.pose.position.y = p.y;
+    out.pose.orientation.z = std::sin(0.5 * yaw);
+    out.pose.orientation.w = std::cos(0.5 * yaw);
+    return out;
+  };
+  plan.poses.push_back(pose(seeker.position, seeker.yaw));
+  for (const Vec2& p : policy.path()) plan.poses.push_back(pose(p, 0.0));
+  plan_pub_.publish(plan);
+  if (const std::optional<Vec2> target = policy.target()) {
     geometry_msgs::PointStamped point;
     point.header = header;
     point.point.x = target->x;
     point.point.y = target->y;
     target_pub_.publish(point);
-    shown_target_ = target;
-    last_plan_publish_ = now;
   }
 }
 

@@ -196,8 +196,8 @@ TEST(Variant, FramesCarryTheGamesTfPrefix) {
 }
 
 // The scripted seeker shows what it follows (docs/architecture.md, topics): arena 0's plan on
-// seeker/plan and the point it heads for on seeker/target, in the game's map frame, inside the
-// arena, the target always one of the plan's points.
+// seeker/plan (its pose, then the path) and the point it heads for on seeker/target, in the game's
+// map frame, inside the arena, the target always one of the plan's points.
 TEST(Variant, TheSeekerShowsItsPlanAndTargetInTheMapFrame) {
   ros::NodeHandle nh, pnh("~");
   const std::string prefix = pnh.param<std::string>("expect_tf_prefix", "");

@@ -8,7 +8,6 @@
 #include <ros/ros.h>
 
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,10 +46,10 @@ class SeekerNode {
 
  private:
   void onObservations(const hideseek_msgs::SeekerObservationBatch::ConstPtr& msg);
-  // Scripted mode: arena 0's plan on seeker/plan (nav_msgs/Path) and the point it heads for on
-  // seeker/target (geometry_msgs/PointStamped), in the world's frame, each latched, when it changes
-  // (at most 30 times a wall second).
-  void publishPlan(const std_msgs::Header& header, const SeekerPolicy& policy);
+  // Scripted mode: arena 0's plan on seeker/plan (nav_msgs/Path: the seeker's pose, then the path
+  // points it has not dropped) and the point it heads for on seeker/target (geometry_msgs/
+  // PointStamped), in the world's frame, latched, at most 30 times a wall second.
+  void publishPlan(const std_msgs::Header& header, const AgentState& seeker, const SeekerPolicy& policy);
   // The actions of the random seeker or the network; empty once training ended.
   std::vector<uint8_t> learnedOrRandom(const hideseek_msgs::SeekerObservationBatch& msg);
 
@@ -67,8 +66,6 @@ class SeekerNode {
   std::vector<int64_t> episodes_;  // episode each policy was reset for, -1 before the first
   ros::Publisher actions_pub_;
   ros::Publisher plan_pub_, target_pub_;
-  std::vector<Vec2> shown_path_;      // the plan last published
-  std::optional<Vec2> shown_target_;  // the target last published
   ros::WallTime last_plan_publish_;
   ros::Subscriber observations_sub_;
   uint64_t malformed_ = 0;
