@@ -30,7 +30,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 config="$here/../../config"
 registry="$here/../../src/hideseek_analysis/scripts/hideseek_registry.py"
 games=${GAMES:-v2 v3}
-variants=${VARIANTS:-$("$registry" variants)}
+variants=$(tr '\n' ' ' <<< "${VARIANTS:-$("$registry" variants)}")  # one line: the membership test below
 mkdir -p "$out/variants"
 # A variant file of its own: SOURCE plus, with --no-backtrack, the setting; MAP replaces its map.
 own_variant() {  # SOURCE NAME [MAP]
