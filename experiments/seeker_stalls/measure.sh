@@ -8,6 +8,7 @@
 #                   of its own written to OUT_DIR/variants/
 #   --validation    the validation seeds 1000-1099 (the maze: 1000-1031) instead of 0-99 (0-31)
 #   GAMES="v3" VARIANTS="stochasticseeker ..." (environment) narrow the plays to those games and variants
+#   (the maze plays whenever v3 does)
 set -euo pipefail
 shopt -s inherit_errexit
 usage() {
@@ -30,7 +31,13 @@ here=$(cd "$(dirname "$0")" && pwd)
 config="$here/../../config"
 registry="$here/../../src/hideseek_analysis/scripts/hideseek_registry.py"
 games=${GAMES:-v2 v3}
-variants=$(tr '\n' ' ' <<< "${VARIANTS:-$("$registry" variants)}")  # one line: the membership test below
+all_variants=${VARIANTS:-}
+[[ -n "$all_variants" ]] || all_variants=$("$registry" variants)
+variants=$(tr '\n' ' ' <<< "$all_variants")  # one line: the membership test below
+[[ -n "${variants// /}" ]] || usage "no variants"
+if [[ -d "$out" && -n "$(ls -A "$out")" ]]; then
+  usage "$out is not empty (stalls.py would count what an earlier run left there)"
+fi
 mkdir -p "$out/variants"
 # A variant file of its own: SOURCE plus, with --no-backtrack, the setting; MAP replaces its map.
 own_variant() {  # SOURCE NAME [MAP]

@@ -46,7 +46,7 @@ enum class SeekerSteering {
 enum class SeekerPathFollowing {
   kNextPoint,    // games v1-v3: only the path's next point is dropped once reached; points it passed
                  // further off, and any after them, stay, and can become its target again
-  kNoBacktrack,  // every point before the last one reached, and before the one it heads for, is dropped
+  kNoBacktrack,  // every point up to the last one reached, and every one before the one it heads for, is dropped
 };
 
 struct CameraOptions {

@@ -42,8 +42,8 @@ struct SeekerOptions {
   // target again whenever the later points lose their straight line, which a 3 cm step can do: it
   // may then spin on the spot, the target flipping between a point inside its turning circle and a
   // later one, or drive back against the wall it has just gone round, for the rest of an episode.
-  // kNoBacktrack: every point before the last one reached, and before the one it heads for, is
-  // dropped, so it never turns back for a point it has passed.
+  // kNoBacktrack: every point up to the last one reached (the goal excepted), and every point before
+  // the one it heads for, is dropped, so it never turns back for a point it has passed.
   hideseek_game::SeekerPathFollowing path_following = hideseek_game::SeekerPathFollowing::kNextPoint;
 };
 
