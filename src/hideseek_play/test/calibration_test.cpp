@@ -251,24 +251,19 @@ TEST(Orbit, GameV2sSeekerLetsATightOrbitSurvive) {
 // circle and a later one as a 3 cm step gives or takes the later one's straight line. Game v3's
 // wandering seeker, which turns while it moves, then spins on the spot for the rest of the episode
 // (seed 46 of stochasticseeker against scripted/hide: 8 cm from a point it cannot reach), and a
-// hider that is nowhere near survives. seeker.path_following: no_backtrack drops every point before
-// the last one reached and before the one it heads for; games v1-v3 keep next_point, so that what
-// was trained and recorded on them replays.
+// hider that is nowhere near survives. seeker.path_following: no_backtrack drops every point up to
+// the last one reached and every point before the one it heads for; games v1-v3 keep next_point, so
+// that what was trained and recorded on them replays.
 namespace hideseek_play {
 namespace {
 
-// stalled_at: the first step of a window of `window` steps in which the seeker never sees the hider
-// and its positions span less than `still` metres on each axis (a stall), or -1.
-struct StallScan {
-  int stalled_at = -1;
-};
-
-StallScan scanForStall(const hideseek_game::VariantConfig& v, uint32_t seed, int window = 200, double still = 0.05) {
+// The first step of a window of `window` steps in which the seeker never sees the hider and its
+// positions span less than `still` metres on each axis (a stall), or -1.
+int stallStart(const hideseek_game::VariantConfig& v, uint32_t seed, int window = 200, double still = 0.05) {
   const auto map = std::make_shared<const hideseek_game::MapSpec>(hideseek_game::loadMapFile(v.map_file));
   std::vector<ScriptedStep> steps;
   playScriptedHider(v, map, EvaderKind::kHide, seed, 1, [&](const ScriptedStep& s) { steps.push_back(s); });
-  StallScan scan;
-  for (size_t i = 0; i + window < steps.size() && scan.stalled_at < 0; ++i) {
+  for (size_t i = 0; i + window < steps.size(); ++i) {
     double min_x = 1e9, max_x = -1e9, min_y = 1e9, max_y = -1e9;
     bool seen = false;
     for (size_t j = i; j <= i + window; ++j) {
@@ -277,9 +272,9 @@ StallScan scanForStall(const hideseek_game::VariantConfig& v, uint32_t seed, int
       min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
       seen = seen || steps[j].labels.seeker_sees_hider;
     }
-    if (!seen && max_x - min_x < still && max_y - min_y < still) scan.stalled_at = steps[i].step;
+    if (!seen && max_x - min_x < still && max_y - min_y < still) return steps[i].step;
   }
-  return scan;
+  return -1;
 }
 
 }  // namespace
@@ -288,13 +283,12 @@ TEST(SeekerStall, GameV3sWanderingSeekerCirclesAPassedPathPointUnlessItNeverBack
   auto v = gameVariant("v3", "stochasticseeker");
   ASSERT_EQ(v.game.seeker_path_following, hideseek_game::SeekerPathFollowing::kNextPoint)
       << "game v3 must replay as it was trained";
-  const StallScan before = scanForStall(v, 46);
-  EXPECT_GE(before.stalled_at, 0) << "seed 46 no longer stalls in game v3: the game changed, or this seed "
-                                     "no longer shows the stall and the test needs another";
+  const int before = stallStart(v, 46);
+  EXPECT_GE(before, 0) << "seed 46 no longer stalls in game v3: the game changed, or this seed "
+                          "no longer shows the stall and the test needs another";
   v.game.seeker_path_following = hideseek_game::SeekerPathFollowing::kNoBacktrack;
-  const StallScan after = scanForStall(v, 46);
-  EXPECT_LT(after.stalled_at, 0) << "the seeker stands still from step " << after.stalled_at
-                                 << " although it never backtracks";
+  const int after = stallStart(v, 46);
+  EXPECT_LT(after, 0) << "the seeker stands still from step " << after << " although it never backtracks";
 }
 
 // The other face of the same rule: the patrolling seeker on a maze passes round a wall's end within
@@ -304,12 +298,11 @@ TEST(SeekerStall, GameV3sWanderingSeekerCirclesAPassedPathPointUnlessItNeverBack
 TEST(SeekerStall, GameV3sPatrollingSeekerPressesAgainstAWallOnAMazeUnlessItNeverBacktracks) {
   auto v = gameVariant("v3", "basic");
   v.map_file = std::string(HIDESEEK_TEST_DATA_DIR) + "/serpentine_map.yaml";
-  const StallScan before = scanForStall(v, 8);
-  EXPECT_GE(before.stalled_at, 0) << "seed 8 no longer stalls on the maze in game v3";
+  const int before = stallStart(v, 8);
+  EXPECT_GE(before, 0) << "seed 8 no longer stalls on the maze in game v3";
   v.game.seeker_path_following = hideseek_game::SeekerPathFollowing::kNoBacktrack;
-  const StallScan after = scanForStall(v, 8);
-  EXPECT_LT(after.stalled_at, 0) << "the seeker stands still from step " << after.stalled_at
-                                 << " although it never backtracks";
+  const int after = stallStart(v, 8);
+  EXPECT_LT(after, 0) << "the seeker stands still from step " << after << " although it never backtracks";
 }
 
 }  // namespace hideseek_play

@@ -142,15 +142,18 @@ void SeekerNode::onObservations(const hideseek_msgs::SeekerObservationBatch::Con
     episodes_.assign(n, -1);
   }
   out.actions.resize(n);
+  AgentState seeker;  // arena 0's, for its plan
   for (size_t i = 0; i < n; ++i) {
     if (episodes_[i] != msg->episode[i]) {
       policies_[i].reset(toLayout(msg->maps[i]), msg->seed[i]);
       episodes_[i] = msg->episode[i];
     }
-    out.actions[i] = static_cast<uint8_t>(policies_[i].act(toPerception(*msg, i)));
+    const SeekerPerception perception = toPerception(*msg, i);
+    out.actions[i] = static_cast<uint8_t>(policies_[i].act(perception));
+    if (i == 0) seeker = perception.pose;
   }
   actions_pub_.publish(out);
-  if (n > 0) publishPlan(msg->header, toPerception(*msg, 0).pose, policies_[0]);
+  if (n > 0) publishPlan(msg->header, seeker, policies_[0]);
 }
 
 void SeekerNode::publishPlan(const std_msgs::Header& header, const AgentState& seeker, const SeekerPolicy& policy) {
