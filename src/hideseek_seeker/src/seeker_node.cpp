@@ -176,13 +176,14 @@ void SeekerNode::publishPlan(const std_msgs::Header& header, const AgentState& s
   plan.poses.push_back(pose(seeker.position, seeker.yaw));
   for (const Vec2& p : policy.path()) plan.poses.push_back(pose(p, 0.0));
   plan_pub_.publish(plan);
-  if (const std::optional<Vec2> target = policy.target()) {
-    geometry_msgs::PointStamped point;
-    point.header = header;
-    point.point.x = target->x;
-    point.point.y = target->y;
-    target_pub_.publish(point);
-  }
+  // No target (no path found: the seeker stays): its own position, so that rviz does not keep showing
+  // a point it no longer heads for.
+  const Vec2 target = policy.target().value_or(seeker.position);
+  geometry_msgs::PointStamped point;
+  point.header = header;
+  point.point.x = target.x;
+  point.point.y = target.y;
+  target_pub_.publish(point);
 }
 
 std::vector<uint8_t> SeekerNode::learnedOrRandom(const hideseek_msgs::SeekerObservationBatch& msg) {
