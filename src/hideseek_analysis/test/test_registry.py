@@ -1,5 +1,6 @@
 """Tests of hideseek_analysis.registry, the one Python reader of the variants and the run registry,
 and of its command line src/hideseek_analysis/scripts/hideseek_registry.py: run with python3 -m pytest."""
+import hashlib
 import os
 import re
 import subprocess
@@ -177,6 +178,29 @@ def test_problems_name_what_disagrees(tree):
     assert "variant 'ghost' has no file" in found
     assert "basic.pt do not exist" in found
     assert "stray.pt is shipped by no run" in found
+
+
+def test_a_run_on_a_variant_file_of_its_own_is_checked_against_its_files(tree, tmp_path):
+    """Such a run names no variant of the tree: the check looks at its files instead, and names one
+    that is gone or has changed since; its four fields come together or not at all."""
+    registry, variants = tree
+    mine, map_file = tmp_path / "mine.yaml", tmp_path / "map.yaml"
+    mine.write_text("variant: mine\n")
+    map_file.write_text("walls: []\n")
+    sha = {p: hashlib.sha256(p.read_bytes()).hexdigest() for p in (mine, map_file)}
+    open(registry, "a").write(
+        "mine_seed0: {variant: mine, network: ff, game: v3, variant_config: %s, variant_sha256: %s, map_file: %s, "
+        "map_sha256: %s}\n" % (mine, sha[mine], map_file, sha[map_file]))
+    assert reg.problems(registry, variants) == []
+    mine.write_text("variant: mine\nepisode: {max_steps: 100}\n")
+    map_file.unlink()
+    found = "\n".join(reg.problems(registry, variants))
+    assert "run mine_seed0: variant_config %s has changed since the run trained" % mine in found
+    assert "run mine_seed0: map_file %s does not exist" % map_file in found
+    assert "has no file in" not in found
+    open(registry, "a").write("half_seed0: {variant: half, network: ff, game: v3, variant_config: %s}\n" % mine)
+    result = cli("--registry", registry, "--variants-dir", variants, "runs")
+    assert result.returncode == 2 and "run half_seed0: a run on a variant file of its own records" in result.stderr
 
 
 def test_recording_a_run_again_replaces_its_training_and_an_empty_value_removes_a_field(tree):

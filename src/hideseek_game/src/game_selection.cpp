@@ -81,14 +81,20 @@ std::string variantFile(const std::string& config_dir, const std::string& varian
   return file;
 }
 
-GameSelection selectGame(const std::string& config_dir, const std::string& named, const std::string& variant) {
+GameSelection selectGame(const std::string& config_dir, const std::string& named, const std::string& variant,
+                         const std::string& variant_file) {
   const std::string game = named.empty() ? defaultGame(config_dir) : named;
   GameSelection s;
   s.game = game;
   s.variant = variant;
   s.game_file = gameFile(config_dir, game);
-  s.variant_file = variantFile(config_dir, variant);
+  s.variant_file = variant_file.empty() ? variantFile(config_dir, variant) : variant_file;
   s.config = loadVariantConfig(s.game_file, s.variant_file);
+  if (!variant_file.empty() && s.config.name != variant) {
+    throw ConfigError(
+        variant_file, "variant",
+        "is '" + s.config.name + "', but the file was given as variant '" + variant + "': give the file's name");
+  }
   if (s.config.game.name != game) {
     throw ConfigError(s.game_file, "game",
                       "is '" + s.config.game.name + "', but the file was selected as game '" + game + "'");

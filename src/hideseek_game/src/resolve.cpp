@@ -4,7 +4,8 @@
 //   (no --game: the default game, config/games.yaml's; `resolve VARIANT game` prints its name)
 //   prints game, variant, game_file, variant_file, map_file and shipped_policy ("" where none is
 //   shipped) as YAML; with KEY, that value alone. The registry defaults to hideseek_world's
-//   policies/policies.yaml. --help lists the options.
+//   policies/policies.yaml. --variant-config FILE: a variant file of one's own, whose variant field
+//   must be VARIANT, in place of config/variants/VARIANT.yaml. --help lists the options.
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -26,17 +27,18 @@ int usage(const std::string& why) {
 
 int main(int argc, char** argv) {
   namespace po = boost::program_options;
-  std::string game, network, registry, variant, key;  // no --game: config/games.yaml's default
+  std::string game, network, registry, variant, key, variant_file;  // no --game: config/games.yaml's default
   hideseek_game::CommandLine line;
   line.tool = "resolve";
   line.about =
       "resolve: what a game name and a variant resolve to, as every node resolves ~game and ~variant\n"
-      "usage: resolve [--game GAME] [--network ff|gru] [--registry FILE] VARIANT "
+      "usage: resolve [--game GAME] [--network ff|gru] [--registry FILE] [--variant-config FILE] VARIANT "
       "[game|variant|game_file|variant_file|map_file|shipped_policy]";
   line.options.add_options()                                                                                     //
       ("game", po::value(&game), "v2, v1 or v3 (none: config/games.yaml's default)")                             //
       ("network", po::value(&network)->default_value("ff"), "the shipped policy's network: ff or gru")           //
       ("registry", po::value(&registry), "the run registry (default: hideseek_world's policies/policies.yaml)")  //
+      ("variant-config", po::value(&variant_file), "a variant file of one's own, its variant field VARIANT")     //
       ("variant", po::value(&variant)->required(), "the variant")                                                //
       ("key", po::value(&key), "print this value alone (default: all of them, as YAML)");
   line.positional.add("variant", 1).add("key", 1);
@@ -46,7 +48,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> args{variant};
   if (!key.empty()) args.push_back(key);
   try {
-    const auto s = hideseek_game::selectGame(hideseek_game::configDirectory(), game, args[0]);
+    const auto s = hideseek_game::selectGame(hideseek_game::configDirectory(), game, args[0], variant_file);
     if (registry.empty()) registry = hideseek_game::packageDirectory("hideseek_world") + "/policies/policies.yaml";
     const std::vector<std::pair<std::string, std::string>> values = {
         {"game", s.game},

@@ -65,7 +65,9 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
       throw ConfigError(registry_file, f.field("retrain_of"), "is only for a retrain (draw: retrain)");
     }
     // Recorded for people and the scripts; read here so that a typo in a key is still refused.
-    for (const char* key : {"wall_s", "paused_s", "precision", "commit", "log", "curve", "command", "note"}) {
+    // A run on a variant file of its own also records the file and its map, with their sha256.
+    for (const char* key : {"wall_s", "paused_s", "precision", "commit", "log", "curve", "command", "note",
+                            "variant_config", "variant_sha256", "map_file", "map_sha256"}) {
       if (f.has(key)) f.child(key);
     }
     f.rejectUnknown();

@@ -106,5 +106,25 @@ TEST(GameSelection, AGameFileMustCallItselfByItsName) {
   std::filesystem::remove_all(dir);
 }
 
+// A variant file of one's own (resolve --variant-config, hideseek_pipeline train --variant-config)
+// replaces the variant's file; it is played under its own name, so a file named otherwise is refused.
+TEST(GameSelection, AVariantFileOfOnesOwnIsSelectedUnderItsOwnName) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("hideseek_own_variant_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string file = (dir / "mine.yaml").string();
+  std::ofstream(file) << "variant: mine\nmap: " << kConfig << "/maps/stochastic.yaml\nseeker: {policy: stochastic}\n";
+  const GameSelection s = selectGame(kConfig, "v2", "mine", file);
+  EXPECT_EQ(s.variant, "mine");
+  EXPECT_EQ(s.variant_file, file);
+  EXPECT_EQ(s.config.map_file, kConfig + "/maps/stochastic.yaml");
+  EXPECT_EQ(s.config.seeker_policy, "stochastic");
+  const std::string e = errorOf([&] { selectGame(kConfig, "v2", "yours", file); });
+  EXPECT_NE(e.find("is 'mine', but the file was given as variant 'yours'"), std::string::npos) << e;
+  EXPECT_NE(e.find(file), std::string::npos) << e;
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace hideseek_game

@@ -103,6 +103,21 @@ TEST_F(RunRegistryTest, MissingWeightsUnknownFieldsAndMissingFieldsAreRefused) {
   EXPECT_NE(errorOf("r: {variant: basic, network: ff}\n").find("'r.game': is required"), std::string::npos);
 }
 
+// hideseek_pipeline train --variant-config records a variant file of one's own and its map, with
+// their sha256: a registry holding such a run still gives the nodes their shipped policy.
+TEST_F(RunRegistryTest, ARunOnAVariantFileOfItsOwnIsReadWithItsFiles) {
+  const std::string registry = write(
+      std::string(kTwoRuns) +
+      "mine_seed0: {variant: mine, network: ff, game: v3, training_seed: 0, steps: 4096, variant_config: /v/mine.yaml, "
+      "variant_sha256: ab12, map_file: /v/map.yaml, map_sha256: cd34}\n");
+  const std::vector<RunEntry> runs = loadRunRegistry(registry);
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_EQ(runs[2].variant, "mine");
+  EXPECT_EQ(shippedPolicyFile(registry, "basic", "ff", "v2"), (dir_ / "basic.pt").string());
+  EXPECT_NE(errorOf("r: {variant: mine, network: ff, game: v3, map_sha: cd34}\n").find("'r.map_sha': unknown field"),
+            std::string::npos);
+}
+
 TEST_F(RunRegistryTest, ARetrainNamesTheFirstDrawItRepeats) {
   const auto runs = loadRunRegistry(
       write("basic_seed0: {variant: basic, network: ff, game: v2}\n"

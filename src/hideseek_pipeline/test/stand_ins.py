@@ -28,7 +28,7 @@ esac
 FAKE_TOOL = r"""#!/bin/bash
 echo "$(basename "$0") $*" >> "$CALLS"
 case $(basename "$0") in
-  resolve) [ "${@: -1}" = game ] && echo v2 || echo /maps/x.yaml ;;
+  resolve) [ "${@: -1}" = game ] && echo v2 || echo "${MAP_FILE:-/maps/x.yaml}" ;;
   export_policy) cp "$1" "$2" ;;
   play_episodes) [ "$1" = --game ] && shift 2; printf 'seed,step\n%s,1\n' "$3" > "$5" ;;
 esac

@@ -2,6 +2,7 @@
 exporter, player and plotting scripts): what each step runs, what it records and what it refuses;
 no ROS master and no training. The real tools' outputs were checked against the shell scripts these
 steps replaced (docs/architecture.md, "The scripts' move")."""
+import hashlib
 import os
 import subprocess
 import sys
@@ -234,7 +235,7 @@ def test_a_trainer_writes_the_records_with_the_records_own_registry_reader(ws, t
     module = rec / "src" / "hideseek_analysis" / "python" / "hideseek_analysis"
     module.mkdir(parents=True)
     today = open(os.path.join(ROOT, "src", "hideseek_analysis", "python", "hideseek_analysis", "registry.py")).read()
-    assert '"role")' in today
+    assert today.count('"role")') == 1
     (module / "registry.py").write_text(today.replace('"role")', '"role", "field_of_tomorrow")'))
     subprocess.run(["cp", "-r", os.path.join(ROOT, "config"), str(rec / "config")], check=True)  # its variants
     (rec / "policies" / "policies.yaml").write_text(
@@ -254,3 +255,87 @@ def test_a_seeker_evaluation_without_a_capture_shows_no_mean_time_to_capture(tmp
     table = (tmp_path / "seeker_evaluation.md").read_text()
     assert "| scripted/lap | learned | 100 | 0 | 0.0 % | - |" in table and "nan" not in table
     assert "| scripted/lap | scripted | 100 | 73 | 73.0 % | 484.5 |" in table
+
+
+@pytest.fixture
+def own_files(tmp_path):
+    """A variant file of one's own, `mine`, and its map (the stand-in resolver names it)."""
+    variant, map_file = tmp_path / "mine.yaml", tmp_path / "mine_map.yaml"
+    variant.write_text("variant: mine\nmap: %s\nseeker: {path_following: no_backtrack}\n" % map_file)
+    map_file.write_text("walls: []\n")
+    return variant, map_file
+
+
+def test_a_variant_file_of_one_s_own_trains_evaluates_and_analyses_as_it_was_recorded(ws, tmp_path, own_files):
+    """train --variant-config: every tool plays the file, and the registry records it and its map with
+    their sha256; the run's evaluation and analysis play the same file again."""
+    w, rec, calls = ws
+    variant, map_file = own_files
+    r = pipeline(w, rec, calls, "train", "mine", "--variant-config", str(variant), "--steps", "4096", "--runs-dir",
+                 str(tmp_path / "runs"), "--eval-modes", "greedy", MAP_FILE=str(map_file))
+    assert r.returncode == 0, r.stdout + r.stderr
+    e = entries(rec)["mine_4096_seed0"]
+    assert (e["variant"], e["variant_config"], e["map_file"]) == ("mine", str(variant), str(map_file))
+    assert e["variant_sha256"] == hashlib.sha256(variant.read_bytes()).hexdigest()
+    assert e["map_sha256"] == hashlib.sha256(map_file.read_bytes()).hexdigest()
+    assert e["command"].endswith("--variant-config %s" % variant)
+    lines = calls.read_text().splitlines()
+    launched = [line for line in lines if line.startswith("roslaunch")]
+    assert "train.launch variant:=mine" in launched[0] and "variant_config:=%s" % variant in launched[0]
+    assert "evaluate.launch variant:=mine" in launched[1] and "variant_config:=%s" % variant in launched[1]
+    resolved = [line for line in lines if line.startswith("resolve")]
+    assert resolved and all("--variant-config %s mine" % variant in line for line in resolved)
+    played = [line for line in lines if line.startswith("play_episodes")]
+    assert played and all(line.endswith("--variant-config %s" % variant) for line in played)
+    calls.unlink()
+    weights = tmp_path / "runs" / "mine_4096_seed0" / "policy.pt"
+    r = pipeline(w, rec, calls, "analyze", "mine_4096_seed0", str(weights), "--part", "behaviour", "--episodes", "60",
+                 MAP_FILE=str(map_file))
+    assert r.returncode == 0, r.stderr
+    played = [line for line in calls.read_text().splitlines() if line.startswith("play_episodes")]
+    assert len(played) == 2 and all(line.endswith("--variant-config %s" % variant) for line in played)
+
+
+def test_a_variant_file_of_one_s_own_is_refused_where_it_is_misnamed_changed_or_shipped(ws, tmp_path, own_files):
+    w, rec, calls = ws
+    variant, map_file = own_files
+    runs = str(tmp_path / "runs")
+    own = ["--variant-config", str(variant), "--runs-dir", runs, "--steps", "4096"]
+    for args, said in (
+            (["yours"] + own, "is variant 'mine' (its variant field), not 'yours': give the file's name"),
+            (["mine", "--variant-config", str(tmp_path / "gone.yaml"), "--runs-dir", runs], "no file"),
+            (["mine", "--ship"] + own, "a run on a variant file of one's own is played from its weights")):
+        r = pipeline(w, rec, calls, "train", *args, MAP_FILE=str(map_file))
+        assert r.returncode == 1 and said in r.stderr, (args, r.stderr)
+    basic = tmp_path / "basic.yaml"
+    basic.write_text("variant: basic\n")
+    r = pipeline(w, rec, calls, "train", "basic", "--variant-config", str(basic), "--runs-dir", runs,
+                 MAP_FILE=str(map_file))
+    assert r.returncode == 1 and "'basic' is a variant of the project" in r.stderr
+    assert not calls.exists() or "train.launch" not in calls.read_text()
+    # A run cut off with its checkpoint resumes on the files it started on, not on an edited one.
+    r = pipeline(w, rec, calls, "train", "mine", *own, "--eval-modes", "greedy", MAP_FILE=str(map_file),
+                 STOP_AT="2048")
+    assert r.returncode == 1 and "the same command resumes it" in r.stderr
+    saved = yaml.safe_load((tmp_path / "runs" / "mine_4096_seed0" / "variant_files.yaml").read_text())
+    assert saved["variant_sha256"] == hashlib.sha256(variant.read_bytes()).hexdigest()
+    map_file.write_text("walls: [{x: 1}]\n")
+    calls.unlink()
+    r = pipeline(w, rec, calls, "train", "mine", *own, MAP_FILE=str(map_file))
+    assert r.returncode == 1 and "mine_4096_seed0's checkpoint in" in r.stderr and "name the run otherwise" in r.stderr
+    assert "train.launch" not in calls.read_text()
+    # Recorded, then its file edited: its evaluation and analysis are refused, naming the file.
+    map_file.write_text("walls: []\n")
+    r = pipeline(w, rec, calls, "train", "mine", *own, "--eval-modes", "greedy", MAP_FILE=str(map_file))
+    assert r.returncode == 0, r.stdout + r.stderr
+    variant.write_text(variant.read_text() + "episode: {max_steps: 100}\n")
+    weights = str(tmp_path / "runs" / "mine_4096_seed0" / "policy.pt")
+    for step in (["evaluate", "mine_4096_seed0", weights], ["analyze", "mine_4096_seed0", weights]):
+        r = pipeline(w, rec, calls, *step, MAP_FILE=str(map_file))
+        assert r.returncode == 1 and "mine_4096_seed0 trained on %s with sha256" % variant in r.stderr, r.stderr
+        assert "it has changed since" in r.stderr
+    # and the registry's check names it
+    sys.path.insert(0, os.path.join(ROOT, "src", "hideseek_analysis", "python"))
+    from hideseek_analysis import registry
+    found = registry.problems(str(rec / "policies" / "policies.yaml"), os.path.join(ROOT, "config", "variants"))
+    assert any("variant_config %s has changed since the run trained" % variant in p for p in found), found

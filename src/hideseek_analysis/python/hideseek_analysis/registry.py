@@ -6,7 +6,8 @@ line: src/hideseek_analysis/scripts/hideseek_registry.py in a checkout, or rosru
   seed, steps, wall time, precision, the commit it trained with, its log and curve). The run whose
   exported weights are committed names them in `weights` (relative to policies/): the policy a
   variant's launch file plays by default (policy:=shipped). At most one run ships weights for a
-  variant, network and game.
+  variant, network and game. A run trained on a variant file of its own records the file and its
+  map with their sha256 (variant_config, variant_sha256, map_file, map_sha256).
 
 The C++ nodes read the runs through hideseek_game/run_registry.h, under the same rules. Both
 readers exist because a node resolves policy:=shipped at start-up in C++, without a Python
@@ -45,6 +46,7 @@ import contextlib
 import csv
 import fcntl
 import glob
+import hashlib
 import io
 import os
 import shutil
@@ -77,8 +79,11 @@ PAPER = os.path.join(ROOT, "config", "paper_reference.yaml")
 GAMES = os.path.join(ROOT, "config", "games.yaml")  # the default game: config/games.yaml's `default`
 NETWORKS = ("ff", "gru")
 # Keys a run may carry (the C++ loader refuses any other, so that a typo is found).
+# A run trained on a variant file of its own (hideseek_pipeline train --variant-config): the file and
+# its map, each with its sha256 when it trained; its evaluation and analysis replay them unchanged.
+OWN_VARIANT_KEYS = ("variant_config", "variant_sha256", "map_file", "map_sha256")
 RUN_KEYS = ("variant", "network", "game", "training_seed", "steps", "wall_s", "paused_s", "precision", "commit",
-            "log", "curve", "command", "note", "weights", "draw", "retrain_of", "role")
+            "log", "curve", "command", "note", "weights", "draw", "retrain_of", "role") + OWN_VARIANT_KEYS
 REQUIRED = ("variant", "network", "game")
 # A run's draw: `first`, the first training of its variant and seed (the default, and the only
 # draw that Table 2 and the claims count), or `retrain`, the same variant and seed trained again to
@@ -192,6 +197,10 @@ def _checked(entries, registry):
         if (draw(entry) == "retrain") != bool(entry.get("retrain_of")):
             raise RegistryError("%s: run %s: %s" % (registry, name, "a retrain needs 'retrain_of', the run it trains again"
                                                     if draw(entry) == "retrain" else "'retrain_of' is only for a retrain"))
+        own = [key for key in OWN_VARIANT_KEYS if entry.get(key)]
+        if own and len(own) != len(OWN_VARIANT_KEYS):
+            raise RegistryError("%s: run %s: a run on a variant file of its own records %s together; it has only %s"
+                                % (registry, name, ", ".join(OWN_VARIANT_KEYS), ", ".join(own)))
     return entries
 
 
@@ -429,6 +438,11 @@ def weights_in_history(name, registry=REGISTRY):
     return None
 
 
+def _sha256(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
 def problems(registry=REGISTRY, variants_dir=VARIANTS_DIR):
     """Where the registries disagree with each other or with the tree."""
     found = []
@@ -440,7 +454,17 @@ def problems(registry=REGISTRY, variants_dir=VARIANTS_DIR):
     keys = {}
     root = os.path.dirname(os.path.dirname(os.path.abspath(registry)))  # the records' checkout: log paths are its
     for name, e in entries.items():
-        if e["variant"] not in names:
+        if e.get("variant_config"):
+            if e["variant"] in names:
+                found.append("run %s: trained on a variant file of its own, %s, under a name of the project's, %r"
+                             % (name, e["variant_config"], e["variant"]))
+            for field, sha in (("variant_config", "variant_sha256"), ("map_file", "map_sha256")):
+                if not os.path.isfile(e[field]):
+                    found.append("run %s: %s %s does not exist" % (name, field, e[field]))
+                elif _sha256(e[field]) != e[sha]:
+                    found.append("run %s: %s %s has changed since the run trained (its sha256 is not %s)"
+                                 % (name, field, e[field], e[sha]))
+        elif e["variant"] not in names:
             found.append("run %s: variant %r has no file in %s" % (name, e["variant"], variants_dir))
         path = weights_path(e, registry)
         if path:

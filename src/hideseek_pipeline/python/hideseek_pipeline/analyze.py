@@ -11,26 +11,30 @@ import os
 import shutil
 import tempfile
 
+from hideseek_pipeline import own_variant
 from hideseek_pipeline.workspace import ToolError
 
 PARTS = ("all", "tsne", "memoryless", "behaviour")
 CHUNK = 50  # play_episodes plays at most 64 episodes at once
 
 
-def rollouts(ws, game, variant, policy, first, episodes, memory, steps_csv, tmp):
-    """`episodes` greedy episodes from seed `first` into one per-step CSV, in chunks of 50."""
+def rollouts(ws, game, variant, policy, first, episodes, memory, steps_csv, tmp, variant_config=None):
+    """`episodes` greedy episodes from seed `first` into one per-step CSV, in chunks of 50; of a variant
+    file of one's own where `variant_config` names one."""
     with open(steps_csv, "w") as out:
         for at in range(0, episodes, CHUNK):
             chunk = os.path.join(tmp, "chunk.csv")
             ws.command([ws.tool("hideseek_play", "play_episodes"), "--game", game, variant, policy, first + at,
-                        min(CHUNK, episodes - at), chunk, "greedy", memory])
+                        min(CHUNK, episodes - at), chunk, "greedy", memory] +
+                       (["--variant-config", variant_config] if variant_config else []))
             with open(chunk) as f:
                 lines = f.readlines()
             out.writelines(lines if at == 0 else lines[1:])
 
 
 def analyze_run(ws, records, name, policy, part="all", episodes=100, first=10000, say=print, entry=None, out=None):
-    """A recorded run, on its own game as the registry records it; `part` one of PARTS. A policy
+    """A recorded run, on its own game (and variant file of its own, unchanged since it trained) as
+    the registry records it; `part` one of PARTS. A policy
     that is not a run of the registry (a self-play generation) gives its `entry` (variant, network,
     game) and the folder `out` of its analysis instead."""
     if part not in PARTS:
@@ -41,6 +45,7 @@ def analyze_run(ws, records, name, policy, part="all", episodes=100, first=10000
     variant, network, game = entry["variant"], entry.get("network", "ff"), entry["game"]
     if part == "memoryless" and network != "gru":
         raise ToolError("analyze: the memoryless ablation is a GRU's; %s is a %s run" % (name, network))
+    variant_config = own_variant.check_unchanged(ws, name, entry, "analyze")
     policy = os.path.realpath(policy)
     out = out or records.docs(name, "analysis")
     os.makedirs(out, exist_ok=True)
@@ -49,7 +54,7 @@ def analyze_run(ws, records, name, policy, part="all", episodes=100, first=10000
         steps = os.path.join(tmp, "steps.csv")
 
         def behaviour(memory, folder):
-            rollouts(ws, game, variant, policy, first, episodes, memory, steps, tmp)
+            rollouts(ws, game, variant, policy, first, episodes, memory, steps, tmp, variant_config)
             ws.python("behaviour.py", steps, folder, "--run", name)
 
         if part == "memoryless":

@@ -95,7 +95,10 @@ def parser():
 def _train_parser(sub, common):
     t = sub.add_parser("train", parents=[common], help="train, export, record and evaluate one run",
                        description=train.__doc__)
-    t.add_argument("variant")
+    t.add_argument("variant", help="a variant of config/variants, or with --variant-config the variant that file names")
+    t.add_argument("--variant-config", help="a variant file of one's own (its variant field VARIANT, a name no variant "
+                   "of the project takes): recorded with its map and their sha256, played again by the run's "
+                   "evaluation and analysis; the run does not ship")
     t.add_argument("--seed", type=int, default=0, help="the training seed (default 0)")
     t.add_argument("--steps", type=int, default=2_000_000, help="environment steps (default 2000000)")
     t.add_argument("--runs-dir", default="~/hideseek_runs",
@@ -272,7 +275,8 @@ def run_command(args):
             name=args.name, game=args.game, precision=args.precision, num_arenas=args.num_arenas,
             ppo_config=args.ppo_config and os.path.realpath(args.ppo_config), hider_threads=args.hider_threads,
             port=args.port, eval_port=args.eval_port, eval_modes=tuple(args.eval_modes),
-            paused_file=args.paused_file, ship=args.ship, role=args.role, opponent=args.opponent)
+            paused_file=args.paused_file, ship=args.ship, role=args.role, opponent=args.opponent,
+            variant_config=args.variant_config and os.path.realpath(args.variant_config))
         train.train(ws, records, o)
     elif args.command == "evaluate":
         evaluate.evaluate(ws, records, args.run, args.weights, tuple(args.modes), args.port)

@@ -57,7 +57,7 @@ def evaluate_seeker(ws, variant, game, seeker, hiders, out, episodes=100, first_
                     variant_config=None, name=None):
     """The learned `seeker` and the scripted seeker against every hider of `hiders`; the table is
     titled `name` (a run's), or the seeker's file name."""
-    game = game or ws.resolve("basic" if variant_config else variant, "game")
+    game = game or ws.resolve(variant, "game", None, variant_config)
     rows = []
     # The launch files take a relative path from the workspace's root, where the tools run: absolute here.
     hiders = [h if h in ("random", "shipped") or h.startswith("scripted/") else os.path.realpath(h) for h in hiders]

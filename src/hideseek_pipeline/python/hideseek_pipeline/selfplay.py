@@ -167,7 +167,7 @@ def selfplay(ws, o, say=print):
     """Trains the generations not yet saved; returns every generation's entry."""
     os.makedirs(o.out, exist_ok=True)
     o.out = os.path.realpath(o.out)
-    game = o.game or (ws.resolve(o.variant, "game") if not o.variant_config else ws.resolve("basic", "game"))
+    game = o.game or ws.resolve(o.variant, "game", None, o.variant_config)
     generations = load_generations(o.out)
     drawn = {float(g.get("latest_share", 0.0)) for g in generations}  # saved before the share: uniform
     if drawn - {o.latest_share}:
@@ -204,7 +204,7 @@ def crossplay(ws, o, episodes=100, first_seed=0, say=print):
     evaluate.launch (greedy, fp32). Written to OUT/crossplay/crossplay.csv, .md and .png, with the
     two learners' training logs and their learning curves."""
     generations = load_generations(o.out)
-    game = generations[0]["game"] if generations else (o.game or ws.resolve(o.variant, "game"))
+    game = generations[0]["game"] if generations else (o.game or ws.resolve(o.variant, "game", None, o.variant_config))
     hiders = ["random"] + [g["checkpoint"] for g in generations if g["role"] == "hider"]
     seekers = ["scripted", "random"] + [g["checkpoint"] for g in generations if g["role"] == "seeker"]
     dest = os.path.join(o.out, "crossplay")
@@ -309,7 +309,7 @@ def record(ws, records, o, name, episodes=100, say=print):
         shutil.copyfile(os.path.join(o.out, "crossplay", f), os.path.join(dest, f))
     shutil.copyfile(os.path.join(o.out, "generations.yaml"), os.path.join(dest, "generations.yaml"))
     game = generations[0]["game"]
-    entry = {"variant": o.variant, "network": "ff", "game": game}
+    entry = {"variant": o.variant, "network": "ff", "game": game, "variant_config": o.variant_config}
     against_scripted = {}
     seekers = {g["generation"]: os.path.join(o.out, g["checkpoint"]) for g in generations if g["role"] == "seeker"}
     for g in (hiders[0], hiders[-1]) if len(hiders) > 1 else hiders[:1]:

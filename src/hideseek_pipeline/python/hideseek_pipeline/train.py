@@ -7,7 +7,13 @@ A seeker's run (--role seeker) trains the seeker against a fixed hider (--oppone
 shipped hider of the game, as the records' registry ships it, by default), is recorded with its
 role, and is evaluated as a seeker: its capture rate and mean time to capture against that hider
 and the scripted evaders, beside the scripted seeker's against the same hiders (seeds 0-99,
-docs/runs/<run>/seeker_evaluation.md)."""
+docs/runs/<run>/seeker_evaluation.md).
+
+A variant file of one's own (--variant-config FILE, its variant field VARIANT, a name the project's
+variants do not take) trains, evaluates and analyses like a variant of the project. Its registry
+entry records the file and its map with their sha256; the run's evaluation and analysis play that
+file, refused once either has changed, and a checkpoint is resumed only on the files it trained on.
+Such a run does not ship (play its weights with policy:=PATH)."""
 import os
 import re
 import shutil
@@ -15,6 +21,7 @@ import subprocess
 from dataclasses import dataclass
 from typing import Optional
 
+from hideseek_pipeline import own_variant
 from hideseek_pipeline import seeker as seeker_evaluation
 from hideseek_pipeline import sweep_config
 from hideseek_pipeline.evaluate import evaluate
@@ -45,6 +52,7 @@ class TrainOptions:
     ship: bool = False
     role: str = "hider"               # who learns: hider or seeker
     opponent: Optional[str] = None    # the fixed other side (None: train.launch's; a seeker's: the shipped hider)
+    variant_config: Optional[str] = None  # a variant file of one's own, named `variant`
 
     def run_name(self, game):
         """--name, or the name the sweep gives the same run (sweep_config.run_name): the role, the
@@ -71,7 +79,8 @@ def command_line(o, name, root):
     for flag, value in (("--role", None if o.role == "hider" else o.role), ("--opponent", o.opponent),
                         ("--game", o.game), ("--precision", None if o.precision == "auto" else o.precision),
                         ("--num-arenas", o.num_arenas), ("--hider-threads", o.hider_threads),
-                        ("--ppo-config", o.ppo_config and os.path.relpath(o.ppo_config, root))):
+                        ("--ppo-config", o.ppo_config and os.path.relpath(o.ppo_config, root)),
+                        ("--variant-config", o.variant_config)):
         if value is not None:
             parts += [flag, str(value)]
     return " ".join(parts)
@@ -80,9 +89,16 @@ def command_line(o, name, root):
 def train(ws, records, o, say=print):
     """`ws`: the Workspace that trains (its launch files, binaries and commit); `records`: the
     Records of the checkout that receives the run's files and registry entry."""
-    if o.variant not in records.registry.variants():
-        raise ToolError("train: no variant '%s' in config/variants" % o.variant)
-    game = o.game or ws.resolve(o.variant, "game")
+    variant_config = o.variant_config and own_variant.check_file(o.variant_config, o.variant,
+                                                                 records.registry.variants(), "train")
+    if not variant_config and o.variant not in records.registry.variants():
+        raise ToolError("train: no variant '%s' in config/variants (a variant file of one's own: --variant-config "
+                        "FILE)" % o.variant)
+    if variant_config and o.ship:
+        raise ToolError("train: --ship makes a run the shipped policy of a variant of the project; a run on a variant "
+                        "file of one's own is played from its weights (policy:=PATH variant_config:=FILE)")
+    game = o.game or ws.resolve(o.variant, "game", None, variant_config)
+    fields = variant_config and own_variant.fingerprint(ws, o.variant, game, variant_config)
     name = o.run_name(game)
     if not name or "/" in name or name.startswith("."):
         raise ToolError("train: the run's name '%s' must be a plain file name (no '/', not starting with '.')" % name)
@@ -93,9 +109,10 @@ def train(ws, records, o, say=print):
     if o.ship and o.role != "hider":
         raise ToolError("train: --ship ships a hider's run as its variant's policy; a seeker's run is not shipped")
     opponent = _opponent(records, o, game)
-    _refuse_another_run(records, name, o, game)
+    _refuse_another_run(records, name, o, game, fields)
     run = os.path.join(os.path.realpath(os.path.expanduser(o.runs_dir)), name)
     os.makedirs(run, exist_ok=True)
+    own_variant.check_resume(run, fields, name, "train")
     port = o.port or 11700 + o.seed + (50 if o.network == "gru" else 0) + (25 if o.role == "seeker" else 0)
     commit, commit_file = _commit(ws), os.path.join(run, "commit")
     lines = open(commit_file).read().splitlines() if os.path.isfile(commit_file) else []
@@ -107,7 +124,7 @@ def train(ws, records, o, say=print):
     args = ["roslaunch", "-p", port, "hideseek_world", "train.launch", "variant:=" + o.variant, "game:=" + game,
             "seed:=%d" % o.seed, "steps:=%d" % o.steps, "network:=" + o.network, "precision:=" + o.precision,
             "output_dir:=" + run] + (["role:=" + o.role] if o.role != "hider" else []) + \
-        (["opponent:=" + opponent] if opponent else [])
+        (["opponent:=" + opponent] if opponent else []) + (["variant_config:=" + variant_config] if fields else [])
     for key, value in (("num_arenas", o.num_arenas), ("hider_threads", o.hider_threads),
                        ("ppo_config", o.ppo_config and os.path.realpath(o.ppo_config))):
         if value is not None:
@@ -135,12 +152,13 @@ def train(ws, records, o, say=print):
     ws.python("plot_learning_curve.py", os.path.join(docs, "training_log.csv"), os.path.join(docs, "learning_curve.png"),
               "%s%s, network %s, game %s, training seed %d, %d steps" % (
                   o.variant, ", the seeker" if o.role == "seeker" else "", o.network, game, o.seed, trained))
-    record(records, name, o, game, trained, row, run, launch_log, ws.root)
+    record(records, name, o, game, trained, row, run, launch_log, ws.root, fields)
     say("train: %s recorded in %s; weights in %s" % (name, records.registry_path, os.path.join(run, "policy.pt")))
     if o.role == "seeker":
         seeker_evaluation.evaluate_seeker(ws, o.variant, game, os.path.join(run, "policy.pt"),
                                           [opponent] + [e for e in EVADERS if e != opponent], docs,
-                                          port=o.eval_port or port + 1000, say=say, name=name)
+                                          port=o.eval_port or port + 1000, say=say, name=name,
+                                          variant_config=variant_config)
         return name
     evaluate(ws, records, name, os.path.join(run, "policy.pt"), o.eval_modes, o.eval_port or port + 1000, say)
     if o.ship:
@@ -164,11 +182,11 @@ def _sweep_runs(records):
         return set()
 
 
-def _refuse_another_run(records, name, o, game):
+def _refuse_another_run(records, name, o, game, fields=None):
     """A run keeps what it was recorded with: a name that the registry holds for another game,
-    variant, role, network, training seed or budget is not trained (or resumed, or overwritten) as
-    this run; and an unnamed run does not take the name of one of the sweep's runs (recorded or
-    still to train), whose records Table 2 and the claims count."""
+    variant (or version of its variant file), role, network, training seed or budget is not trained
+    (or resumed, or overwritten) as this run; and an unnamed run does not take the name of one of the
+    sweep's runs (recorded or still to train), whose records Table 2 and the claims count."""
     entry = records.entry(name) or {}
     if not o.name and (str(entry.get("note", "")).startswith(records.registry.SWEEP_NOTE)
                        or name in _sweep_runs(records)):
@@ -179,7 +197,9 @@ def _refuse_another_run(records, name, o, game):
     for field, recorded, here in (("game", entry.get("game"), game), ("variant", entry.get("variant"), o.variant),
                                   ("role", entry.get("role", "hider"), o.role),
                                   ("network", records.registry.run_network(name, entry), o.network),
-                                  ("training seed", entry.get("training_seed"), o.seed)):
+                                  ("training seed", entry.get("training_seed"), o.seed),
+                                  ("variant file sha256", entry.get("variant_sha256"),
+                                   (fields or {}).get("variant_sha256"))):
         if recorded is not None and str(recorded) != str(here):
             raise ToolError("train: %s is recorded as a run of %s %s (policies/policies.yaml); this is %s %s: name "
                             "the run otherwise" % (name, field, recorded, field, here))
@@ -214,7 +234,7 @@ def _opponent(records, o, game):
                     % (opponent, o.role, ", ".join(("shipped",) + named if o.role == "seeker" else named)))
 
 
-def record(records, name, o, game, trained, row, run, launch_log, root):
+def record(records, name, o, game, trained, row, run, launch_log, root, fields=None):
     # The precision the hider chose, from its last start-up line ("... on cpu in auto: bf16, ...").
     chosen = re.findall(r"PPO, network [a-z]+, on \S+ in [^,]*", open(launch_log).read())
     precision = (re.findall(r"bf16|fp32", chosen[-1]) or ["unknown"])[0] if chosen else "unknown"
@@ -229,5 +249,5 @@ def record(records, name, o, game, trained, row, run, launch_log, root):
         "variant": o.variant, "network": o.network, "game": game, "training_seed": o.seed, "steps": trained,
         "wall_s": int(float(row[2])) - paused, "paused_s": paused or None, "precision": precision, "commit": commits,
         "log": "docs/runs/%s/training_log.csv" % name, "curve": "docs/runs/%s/learning_curve.png" % name,
-        "command": command_line(o, name, root), "role": None if o.role == "hider" else o.role},
+        "command": command_line(o, name, root), "role": None if o.role == "hider" else o.role, **(fields or {})},
         records.registry_path)

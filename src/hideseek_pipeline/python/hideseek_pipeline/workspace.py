@@ -49,9 +49,11 @@ class Workspace:
     def tool(self, package, name):
         return os.path.join(self.root, "devel", "lib", package, name)
 
-    def resolve(self, variant, key, game=None):
-        """The resolver's answer for a variant (hideseek_game's resolve: game, map_file, ...)."""
-        args = [self.tool("hideseek_game", "resolve")] + (["--game", game] if game else []) + [variant, key]
+    def resolve(self, variant, key, game=None, variant_config=None):
+        """The resolver's answer for a variant (hideseek_game's resolve: game, map_file, ...), or for
+        a variant file of one's own, `variant_config`, whose variant field must be `variant`."""
+        args = [self.tool("hideseek_game", "resolve")] + (["--game", game] if game else []) + \
+            (["--variant-config", variant_config] if variant_config else []) + [variant, key]
         return self.command(args).strip()
 
     def analysis_script(self, name):
