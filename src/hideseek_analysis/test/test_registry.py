@@ -201,6 +201,11 @@ def test_a_run_on_a_variant_file_of_its_own_is_checked_against_its_files(tree, t
     open(registry, "a").write("half_seed0: {variant: half, network: ff, game: v3, variant_config: %s}\n" % mine)
     result = cli("--registry", registry, "--variants-dir", variants, "runs")
     assert result.returncode == 2 and "run half_seed0: a run on a variant file of its own records" in result.stderr
+    shipped = tmp_path / "shipped.yaml"
+    shipped.write_text("mine_seed0: {variant: mine, network: ff, game: v3, variant_config: %s, variant_sha256: a, "
+                       "map_file: %s, map_sha256: b, weights: mine.pt}\n" % (mine, map_file))
+    result = cli("--registry", str(shipped), "--variants-dir", variants, "runs")
+    assert result.returncode == 2 and "run mine_seed0: a run on a variant file of its own ships no weights" in result.stderr
 
 
 def test_recording_a_run_again_replaces_its_training_and_an_empty_value_removes_a_field(tree):

@@ -65,10 +65,22 @@ std::vector<RunEntry> loadRunRegistry(const std::string& registry_file) {
       throw ConfigError(registry_file, f.field("retrain_of"), "is only for a retrain (draw: retrain)");
     }
     // Recorded for people and the scripts; read here so that a typo in a key is still refused.
-    // A run on a variant file of its own also records the file and its map, with their sha256.
-    for (const char* key : {"wall_s", "paused_s", "precision", "commit", "log", "curve", "command", "note",
-                            "variant_config", "variant_sha256", "map_file", "map_sha256"}) {
+    for (const char* key : {"wall_s", "paused_s", "precision", "commit", "log", "curve", "command", "note"}) {
       if (f.has(key)) f.child(key);
+    }
+    // A run on a variant file of its own records the file and its map with their sha256, all four
+    // together, and ships no weights (a shipped policy is played under its variant's name).
+    int own = 0;
+    for (const char* key : {"variant_config", "variant_sha256", "map_file", "map_sha256"}) {
+      if (!f.text(key, "", {}).empty()) ++own;
+    }
+    if (own != 0 && own != 4) {
+      throw ConfigError(registry_file, f.field("variant_config"),
+                        "a run on a variant file of its own records variant_config, variant_sha256, map_file and "
+                        "map_sha256 together");
+    }
+    if (own == 4 && !weights.empty()) {
+      throw ConfigError(registry_file, f.field("weights"), "a run on a variant file of its own ships no weights");
     }
     f.rejectUnknown();
     if (!weights.empty()) {

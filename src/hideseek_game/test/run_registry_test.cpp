@@ -116,6 +116,12 @@ TEST_F(RunRegistryTest, ARunOnAVariantFileOfItsOwnIsReadWithItsFiles) {
   EXPECT_EQ(shippedPolicyFile(registry, "basic", "ff", "v2"), (dir_ / "basic.pt").string());
   EXPECT_NE(errorOf("r: {variant: mine, network: ff, game: v3, map_sha: cd34}\n").find("'r.map_sha': unknown field"),
             std::string::npos);
+  EXPECT_NE(errorOf("r: {variant: mine, network: ff, game: v3, variant_config: /v/mine.yaml}\n").find("together"),
+            std::string::npos);
+  EXPECT_NE(errorOf("r: {variant: mine, network: ff, game: v3, variant_config: /v/mine.yaml, variant_sha256: ab, "
+                    "map_file: /v/map.yaml, map_sha256: cd, weights: basic.pt}\n")
+                .find("'r.weights': a run on a variant file of its own ships no weights"),
+            std::string::npos);
 }
 
 TEST_F(RunRegistryTest, ARetrainNamesTheFirstDrawItRepeats) {

@@ -339,3 +339,54 @@ def test_a_variant_file_of_one_s_own_is_refused_where_it_is_misnamed_changed_or_
     from hideseek_analysis import registry
     found = registry.problems(str(rec / "policies" / "policies.yaml"), os.path.join(ROOT, "config", "variants"))
     assert any("variant_config %s has changed since the run trained" % variant in p for p in found), found
+
+
+def test_a_run_cut_off_before_its_first_checkpoint_starts_again_on_the_files_given_now(tmp_path, own_files):
+    """variant_files.yaml binds a checkpoint to its files; with no checkpoint yet, a run started again
+    on an edited file is a new start, and its checkpoint then resumes on the edited file."""
+    sys.path.insert(0, PACKAGE)
+    from hideseek_pipeline import own_variant
+    from hideseek_pipeline.workspace import ToolError
+    variant, map_file = own_files
+    run = tmp_path / "run"
+    run.mkdir()
+
+    def fields():
+        return {"variant_config": str(variant), "variant_sha256": own_variant.sha256(str(variant)),
+                "map_file": str(map_file), "map_sha256": own_variant.sha256(str(map_file))}
+    own_variant.check_resume(str(run), fields(), "mine", "train")  # first start: no checkpoint
+    variant.write_text(variant.read_text() + "# edited before any checkpoint\n")
+    own_variant.check_resume(str(run), fields(), "mine", "train")  # started again on the edited file
+    (run / "checkpoint.pt").write_text("ckpt")
+    own_variant.check_resume(str(run), fields(), "mine", "train")  # resumes on it
+    with pytest.raises(ToolError, match="mine's checkpoint in .* trained on the variant file"):
+        own_variant.check_resume(str(run), None, "mine", "train")  # not on the project's files
+    map_file.write_text("walls: [{x: 2}]\n")
+    with pytest.raises(ToolError, match="name the run otherwise, or restore the file"):
+        own_variant.check_resume(str(run), fields(), "mine", "train")
+
+
+def test_a_recorded_run_s_map_is_checked_by_content_where_this_workspace_resolves_it(tmp_path, own_files):
+    """A relative map name resolves under the workspace's config/ (a worktree, devel or install space):
+    the same content elsewhere plays; other content is refused, naming both files."""
+    sys.path.insert(0, PACKAGE)
+    from hideseek_pipeline import own_variant
+    from hideseek_pipeline.workspace import ToolError
+    variant, map_file = own_files
+    elsewhere = tmp_path / "elsewhere_map.yaml"
+    elsewhere.write_text(map_file.read_text())
+
+    class Resolver:
+        map_file = str(elsewhere)
+
+        def resolve(self, name, key, game=None, variant_config=None):
+            assert (name, key, game, variant_config) == ("mine", "map_file", "v3", str(variant))
+            return self.map_file
+    entry = {"variant": "mine", "game": "v3", "variant_config": str(variant),
+             "variant_sha256": own_variant.sha256(str(variant)), "map_file": str(map_file),
+             "map_sha256": own_variant.sha256(str(map_file))}
+    assert own_variant.check_unchanged(Resolver(), "mine_seed0", entry, "evaluate") == str(variant)
+    elsewhere.write_text("walls: [{x: 3}]\n")
+    with pytest.raises(ToolError, match="mine_seed0 trained on %s with sha256 .*it has changed since \\(%s" % (
+            map_file, elsewhere)):
+        own_variant.check_unchanged(Resolver(), "mine_seed0", entry, "evaluate")

@@ -201,6 +201,9 @@ def _checked(entries, registry):
         if own and len(own) != len(OWN_VARIANT_KEYS):
             raise RegistryError("%s: run %s: a run on a variant file of its own records %s together; it has only %s"
                                 % (registry, name, ", ".join(OWN_VARIANT_KEYS), ", ".join(own)))
+        if own and entry.get("weights"):
+            raise RegistryError("%s: run %s: a run on a variant file of its own ships no weights (a variant's shipped "
+                                "policy is played under its name, whatever file that name then reads)" % (registry, name))
     return entries
 
 

@@ -9,9 +9,6 @@ import yaml
 
 from hideseek_pipeline.workspace import ToolError
 
-# The registry fields of a run trained on a variant file of its own.
-FIELDS = ("variant_config", "variant_sha256", "map_file", "map_sha256")
-
 
 def sha256(path):
     with open(path, "rb") as f:
@@ -48,23 +45,21 @@ def fingerprint(ws, variant, game, path):
 
 def check_unchanged(ws, name, entry, step):
     """The variant file a recorded run trained on (None for a variant of the project), once it and
-    its map hash as the registry recorded; ToolError naming the file that changed otherwise. An entry
-    that records no sha256 (a self-play's generation, which names the file it plays now) is taken as
-    it is."""
+    the map it names here hash as the registry recorded; ToolError naming the file that changed
+    otherwise. The map is the one this workspace resolves (a relative map name resolves under the
+    workspace's config/), checked by content, not by path. An entry that records no sha256 (a
+    self-play's generation, which names the file it plays now) is taken as it is."""
     path = entry.get("variant_config")
     if not path or "variant_sha256" not in entry:
         return path or None
-    for field, sha in (("variant_config", "variant_sha256"), ("map_file", "map_sha256")):
-        if not os.path.isfile(entry[field]):
-            raise ToolError("%s: %s trained on %s, which is gone" % (step, name, entry[field]))
-        if sha256(entry[field]) != entry[sha]:
-            raise ToolError("%s: %s trained on %s with sha256 %s; it has changed since (sha256 %s), so %s would play "
-                            "another game: restore the file, or train a run of its own on it"
-                            % (step, name, entry[field], entry[sha], sha256(entry[field]), step))
+    if not os.path.isfile(path):
+        raise ToolError("%s: %s trained on %s, which is gone" % (step, name, path))
     now = fingerprint(ws, entry["variant"], entry["game"], path)
-    if now["map_file"] != entry["map_file"]:
-        raise ToolError("%s: %s trained on the map %s; %s now names %s" % (step, name, entry["map_file"], path,
-                                                                      now["map_file"]))
+    for field, sha in (("variant_config", "variant_sha256"), ("map_file", "map_sha256")):
+        if now[sha] != entry[sha]:
+            raise ToolError("%s: %s trained on %s with sha256 %s; it has changed since (%s, sha256 %s), so %s would "
+                            "play another game: restore the file, or train a run of its own on it"
+                            % (step, name, entry[field], entry[sha], now[field], now[sha], step))
     return path
 
 
@@ -72,20 +67,24 @@ def check_resume(run_dir, fields, name, step):
     """A checkpoint is resumed on the variant file and map it trained on: `run_dir`/variant_files.yaml
     holds their fingerprint (none for a variant of the project); written on the run's first start."""
     saved_path = os.path.join(run_dir, "variant_files.yaml")
+    if not os.path.isfile(os.path.join(run_dir, "checkpoint.pt")):
+        # Nothing trained yet: the run starts (again) on the files given now.
+        if fields:
+            with open(saved_path, "w") as f:
+                yaml.safe_dump(fields, f, sort_keys=False)
+        elif os.path.exists(saved_path):
+            os.remove(saved_path)
+        return
     saved = None
     if os.path.isfile(saved_path):
         with open(saved_path) as f:
             saved = yaml.safe_load(f) or None
-    if os.path.isfile(os.path.join(run_dir, "checkpoint.pt")):
-        was = saved and (saved.get("variant_sha256"), saved.get("map_sha256"))
-        now = fields and (fields["variant_sha256"], fields["map_sha256"])
-        if was != now:
-            def said(f):
-                return "the variant file %s (sha256 %s) and map %s (sha256 %s)" % (
-                    f["variant_config"], f["variant_sha256"], f["map_file"], f["map_sha256"]) if f else \
-                    "the project's variant files"
-            raise ToolError("%s: %s's checkpoint in %s trained on %s; this run plays %s: name the run otherwise, or "
-                            "restore the file" % (step, name, run_dir, said(saved), said(fields)))
-    if fields and not saved:
-        with open(saved_path, "w") as f:
-            yaml.safe_dump(fields, f, sort_keys=False)
+    was = saved and (saved.get("variant_sha256"), saved.get("map_sha256"))
+    now = fields and (fields["variant_sha256"], fields["map_sha256"])
+    if was != now:
+        def said(f):
+            return "the variant file %s (sha256 %s) and map %s (sha256 %s)" % (
+                f["variant_config"], f["variant_sha256"], f["map_file"], f["map_sha256"]) if f else \
+                "the project's variant files"
+        raise ToolError("%s: %s's checkpoint in %s trained on %s; this run plays %s: name the run otherwise, or "
+                        "restore the file" % (step, name, run_dir, said(saved), said(fields)))

@@ -96,9 +96,14 @@ def train(ws, records, o, say=print):
                         "FILE)" % o.variant)
     if variant_config and o.ship:
         raise ToolError("train: --ship makes a run the shipped policy of a variant of the project; a run on a variant "
-                        "file of one's own is played from its weights (policy:=PATH variant_config:=FILE)")
+                        "file of one's own is played from its weights (variant:=%s variant_config:=FILE policy:=PATH)"
+                        % o.variant)
     game = o.game or ws.resolve(o.variant, "game", None, variant_config)
     fields = variant_config and own_variant.fingerprint(ws, o.variant, game, variant_config)
+    if fields and not set(fields) <= set(getattr(records.registry, "RUN_KEYS", ())):
+        raise ToolError("train: the registry reader of %s predates variant files of one's own (it would record the "
+                        "run without its file): record into a checkout of today, or a folder without one (--record-root)"
+                        % records.root)
     name = o.run_name(game)
     if not name or "/" in name or name.startswith("."):
         raise ToolError("train: the run's name '%s' must be a plain file name (no '/', not starting with '.')" % name)
@@ -199,7 +204,8 @@ def _refuse_another_run(records, name, o, game, fields=None):
                                   ("network", records.registry.run_network(name, entry), o.network),
                                   ("training seed", entry.get("training_seed"), o.seed),
                                   ("variant file sha256", entry.get("variant_sha256"),
-                                   (fields or {}).get("variant_sha256"))):
+                                   (fields or {}).get("variant_sha256")),
+                                  ("map sha256", entry.get("map_sha256"), (fields or {}).get("map_sha256"))):
         if recorded is not None and str(recorded) != str(here):
             raise ToolError("train: %s is recorded as a run of %s %s (policies/policies.yaml); this is %s %s: name "
                             "the run otherwise" % (name, field, recorded, field, here))
