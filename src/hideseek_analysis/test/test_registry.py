@@ -205,7 +205,8 @@ def test_a_run_on_a_variant_file_of_its_own_is_checked_against_its_files(tree, t
     shipped.write_text("mine_seed0: {variant: mine, network: ff, game: v3, variant_config: %s, variant_sha256: a, "
                        "map_file: %s, map_sha256: b, weights: mine.pt}\n" % (mine, map_file))
     result = cli("--registry", str(shipped), "--variants-dir", variants, "runs")
-    assert result.returncode == 2 and "run mine_seed0: a run on a variant file of its own ships no weights" in result.stderr
+    assert result.returncode == 2
+    assert "run mine_seed0: a run on a variant file of its own ships no weights" in result.stderr
 
 
 def test_recording_a_run_again_replaces_its_training_and_an_empty_value_removes_a_field(tree):

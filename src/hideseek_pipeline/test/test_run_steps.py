@@ -302,7 +302,8 @@ def test_a_variant_file_of_one_s_own_is_refused_where_it_is_misnamed_changed_or_
     runs = str(tmp_path / "runs")
     own = ["--variant-config", str(variant), "--runs-dir", runs, "--steps", "4096"]
     for args, said in (
-            (["yours"] + own, "is variant 'mine' (its variant field), not 'yours': give the file's name"),
+            (["yours"] + own, "is variant 'mine' (its variant field), not 'yours': give the variant on the command "
+                              "line as the file names it, or change the file's variant field"),
             (["mine", "--variant-config", str(tmp_path / "gone.yaml"), "--runs-dir", runs], "no file"),
             (["mine", "--ship"] + own, "a run on a variant file of one's own is played from its weights")):
         r = pipeline(w, rec, calls, "train", *args, MAP_FILE=str(map_file))

@@ -203,7 +203,8 @@ def _checked(entries, registry):
                                 % (registry, name, ", ".join(OWN_VARIANT_KEYS), ", ".join(own)))
         if own and entry.get("weights"):
             raise RegistryError("%s: run %s: a run on a variant file of its own ships no weights (a variant's shipped "
-                                "policy is played under its name, whatever file that name then reads)" % (registry, name))
+                                "policy is played under its name, whatever file that name then reads)"
+                                % (registry, name))
     return entries
 
 

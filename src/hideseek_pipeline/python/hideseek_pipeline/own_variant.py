@@ -27,7 +27,8 @@ def check_file(path, variant, project_variants, step):
     except (yaml.YAMLError, AttributeError) as e:
         raise ToolError("%s: --variant-config: %s is not a variant file (a YAML mapping): %s" % (step, path, e))
     if named != variant:
-        raise ToolError("%s: --variant-config: %s is variant '%s' (its variant field), not '%s': give the file's name"
+        raise ToolError("%s: --variant-config: %s is variant '%s' (its variant field), not '%s': give the variant on "
+                        "the command line as the file names it, or change the file's variant field"
                         % (step, path, named, variant))
     if variant in project_variants:
         raise ToolError("%s: --variant-config: '%s' is a variant of the project (config/variants/%s.yaml): a variant "

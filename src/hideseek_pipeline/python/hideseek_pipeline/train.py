@@ -96,14 +96,14 @@ def train(ws, records, o, say=print):
                         "FILE)" % o.variant)
     if variant_config and o.ship:
         raise ToolError("train: --ship makes a run the shipped policy of a variant of the project; a run on a variant "
-                        "file of one's own is played from its weights (variant:=%s variant_config:=FILE policy:=PATH)"
-                        % o.variant)
+                        "file of one's own is played from its weights (roslaunch hideseek_world variant.launch.xml "
+                        "variant:=%s variant_config:=FILE policy:=PATH)" % o.variant)
     game = o.game or ws.resolve(o.variant, "game", None, variant_config)
     fields = variant_config and own_variant.fingerprint(ws, o.variant, game, variant_config)
     if fields and not set(fields) <= set(getattr(records.registry, "RUN_KEYS", ())):
         raise ToolError("train: the registry reader of %s predates variant files of one's own (it would record the "
-                        "run without its file): record into a checkout of today, or a folder without one (--record-root)"
-                        % records.root)
+                        "run without its file): record into a checkout of today, or a folder without one "
+                        "(--record-root)" % records.root)
     name = o.run_name(game)
     if not name or "/" in name or name.startswith("."):
         raise ToolError("train: the run's name '%s' must be a plain file name (no '/', not starting with '.')" % name)
