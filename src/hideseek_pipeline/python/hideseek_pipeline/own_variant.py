@@ -66,7 +66,9 @@ def check_unchanged(ws, name, entry, step):
 
 def check_resume(run_dir, fields, name, step):
     """A checkpoint is resumed on the variant file and map it trained on: `run_dir`/variant_files.yaml
-    holds their fingerprint (none for a variant of the project); written on the run's first start."""
+    holds their fingerprint (none for a variant of the project), written whenever the run starts
+    with no checkpoint yet, so that a run cut off before its first one starts again on the files
+    given now."""
     saved_path = os.path.join(run_dir, "variant_files.yaml")
     if not os.path.isfile(os.path.join(run_dir, "checkpoint.pt")):
         # Nothing trained yet: the run starts (again) on the files given now.
