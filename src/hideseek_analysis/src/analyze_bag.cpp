@@ -1,8 +1,9 @@
 // Analyses an existing recording (one made by analyze.launch, or any bag holding world/steps),
 // without a ROS master.
-// usage: analyze_bag [--game GAME] VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR], or the same as named
-//   options (--help lists them).
+// usage: analyze_bag [--game GAME] [--variant-config FILE] VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR], or the
+//   same as named options (--help lists them).
 //   GAME: the game the bag was played in (v2, v1, v3; none: config/games.yaml's default).
+//   FILE: a variant file of one's own, named VARIANT (none: config/variants/VARIANT.yaml).
 //   HIDESEEK_PIXEL_TOLERANCE (GRU policies): see analyze.launch's pixel_tolerance.
 #include <cstdio>
 #include <cstdlib>
@@ -17,17 +18,20 @@
 
 int main(int argc, char** argv) {
   namespace po = boost::program_options;
-  std::string game, variant, policy, bag, output_dir, report_dir;  // no --game: config/games.yaml's default
+  // No --game: config/games.yaml's default; no --variant-config: the project's variant file.
+  std::string game, variant, variant_config, policy, bag, output_dir, report_dir;
   hideseek_game::CommandLine line;
   line.tool = "analyze_bag";
   line.about =
       "analyze_bag: analyses a recording (analyze.launch's, or any bag holding world/steps) without a ROS master\n"
-      "usage: analyze_bag [--game GAME] --variant VARIANT --policy POLICY --bag BAG --output OUTPUT_DIR "
-      "[--report REPORT_DIR]\n"
-      "   or: analyze_bag [--game GAME] VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]";
+      "usage: analyze_bag [--game GAME] [--variant-config FILE] --variant VARIANT --policy POLICY --bag BAG "
+      "--output OUTPUT_DIR [--report REPORT_DIR]\n"
+      "   or: analyze_bag [--game GAME] [--variant-config FILE] VARIANT POLICY BAG OUTPUT_DIR [REPORT_DIR]";
   line.options.add_options()                                                                                          //
       ("game", po::value(&game), "the game the bag was played in: v2, v1 or v3 (none: config/games.yaml's default)")  //
       ("variant", po::value(&variant)->required(), "the variant")                                                     //
+      ("variant-config", po::value(&variant_config),
+       "a variant file of one's own, named VARIANT (none: the project's config/variants/VARIANT.yaml)")  //
       ("policy", po::value(&policy)->required(),
        "the policy the bag recorded (a checkpoint, random, scripted/EVADER)")  //
       ("bag", po::value(&bag)->required(), "the recording")                    //
@@ -38,7 +42,7 @@ int main(int argc, char** argv) {
   if (!hideseek_game::parseCommandLine(argc, argv, line, &exit_code)) return exit_code;
   try {
     hideseek_analysis::AnalysisJob job;
-    job.variant = hideseek_game::selectGame(hideseek_game::configDirectory(), game, variant).config;
+    job.variant = hideseek_game::selectGame(hideseek_game::configDirectory(), game, variant, variant_config).config;
     job.policy = policy;
     job.bag = bag;
     job.inputs_dir = output_dir;

@@ -91,9 +91,9 @@ GameSelection selectGame(const std::string& config_dir, const std::string& named
   s.variant_file = variant_file.empty() ? variantFile(config_dir, variant) : variant_file;
   s.config = loadVariantConfig(s.game_file, s.variant_file);
   if (!variant_file.empty() && s.config.name != variant) {
-    throw ConfigError(
-        variant_file, "variant",
-        "is '" + s.config.name + "', but the file was given as variant '" + variant + "': give the file's name");
+    throw ConfigError(variant_file, "variant",
+                      "is '" + s.config.name + "', but the file was given as variant '" + variant +
+                          "': give the variant as the file names it, or change the file's variant field");
   }
   if (s.config.game.name != game) {
     throw ConfigError(s.game_file, "game",

@@ -97,7 +97,8 @@ VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
   if (!variant_file.empty() && !variant.empty() && v.name != variant) {
     throw bad(nh, "variant_config",
               "is variant '" + v.name + "' (" + variant_file + "), but " + nh.resolveName("variant") + " is '" +
-                  variant + "': give the file's name (variant.launch.xml variant:=" + v.name + ")");
+                  variant + "': give the variant as the file names it (variant.launch.xml variant:=" + v.name +
+                  "), or change the file's variant field");
   }
   return v;
 }

@@ -3,7 +3,8 @@
 # 1. A small analysis of the shipped basic policy (the default, policy:=shipped; 4 arenas, 800 decisions, an image every 4th)
 #    records every decision into its bag and writes every file of the report.
 # 2. The same bag with one decision filtered out is reported as missing that step, and nothing
-#    is analysed; analysed as another variant than its policy's, it is warned about first.
+#    is analysed; analysed as another variant than its policy's, it is warned about first; a
+#    variant file of one's own is analysed under its name, and refused under another.
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
 out=$1
@@ -43,6 +44,19 @@ if [ -s "$dir/work/rollout.bag" ]; then
     "$dir/other" > "$dir/other.log" 2>&1
   grep -q "was trained on variant 'basic', game v3; this analysis is of variant 'fasterhider', game v3" "$dir/other.log" ||
     failures+=("no warning for a basic policy analysed as fasterhider: $(head -c 300 "$dir/other.log")")
+  # A variant file of one's own (basic's, renamed): selected under its own name; a misnamed one is refused.
+  sed 's/^variant: basic$/variant: mine/' "$root/../../config/variants/basic.yaml" > "$dir/mine.yaml"
+  "$(catkin_find hideseek_analysis analyze_bag --first-only)" --variant-config "$dir/mine.yaml" mine \
+    "$(/usr/bin/python3 "$root/../hideseek_analysis/scripts/hideseek_registry.py" shipped basic)" "$dir/gap.bag" \
+    "$dir/mine" > "$dir/mine.log" 2>&1
+  grep -q "this analysis is of variant 'mine', game v3" "$dir/mine.log" ||
+    failures+=("--variant-config was not analysed as variant 'mine': $(head -c 300 "$dir/mine.log")")
+  "$(catkin_find hideseek_analysis analyze_bag --first-only)" --variant-config "$dir/mine.yaml" yours \
+    "$(/usr/bin/python3 "$root/../hideseek_analysis/scripts/hideseek_registry.py" shipped basic)" "$dir/gap.bag" \
+    "$dir/yours" > "$dir/yours.log" 2>&1
+  status=$?
+  { [ "$status" -eq 1 ] && grep -q "is 'mine', but the file was given as variant 'yours'" "$dir/yours.log"; } ||
+    failures+=("a variant file given under another name was not refused (exit $status): $(head -c 300 "$dir/yours.log")")
 else
   failures+=("no bag to cut a step out of")
 fi
