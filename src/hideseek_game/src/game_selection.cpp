@@ -90,8 +90,10 @@ GameSelection selectGame(const std::string& config_dir, const std::string& named
   s.game_file = gameFile(config_dir, game);
   s.variant_file = variant_file.empty() ? variantFile(config_dir, variant) : variant_file;
   s.config = loadVariantConfig(s.game_file, s.variant_file);
-  if (!variant_file.empty() && s.config.name != variant) {
-    throw ConfigError(variant_file, "variant",
+  // A file names its variant: one that says otherwise (a copy renamed, or a slip) is refused before
+  // anything is labelled with the wrong name.
+  if (s.config.name != variant) {
+    throw ConfigError(s.variant_file, "variant",
                       "is '" + s.config.name + "', but the file was given as variant '" + variant +
                           "': give the variant as the file names it, or change the file's variant field");
   }

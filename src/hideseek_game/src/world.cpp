@@ -69,6 +69,7 @@ ArenaStep World::conclude(int i, const StepResult& result) {
   ArenaStep out;
   out.result = result;
   if (result.done()) {
+    if (!terminal_hider_images_.empty()) renderTerminalViews(i);
     out.finished = EpisodeSummary{episodes_[i],   a.seed(),  a.stepCount(), a.episodeReturn(),
                                   result.outcome, a.hider(), a.seeker(),    a.labels()};
     out.finished->seeker_return = a.seekerEpisodeReturn();
@@ -101,6 +102,21 @@ void World::renderViews(bool seeker, uint8_t* out, RenderMode mode) {
     views_[i] = {i, seeker ? a.seeker() : a.hider(), seeker ? a.hider() : a.seeker(), seeker};
   }
   renderer_->render(views_, mode, out);
+}
+
+void World::keepTerminalViews(bool seeker) {
+  if (!renderer_) throw std::logic_error("World: built without a renderer, so it keeps no terminal view");
+  terminal_hider_images_.assign(imageBytes() * arenas_.size(), 0);
+  terminal_seeker_images_.assign(seeker ? imageBytes() * arenas_.size() : 0, 0);
+}
+
+void World::renderTerminalViews(int i) {
+  syncScenes();  // arena i's layout is still its ended episode's
+  const Arena& a = arenas_[i];
+  const size_t at = imageBytes() * static_cast<size_t>(i);
+  renderer_->render({{i, a.hider(), a.seeker(), false}}, RenderMode::kColor, terminal_hider_images_.data() + at);
+  if (!terminal_seeker_images_.empty())
+    renderer_->render({{i, a.seeker(), a.hider(), true}}, RenderMode::kColor, terminal_seeker_images_.data() + at);
 }
 
 void World::renderSeekerView(int i, uint8_t* out, RenderMode mode) {

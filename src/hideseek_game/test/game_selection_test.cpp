@@ -126,5 +126,19 @@ TEST(GameSelection, AVariantFileOfOnesOwnIsSelectedUnderItsOwnName) {
   std::filesystem::remove_all(dir);
 }
 
+// A config folder's own variant file is held to its name too (a copy renamed without its field).
+TEST(GameSelection, AConfigFoldersVariantFileNamedOtherwiseIsRefused) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("hideseek_misnamed_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::copy(kConfig, dir, std::filesystem::copy_options::recursive);
+  std::filesystem::copy_file(dir / "variants" / "basic.yaml", dir / "variants" / "renamed.yaml");
+  const std::string e = errorOf([&] { selectGame(dir.string(), "v2", "renamed"); });
+  EXPECT_NE(e.find("is 'basic', but the file was given as variant 'renamed'"), std::string::npos) << e;
+  EXPECT_NE(e.find((dir / "variants" / "renamed.yaml").string()), std::string::npos) << e;
+  EXPECT_EQ(selectGame(dir.string(), "v2", "basic").config.name, "basic");
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace hideseek_game

@@ -10,7 +10,7 @@
 //   trained GRU acts on the current image alone.
 //   --seeker-policy CHECKPOINT: a learned seeker's checkpoint plays the seeker (from its own camera,
 //   deciding once a decision step, as in the graph), with --action as the hider's; else the
-//   variant's scripted seeker. --variant-config FILE: a variant file of one's own (tests).
+//   variant's scripted seeker. --variant-config FILE: a variant file of one's own, named VARIANT.
 //   POLICY: a checkpoint, "random", or scripted/EVADER (backpedal, flee, hide, lap). Columns:
 //   seed,step,hider_x,hider_y,hider_yaw,seeker_x, seeker_y,seeker_yaw,S,H,O,distance,hider_action,outcome (outcome on
 //   the last step of an episode: captured or survived; empty before). Beside it, OUTPUT_layouts.yaml (OUTPUT's name
@@ -187,7 +187,8 @@ int main(int argc, char** argv) {
        "memory, or memoryless (GRU policies: every step from the zero state, an ablation)")  //
       ("seeker-policy", po::value(&seeker_path),
        "a learned seeker's checkpoint plays the seeker (none: the variant's scripted seeker)")  //
-      ("variant-config", po::value(&variant_file), "a variant file of one's own instead of VARIANT's (tests)");
+      ("variant-config", po::value(&variant_file),
+       "a variant file of one's own, named VARIANT, instead of config/variants/VARIANT.yaml");
   for (const char* name : {"variant", "policy", "first-seed", "count", "output", "action", "memory"}) {
     line.positional.add(name, 1);
   }
@@ -205,9 +206,8 @@ int main(int argc, char** argv) {
   }
   try {
     const std::string config = hw::configDirectory();
-    hw::VariantConfig variant = variant_file.empty()
-                                    ? hw::selectGame(config, game_name, variant_name).config
-                                    : hw::loadVariantConfig(hw::gameFile(config, game_name), variant_file);
+    // A variant file of one's own must name the variant it is given as (selectGame refuses it otherwise).
+    hw::VariantConfig variant = hw::selectGame(config, game_name, variant_name, variant_file).config;
     // A learned seeker decides once a decision step, from its camera, as the graph plays it.
     if (!seeker_path.empty()) variant.game = hw::withLearnedSeeker(variant.game);
     const auto map = std::make_shared<const hw::MapSpec>(hw::loadMapFile(variant.map_file));

@@ -36,6 +36,12 @@ py::array_t<uint8_t> images(const VecGame& g, const std::vector<uint8_t>& bytes)
 
 py::array_t<uint8_t> observations(const VecGame& g) { return images(g, g.observations()); }
 
+// The terminal images of the episodes the last step ended (zeros, or an earlier episode's, elsewhere).
+py::array_t<uint8_t> terminalObservations(const VecGame& g, bool seeker) {
+  if (seeker && !g.seekerOutside()) throw std::invalid_argument("the scripted seeker renders no images");
+  return images(g, seeker ? g.terminalSeekerObservations() : g.terminalObservations());
+}
+
 py::array_t<uint8_t> seekerObservations(const VecGame& g) {
   if (!g.seekerOutside()) throw std::invalid_argument("the scripted seeker renders no images: seeker_outside=True");
   return images(g, g.seekerObservations());
@@ -159,12 +165,12 @@ PYBIND11_MODULE(_core, m) {
 
   py::class_<VecGame>(m, "VecGame")
       .def(py::init([](const std::string& config_dir, const std::string& game, const std::string& variant, int num_envs,
-                       uint32_t seed, int render_threads, bool seeker_outside) {
-             return new VecGame(hideseek_python::loadVariant(config_dir, game, variant), num_envs, seed, render_threads,
-                                seeker_outside);
+                       uint32_t seed, int render_threads, bool seeker_outside, const std::string& variant_file) {
+             return new VecGame(hideseek_python::loadVariant(config_dir, game, variant, variant_file), num_envs, seed,
+                                render_threads, seeker_outside);
            }),
            py::arg("config_dir"), py::arg("game"), py::arg("variant"), py::arg("num_envs"), py::arg("seed"),
-           py::arg("render_threads") = 2, py::arg("seeker_outside") = false)
+           py::arg("render_threads") = 2, py::arg("seeker_outside") = false, py::arg("variant_file") = "")
       .def_property_readonly("seeker_outside", &VecGame::seekerOutside)
       .def_property_readonly("seeker_actions", &VecGame::seekerActions)
       .def_property_readonly("num_envs", &VecGame::numEnvs)
@@ -212,6 +218,15 @@ PYBIND11_MODULE(_core, m) {
           py::arg("actions"), py::arg("seeker_actions") = py::none(),
           "one step: the hider's actions, and the seeker's where it plays from outside (seeker_outside)")
       .def("observations", locked(&observations), "uint8 [num_envs, height, width, 3], rgb, rows top down")
+      .def(
+          "terminal_observations",
+          [](const VecGame& g, bool seeker) {
+            std::lock_guard<std::mutex> lock(g.mutex());
+            return terminalObservations(g, seeker);
+          },
+          py::arg("seeker") = false,
+          "where the last step ended an episode: its terminal state's image (the hider's camera, or the seeker's "
+          "where seeker_outside), uint8 [num_envs, height, width, 3]; elsewhere zeros or an earlier episode's")
       .def("rewards", locked([](const VecGame& g) { return toArray(g.rewards()); }))
       .def("seeker_observations", locked(&seekerObservations),
            "seeker_outside: the seekers' camera images, uint8 [num_envs, height, width, 3]")

@@ -11,8 +11,9 @@ namespace hideseek_python {
 
 namespace hg = hideseek_game;
 
-hg::VariantConfig loadVariant(const std::string& config_dir, const std::string& game, const std::string& variant) {
-  return hg::selectGame(config_dir, game, variant).config;
+hg::VariantConfig loadVariant(const std::string& config_dir, const std::string& game, const std::string& variant,
+                              const std::string& variant_file) {
+  return hg::selectGame(config_dir, game, variant, variant_file).config;
 }
 
 namespace {
@@ -46,6 +47,7 @@ VecGame::VecGame(const hg::VariantConfig& variant, int num_envs, uint32_t seed, 
       finished_(num_envs),
       starts_(num_envs, 0),
       evaders_(std::size(hideseek_hider::kAllEvaders)) {
+  game_.world().keepTerminalViews(seeker_outside);
   seekers_.reserve(num_envs);
   for (int i = 0; i < num_envs; ++i) {
     seekers_.emplace_back(hideseek_seeker::seekerOptionsFor(variant_));

@@ -74,7 +74,14 @@ def test_step_returns_gymnasium_tuple_and_resets_in_the_same_step(envs):
                 assert final["seed"][i] == before["seed"][i]
                 assert final["outcome"][i] == (1 if terminations[i] else 2)
                 seeds_seen.add(int(infos["seed"][i]))
-            assert "final_obs" not in infos  # the game never renders a terminal state
+            # The terminal state's image, rendered for this, where an episode ended (Gymnasium's layout).
+            assert (infos["_final_obs"] == done).all() and infos["final_obs"].dtype == object
+            for i in range(4):
+                if done[i]:
+                    assert infos["final_obs"][i].shape == (84, 84, 3) and infos["final_obs"][i].dtype == np.uint8
+                    assert not np.array_equal(infos["final_obs"][i], obs[i])  # not the next episode's first
+                else:
+                    assert infos["final_obs"][i] is None
         not_done = ~done
         assert (infos["step"][not_done] == before["step"][not_done] + 1).all()
     assert ended >= 4  # the random actions' basic episodes are short
@@ -121,6 +128,12 @@ def test_bad_input_is_refused_with_a_clear_error(envs):
     with pytest.raises(ValueError, match="integers"):
         envs.step([0.5, 1, 1, 0])
     with pytest.raises(ValueError, match="integers"):
+        envs.step(np.array([0.0, 1.0, 1.0, 0.0]))  # a whole float is no integer either, as in Discrete
+    with pytest.raises(ValueError, match="integers"):
+        envs.step(np.array([0, 1, np.inf, 0]))
+    with pytest.raises(ValueError, match="one integer in \\[0, 5\\), got an array of shape \\(1,\\)"):
+        hideseek.make("basic").step(np.array([2]))
+    with pytest.raises(ValueError, match="integers"):
         envs.step(np.array(["a", "b", "c", "d"]))
     with pytest.raises(ValueError, match="integers"):
         envs.step([True, False, True, False])  # not in Discrete either
@@ -146,6 +159,16 @@ def test_bad_input_is_refused_with_a_clear_error(envs):
         hideseek.make_vec("basic", num_envs=0)
     with pytest.raises(ValueError, match="'v9' is not a game here"):
         hideseek.make_vec("basic", num_envs=1, game="v9")
+    with pytest.raises(ValueError, match="game must be None or a game's name"):
+        hideseek.make_vec("basic", num_envs=1, game=3)
+    with pytest.raises(ValueError, match="variant must be a variant's name"):
+        hideseek.make_vec(None, num_envs=1)
+    single = hideseek.make("basic", seed=0)
+    for bad in ([1], 1.0, True, "1"):  # the single environment's seed is one integer
+        with pytest.raises(ValueError, match="seed"):
+            single.reset(seed=bad)
+    _, info = single.reset(seed=np.int64(3))  # numpy's integers are integers
+    assert info["seed"] == 3
 
 
 def test_bad_variant_file_names_file_and_field(tmp_path):
@@ -158,6 +181,60 @@ def test_bad_variant_file_names_file_and_field(tmp_path):
     (config / "variants" / "broken.yaml").write_text("variant: broken\nmap: deterministic.yaml\nepisode:\n  max_steps: -5\n")
     with pytest.raises(hideseek.ConfigError, match="broken.yaml.*max_steps"):
         hideseek.make_vec("broken", num_envs=1, config_dir=str(config))
+
+
+def test_a_variant_file_of_ones_own_and_a_misnamed_one(tmp_path):
+    real = hideseek._core.config_directory()
+    mine = tmp_path / "mine.yaml"
+    mine.write_text("variant: mine\nmap: %s/maps/deterministic.yaml\nepisode: {max_steps: 7}\n" % real)
+    env = hideseek.make_vec("mine", num_envs=2, seed=1000, variant_config=mine)
+    assert env.variant == "mine"
+    env.reset(seed=1000)
+    lengths = []
+    for _ in range(7):
+        _, _, term, trunc, infos = env.step([0, 0])
+        if "final_info" in infos:
+            lengths += list(infos["final_info"]["length"][infos["_final_info"]])
+    assert 7 in lengths  # the file's max_steps, not basic's
+    with pytest.raises(hideseek.ConfigError, match="is 'mine', but the file was given as variant 'yours'"):
+        hideseek.make_vec("yours", num_envs=1, variant_config=str(mine))
+    # A config folder's own file is held to its name as well.
+    config = tmp_path / "config"
+    os.makedirs(config / "variants")
+    for f in os.listdir(real):
+        if f.endswith(".yaml"):
+            (config / f).write_text(open(os.path.join(real, f)).read())
+    os.symlink(os.path.join(real, "maps"), config / "maps")
+    (config / "variants" / "renamed.yaml").write_text(open(os.path.join(real, "variants", "basic.yaml")).read())
+    with pytest.raises(hideseek.ConfigError, match="renamed.yaml.*is 'basic', but the file was given as variant"):
+        hideseek.make_vec("renamed", num_envs=1, config_dir=str(config))
+
+
+def test_the_single_environment_returns_the_terminal_state_and_reset_starts_the_next():
+    """Gymnasium's Env contract: the step that ends an episode returns that episode's terminal image
+    and state; reset() then gives the next episode's first, which the vector environment already
+    returned in that step; render() shows what was returned."""
+    env = hideseek.make("basic", seed=1000, render_mode="rgb_array")
+    vec = hideseek.make_vec("basic", num_envs=1, seed=1000)
+    env.reset()
+    vec.reset()
+    for _ in range(2000):
+        a = env.scripted_action("random")
+        obs, reward, terminated, truncated, info = env.step(a)
+        vobs, vrew, vterm, vtrunc, vinfos = vec.step([a])
+        assert reward == vrew[0] and terminated == vterm[0] and truncated == vtrunc[0]
+        if terminated or truncated:
+            break
+        assert np.array_equal(obs, vobs[0])
+    assert terminated or truncated
+    assert np.array_equal(obs, vinfos["final_obs"][0]) and not np.array_equal(obs, vobs[0])
+    assert np.array_equal(env.render(), obs)
+    assert info["seed"] == 1000 and info["step"] == info["final_info"]["length"]
+    assert np.allclose(info["hider_pose"], vinfos["final_info"]["hider_pose"][0])
+    first, info = env.reset()
+    assert np.array_equal(first, vobs[0]) and info["seed"] == 1001 and info["step"] == 0
+    assert np.array_equal(env.render(), first)
+    assert "HideSeekEnv(basic" in repr(env)
 
 
 def test_scripted_hiders_and_single_env_sequence():
@@ -270,6 +347,38 @@ def test_gymnasium_check_env_passes_on_the_single_environment():
     env_warnings = [str(w.message) for w in caught]
     assert not env_warnings, env_warnings
     assert isinstance(env, __import__("gymnasium").Env)
+
+
+@needs_gymnasium
+def test_gymnasiums_sync_vector_env_over_the_single_environment_plays_the_same_episodes():
+    """Gymnasium's own vector env (next-step autoreset) over make(): its terminal observations are
+    make_vec's final_obs, and the step after one is the next episode's first state (the next seed,
+    nothing skipped), as make_vec returned it in the terminal step."""
+    import gymnasium
+
+    sync = gymnasium.vector.SyncVectorEnv([lambda: hideseek.make("basic", seed=1000)])
+    vec = hideseek.make_vec("basic", num_envs=1, seed=1000)
+    sync.reset()
+    vec.reset()
+    ends, pending = 0, None
+    for _ in range(300):
+        a = vec.scripted_actions("random")
+        obs, rewards, term, trunc, infos = sync.step(a)
+        if pending is not None:  # the autoreset step: the action is not played
+            assert np.array_equal(obs[0], pending[0]) and infos["seed"][0] == pending[1] and rewards[0] == 0
+            pending = None
+            continue
+        vobs, vrewards, vterm, vtrunc, vinfos = vec.step(a)
+        assert rewards[0] == vrewards[0] and term[0] == vterm[0] and trunc[0] == vtrunc[0]
+        if vterm[0] or vtrunc[0]:
+            ends += 1
+            assert np.array_equal(obs[0], vinfos["final_obs"][0])
+            pending = (vobs[0], vinfos["seed"][0])
+        else:
+            assert np.array_equal(obs[0], vobs[0])
+    assert ends >= 3
+    sync.close()
+    vec.close()
 
 
 @needs_gymnasium

@@ -4,12 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 #include <vector>
 
 #include "hideseek_game/config_error.h"
 #include "hideseek_game/map.h"
+#include "hideseek_game/renderer.h"
 #include "hideseek_play/scripted_game.h"
 
 using hideseek_python::VecGame;
@@ -83,6 +85,48 @@ TEST(VecGame, SeedsPerEnvironmentOneSeedOrTheNextOnes) {
   game.reset({});  // each arena's next seed: 7 + 2 and 8 + 2
   EXPECT_EQ(game.info(0).seed, 9u);
   EXPECT_EQ(game.info(1).seed, 10u);
+}
+
+// An ended episode's terminal state is rendered as its camera shows it, on that episode's layout
+// (stochasticmaps draws a new one each episode), while the observation is already the next
+// episode's first image; the seeker's side gets the seeker's camera.
+TEST(VecGame, AnEndedEpisodesTerminalStateIsRenderedAsItsCameraShowsIt) {
+  namespace hg = hideseek_game;
+  const hg::VariantConfig v = hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v3", "stochasticmaps");
+  const auto map = std::make_shared<const hg::MapSpec>(hg::loadMapFile(v.map_file));
+  for (const bool seeker_side : {false, true}) {
+    VecGame game(v, 2, 1000, 1, seeker_side);
+    const hg::GameOptions& played = game.variant().game;
+    int ended = 0;
+    for (int t = 0; ended < 3 && t < 5000; ++t) {
+      if (seeker_side) {
+        game.step(game.scriptedActions(hideseek_hider::EvaderKind::kRandom), game.randomSeekerActions());
+      } else {
+        game.step(game.scriptedActions(hideseek_hider::EvaderKind::kRandom));
+      }
+      for (int i = 0; i < 2; ++i) {
+        if (!game.finished(i)) continue;
+        ++ended;
+        const hg::EpisodeSummary& e = *game.finished(i);
+        hg::Arena arena(played, map);
+        arena.reset(e.seed);  // the ended episode's layout
+        hg::Renderer renderer(hg::rendererOptionsFor(played, map->colors, 1));
+        renderer.setScene(0, arena.layout());
+        std::vector<uint8_t> expected(renderer.imageBytes());
+        renderer.render({{0, seeker_side ? e.seeker : e.hider, seeker_side ? e.hider : e.seeker, seeker_side}},
+                        hg::RenderMode::kColor, expected.data());
+        const std::vector<uint8_t>& terminal =
+            seeker_side ? game.terminalSeekerObservations() : game.terminalObservations();
+        const std::vector<uint8_t>& next = seeker_side ? game.seekerObservations() : game.observations();
+        const size_t at = expected.size() * i;
+        EXPECT_TRUE(std::equal(expected.begin(), expected.end(), terminal.begin() + at))
+            << "arena " << i << ", seed " << e.seed << (seeker_side ? ", seeker" : ", hider");
+        EXPECT_FALSE(std::equal(expected.begin(), expected.end(), next.begin() + at))
+            << "the observation is the next episode's first image";
+      }
+    }
+    EXPECT_GE(ended, 3);
+  }
 }
 
 TEST(VecGame, BadInputIsRefusedAndChangesNothing) {

@@ -46,8 +46,9 @@ struct GameSelection {
   std::string game_file, variant_file;  // absolute or as config_dir gives them
   VariantConfig config;                 // config.map_file: the variant's map
 };
-// A non-empty `variant_file` (a variant file of one's own) replaces config_dir's file of `variant`;
-// ConfigError where its variant field is not `variant`, the name everything it plays is labelled with.
+// A non-empty `variant_file` (a variant file of one's own) replaces config_dir's file of `variant`.
+// ConfigError where the file's variant field (either file's) is not `variant`, the name everything
+// it plays is labelled with.
 GameSelection selectGame(const std::string& config_dir, const std::string& game, const std::string& variant,
                          const std::string& variant_file = "");
 

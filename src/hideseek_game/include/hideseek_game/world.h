@@ -74,12 +74,25 @@ class World {
   void renderSeekerView(int i, uint8_t* out, RenderMode mode = RenderMode::kColor);
   size_t imageBytes() const;
 
+  // From now on, also renders each episode's terminal state before its arena starts the next
+  // episode: the hider's camera, and the seeker's where `seeker`. The game itself never shows it
+  // (an ended episode's observation is the next one's first image); a learner that bootstraps on a
+  // truncation needs it (the Python module's final_obs). One view per episode end; off by default.
+  void keepTerminalViews(bool seeker);
+  // Arena i's image (at i * imageBytes()) of the last episode it ended; empty until
+  // keepTerminalViews (the seeker's: keepTerminalViews(true)).
+  const std::vector<uint8_t>& terminalImages(bool seeker) const {
+    return seeker ? terminal_seeker_images_ : terminal_hider_images_;
+  }
+
  private:
   void startEpisode(int i, uint32_t seed);
   ArenaStep conclude(int i, const StepResult& result);
   void syncScenes();
   // Every arena's hider camera, or (`seeker`) seeker camera.
   void renderViews(bool seeker, uint8_t* out, RenderMode mode);
+  // Arena i's terminal views, while its ended episode is still in place.
+  void renderTerminalViews(int i);
 
   GameOptions options_;
   std::vector<Arena> arenas_;
@@ -91,6 +104,7 @@ class World {
   std::vector<std::optional<StepResult>> results_;  // each arena's step result once it is over
   std::unique_ptr<Renderer> renderer_;
   std::vector<ViewRequest> views_;
+  std::vector<uint8_t> terminal_hider_images_, terminal_seeker_images_;  // keepTerminalViews
 };
 
 }  // namespace hideseek_game

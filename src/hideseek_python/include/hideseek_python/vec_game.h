@@ -22,8 +22,10 @@ namespace hideseek_python {
 // A game and variant under a config folder (the hideseek_game package's config/), resolved as
 // every node resolves them (hideseek_game::selectGame). Throws hideseek_game::ConfigError naming
 // the unknown game or variant (with those there), or the bad file and field.
+// variant_file: a variant file of one's own, whose variant field must be `variant` (empty: the
+// config folder's variants/VARIANT.yaml).
 hideseek_game::VariantConfig loadVariant(const std::string& config_dir, const std::string& game,
-                                         const std::string& variant);
+                                         const std::string& variant, const std::string& variant_file = "");
 
 // One arena's state after a step or reset, as the world node's ObservationBatch carries it: after
 // an episode ended, everything but the reward and outcome already describes the next episode.
@@ -64,7 +66,8 @@ class VecGame {
   void resetEnv(int env, int64_t seed);
   // One decision step of every arena with the hider's actions (0..4, ActionBatch's values); each
   // seeker decides on its perception as the seeker node does. An arena whose episode ends starts
-  // its next one within the step (the terminal frame is never rendered). Throws
+  // its next one within the step: observations() is then its first image, and the terminal
+  // state's image is terminalObservations()'s. Throws
   // std::invalid_argument, changing nothing, for a wrong count or an action out of range.
   void step(const std::vector<uint8_t>& actions);
   // The same with the seeker's actions too (seeker_outside only; 0..seekerActions()-1).
@@ -86,6 +89,12 @@ class VecGame {
   ArenaInfo info(int env) const;
   // The episode the last step ended in arena env (length, return, terminal state), if it did.
   const std::optional<hideseek_game::EpisodeSummary>& finished(int env) const { return finished_[env]; }
+  // The terminal state of that episode as its camera shows it (arena env's image at env *
+  // height() * width() * 3, where finished(env)): the hider's; the seeker's where seeker_outside.
+  // The game itself never shows it; rendered once an episode, for a learner that bootstraps on a
+  // truncation (Gymnasium's final_obs).
+  const std::vector<uint8_t>& terminalObservations() const { return game_.world().terminalImages(false); }
+  const std::vector<uint8_t>& terminalSeekerObservations() const { return game_.world().terminalImages(true); }
   // Decision steps taken since construction.
   uint64_t decisions() const { return game_.decisions(); }
   // VecGame is not thread-safe: the Python layer holds this around every call, so that two threads

@@ -4,14 +4,15 @@ make_vec(variant, num_envs, seed) gives a batched environment with Gymnasium's v
 a single environment with Gymnasium's Env API. Only numpy is needed: where gymnasium can be imported, the
 classes subclass gymnasium.vector.VectorEnv and gymnasium.Env and use gymnasium.spaces.
 
-Autoreset: the C++ game starts an arena's next episode within the step that ends the previous one and
-never renders the terminal frame, so the vector environment resets in the same step
-(AutoresetMode.SAME_STEP): where terminations[i] or truncations[i] is set, rewards[i] closes the episode
-that ended, and obs[i] and everything in infos already belong to the first state of the next episode.
-infos["final_info"] (masked by infos["_final_info"]) holds the ended episode's length, return, outcome
-and terminal state (poses and labels). There is no infos["final_obs"]: no image of the terminal state
-exists. A capture is a termination; surviving max_steps is a truncation (a time limit the image does
-not show).
+Autoreset: the C++ game starts an arena's next episode within the step that ends the previous one, so
+the vector environment resets in the same step (AutoresetMode.SAME_STEP): where terminations[i] or
+truncations[i] is set, rewards[i] closes the episode that ended, and obs[i] and everything in infos
+already belong to the first state of the next episode. infos["final_obs"] (masked by
+infos["_final_obs"]) holds the terminal state's image, rendered for this (the game itself never shows
+it), and infos["final_info"] (masked by infos["_final_info"]) the ended episode's length, return,
+outcome and terminal state (poses and labels). A capture is a termination; surviving max_steps is a
+truncation (a time limit the image does not show). The single environment follows Gymnasium's Env:
+a step that ends an episode returns its terminal image, and reset() starts the next.
 
 Two players, one side at a time: role="hider" (the default) gives the hider's side, the seeker played
 by the variant's scripted seeker (opponent None or "scripted"), the random seeker ("random") or a
@@ -23,6 +24,8 @@ seeker is not the scripted one, it decides once a step on its camera, as the see
 train modes play (its actions: 5, or 7 in game v3). infos["final_info"]["return"] is the return of
 the side the environment plays.
 """
+
+import os
 
 import numpy as np
 
@@ -92,14 +95,24 @@ def _actions(actions, num_envs, count=_core.num_actions, what="action"):
     a = np.asarray(actions)
     if a.shape != (num_envs,):
         raise ValueError("%ss must have shape (%d,), got %s" % (what, num_envs, a.shape))
-    # numbers only: strings, objects and booleans (which Discrete does not contain either) are refused
-    if a.dtype.kind not in "iuf" or (a.dtype.kind == "f" and not np.all(np.equal(np.mod(a, 1), 0))):
-        raise ValueError("%ss must be integers in [0, %d), got %s" % (what, count, a))
+    # integers only, as Discrete contains them: floats, strings, objects and booleans are refused
+    if a.dtype.kind not in "iu":
+        raise ValueError("%ss must be integers in [0, %d), got %s (dtype %s)" % (what, count, a, a.dtype))
     if np.any(a < 0) or np.any(a >= count):
         bad = int(np.flatnonzero((a < 0) | (a >= count))[0])
         where = " of environment %d" % bad if num_envs > 1 else ""
         raise ValueError("%s %s%s is not in [0, %d)" % (what, a[bad], where, count))
     return a.astype(np.uint8)
+
+
+def _check_names(variant, game, config_dir, variant_config):
+    if not isinstance(variant, str):
+        raise ValueError("variant must be a variant's name (a string), got %r" % (variant,))
+    if game is not None and not isinstance(game, str):
+        raise ValueError("game must be None or a game's name such as 'v3', got %r" % (game,))
+    for name, value in (("config_dir", config_dir), ("variant_config", variant_config)):
+        if value is not None and not isinstance(value, (str, os.PathLike)):
+            raise ValueError("%s must be None or a path, got %r" % (name, value))
 
 
 def _check_opponent(role, opponent):
@@ -131,7 +144,8 @@ class HideSeekVecEnv(_VectorBase):
     metadata = {"autoreset_mode": AutoresetMode.SAME_STEP, "render_modes": ["rgb_array"], "render_fps": None}
 
     def __init__(self, variant="basic", num_envs=16, seed=0, game=None, config_dir=None,
-                 render_threads=2, render_mode=None, role="hider", opponent=None):
+                 render_threads=2, render_mode=None, role="hider", opponent=None, variant_config=None):
+        _check_names(variant, game, config_dir, variant_config)
         _check_opponent(role, opponent)
         if render_mode not in (None, "rgb_array"):
             raise ValueError("render_mode must be None or 'rgb_array', got %r" % (render_mode,))
@@ -143,7 +157,8 @@ class HideSeekVecEnv(_VectorBase):
         config_dir = _config_dir(config_dir)
         game = game or _core.default_game(config_dir)  # None: config/games.yaml's default
         outside = role == "seeker" or opponent not in (None, "scripted")
-        self._game = _core.VecGame(config_dir, game, variant, int(num_envs), seed, int(render_threads), outside)
+        self._game = _core.VecGame(config_dir, game, variant, int(num_envs), seed, int(render_threads), outside,
+                                   os.fspath(variant_config) if variant_config is not None else "")
         self.variant, self.game, self.role = variant, game, role
         self.opponent = opponent if opponent is not None else ("scripted" if role == "hider" else "random")
         self.num_envs = self._game.num_envs
@@ -196,6 +211,13 @@ class HideSeekVecEnv(_VectorBase):
             del final["seeker_return"]
             infos["final_info"] = _with_masks(final, done)
             infos["_final_info"] = done
+            # Gymnasium's layout: an object array, the terminal image where an episode ended, else None
+            terminal = game.terminal_observations(self.role == "seeker")
+            final_obs = np.full(n, None, dtype=object)
+            for i in np.flatnonzero(done):
+                final_obs[i] = terminal[i]
+            infos["final_obs"] = final_obs
+            infos["_final_obs"] = done.copy()
         rewards = game.seeker_rewards() if self.role == "seeker" else game.rewards()
         return (self._observations(), rewards.astype(np.float64), outcomes == OUTCOME_CAPTURED,
                 outcomes == OUTCOME_SURVIVED, infos)
@@ -240,15 +262,17 @@ class HideSeekVecEnv(_VectorBase):
 
 
 class HideSeekEnv(_EnvBase):
-    """One arena, with Gymnasium's Env API. After a step that ends an episode, the observation is
-    already the next episode's first image (the game never renders the terminal state); reset()
-    then keeps that episode instead of skipping a seed, so episodes have seeds seed, seed + 1, ..."""
+    """One arena, with Gymnasium's Env API. A step that ends an episode returns its terminal image
+    and state (info["final_info"]: its length, return and outcome); the game has already started the
+    next episode, which reset() keeps instead of skipping a seed, so episodes have seeds seed,
+    seed + 1, ... (a step without that reset plays on in it)."""
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": None}  # set from the game, as the vector env's
 
     def __init__(self, variant="basic", seed=0, game=None, config_dir=None, render_threads=2,
-                 render_mode=None, role="hider", opponent=None):
-        self._vec = HideSeekVecEnv(variant, 1, seed, game, config_dir, render_threads, role=role, opponent=opponent)
+                 render_mode=None, role="hider", opponent=None, variant_config=None):
+        self._vec = HideSeekVecEnv(variant, 1, seed, game, config_dir, render_threads, role=role, opponent=opponent,
+                                   variant_config=variant_config)
         if render_mode not in (None, "rgb_array"):
             raise ValueError("render_mode must be None or 'rgb_array', got %r" % (render_mode,))
         self.render_mode = render_mode
@@ -256,31 +280,54 @@ class HideSeekEnv(_EnvBase):
         self.observation_space = self._vec.single_observation_space
         self.action_space = self._vec.single_action_space
         self._fresh = True  # an episode has just started and taken no step
+        self._terminal = None  # the image of the episode the last step ended, until reset
+
+    @property
+    def _live(self):
+        if self._vec._game is None:
+            raise RuntimeError("%r is closed: make a new environment" % self)
+        return self._vec
 
     def reset(self, *, seed=None, options=None):
         if options:
             raise ValueError("hideseek environments take no reset options, got %r" % (options,))
-        game = self._vec._live
+        vec = self._live
+        if seed is not None:
+            seed = _seed(seed)  # one integer: Gymnasium's Env takes no list, nor numpy's integers
         if seed is not None or not self._fresh:
-            game.reset(_seed_list(seed, 1))
+            vec._live.reset(_seed_list(seed, 1))
         if HAVE_GYMNASIUM:
             super().reset(seed=seed)
-        self._fresh = True
-        return self._vec._observations()[0], self._info()
+        self._fresh, self._terminal = True, None
+        return vec._observations()[0], self._info()
 
     def step(self, action):
-        obs, rewards, terminations, truncations, infos = self._vec.step([action])
-        self._fresh = bool(terminations[0] or truncations[0])
-        info = self._info()
-        if self._fresh:
-            info["final_info"] = {k: v[0] for k, v in infos["final_info"].items() if not k.startswith("_")}
-        return obs[0], float(rewards[0]), bool(terminations[0]), bool(truncations[0]), info
+        vec = self._live
+        a = np.asarray(action)
+        if a.shape != ():
+            raise ValueError("action must be one integer in [0, %d), got an array of shape %s"
+                             % (self.action_space.n, a.shape))
+        obs, rewards, terminations, truncations, infos = vec.step(a.reshape(1))
+        ended = bool(terminations[0] or truncations[0])
+        self._fresh = ended
+        if ended:  # the terminal state, as Gymnasium's Env returns it; the next episode waits for reset()
+            final = {k: v[0] for k, v in infos["final_info"].items() if not k.startswith("_")}
+            info = {k: final[k] for k in ("S", "H", "O", "hider_pose", "seeker_pose", "seed")}
+            info["step"] = np.int64(final["length"])
+            info["final_info"] = final
+            self._terminal = infos["final_obs"][0]
+            return self._terminal, float(rewards[0]), bool(terminations[0]), bool(truncations[0]), info
+        self._terminal = None
+        return obs[0], float(rewards[0]), False, False, self._info()
 
     def scripted_action(self, name):
-        return int(self._vec.scripted_actions(name)[0])
+        return int(self._live.scripted_actions(name)[0])
 
     def render(self):
-        return self._vec._observations()[0] if self.render_mode == "rgb_array" else None
+        vec = self._live
+        if self.render_mode != "rgb_array":
+            return None
+        return self._terminal if self._terminal is not None else vec._observations()[0]
 
     def close(self):
         self._vec.close()
@@ -288,17 +335,31 @@ class HideSeekEnv(_EnvBase):
     def _info(self):
         # The arena's episode counter is left out: it counts resets, so that a reset with the same
         # seed gives the same info (check_env's determinism).
-        return {k: v[0] for k, v in self._vec._live.infos().items() if k != "episode_index"}
+        return {k: v[0] for k, v in self._live._live.infos().items() if k != "episode_index"}
+
+    def __repr__(self):
+        v = self._vec
+        return "HideSeekEnv(%s, game=%s%s)" % (v.variant, v.game, "" if v.role == "hider" else ", role=seeker")
 
 
-def make_vec(variant="basic", num_envs=16, seed=0, **kwargs):
-    """A batched environment of `variant` (config/variants/VARIANT.yaml) with num_envs arenas; keyword
-    arguments: game ('v3', 'v2' or 'v1'; default: config/games.yaml's), config_dir (default: the hideseek_game package's config/),
-    render_threads, render_mode, role ('hider' or 'seeker') and opponent (the other side: see the
-    module's docstring)."""
-    return HideSeekVecEnv(variant, num_envs, seed, **kwargs)
+def make_vec(variant="basic", num_envs=16, seed=0, *, game=None, config_dir=None, variant_config=None,
+             render_threads=2, render_mode=None, role="hider", opponent=None):
+    """A batched environment of `variant` with num_envs arenas (1 to 64); arena i's first episode has
+    seed seed + i, its later ones seed + i + k * num_envs.
+
+    game: 'v3', 'v2' or 'v1' (None: config/games.yaml's default). config_dir: the folder holding the
+    game files and variants/ (None: the hideseek_game package's config/). variant_config: a variant
+    file of one's own, whose variant field must be `variant` (None: config_dir/variants/VARIANT.yaml).
+    render_threads: llvmpipe's rasteriser threads (the process's first environment sets them).
+    render_mode: None or 'rgb_array'. role: 'hider' or 'seeker', the side played; opponent: the other
+    side (see the module's docstring)."""
+    return HideSeekVecEnv(variant, num_envs, seed, game=game, config_dir=config_dir, render_threads=render_threads,
+                          render_mode=render_mode, role=role, opponent=opponent, variant_config=variant_config)
 
 
-def make(variant="basic", seed=0, **kwargs):
-    """One arena of `variant` with Gymnasium's Env API (what gymnasium's check_env takes)."""
-    return HideSeekEnv(variant, seed, **kwargs)
+def make(variant="basic", seed=0, *, game=None, config_dir=None, variant_config=None, render_threads=2,
+         render_mode=None, role="hider", opponent=None):
+    """One arena of `variant` with Gymnasium's Env API (what gymnasium's check_env takes); its
+    episodes have seeds seed, seed + 1, ... The keyword arguments are make_vec's."""
+    return HideSeekEnv(variant, seed, game=game, config_dir=config_dir, render_threads=render_threads,
+                       render_mode=render_mode, role=role, opponent=opponent, variant_config=variant_config)
