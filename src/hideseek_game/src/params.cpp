@@ -94,6 +94,11 @@ VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
                                       variant_file.empty() ? variantFile(config, variant) : variant_file);
   // The variant's name labels what the nodes write (evaluations, logs, checkpoints): a file of one's
   // own is played under its own name.
+  if (variant_file.empty() && v.name != variant) {
+    throw bad(nh, "variant",
+              "is '" + variant + "', but its file " + variantFile(config, variant) + " says variant '" + v.name +
+                  "': give the variant as the file names it, or change the file's variant field");
+  }
   if (!variant_file.empty() && !variant.empty() && v.name != variant) {
     throw bad(nh, "variant_config",
               "is variant '" + v.name + "' (" + variant_file + "), but " + nh.resolveName("variant") + " is '" +

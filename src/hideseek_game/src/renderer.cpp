@@ -185,7 +185,8 @@ struct Renderer::Impl {
   void appendView(const RendererOptions& options, size_t k, const ViewRequest& view, bool segmentation,
                   const Eigen::Vector3f& fog_color);
   void draw(const Rgb& sky);
-  void copyTiles(const RendererOptions& options, size_t views, size_t image_bytes, uint8_t* out) const;
+  void copyTiles(const RendererOptions& options, size_t first_tile, size_t views, size_t image_bytes,
+                 uint8_t* out) const;
 };
 
 RendererOptions rendererOptionsFor(const GameOptions& game, const MapColors& colors, int max_views) {
@@ -409,13 +410,15 @@ void Renderer::Impl::draw(const Rgb& sky) {
   glFinish();
 }
 
-void Renderer::Impl::copyTiles(const RendererOptions& options, size_t views, size_t image_bytes, uint8_t* out) const {
+void Renderer::Impl::copyTiles(const RendererOptions& options, size_t first_tile, size_t views, size_t image_bytes,
+                               uint8_t* out) const {
   const Impl& r = *this;
   const int w = options.camera.width, h = options.camera.height;
   // OSMesa's buffer has GL's bottom row first; images want the top row first.
   const size_t row_bytes = static_cast<size_t>(w) * 3;
   for (size_t k = 0; k < views; ++k) {
-    const int x0 = static_cast<int>(k % r.tiles_x) * w, y0 = static_cast<int>(k / r.tiles_x) * h;
+    const size_t tile = first_tile + k;
+    const int x0 = static_cast<int>(tile % r.tiles_x) * w, y0 = static_cast<int>(tile / r.tiles_x) * h;
     uint8_t* image = out + k * image_bytes;
     for (int row = 0; row < h; ++row) {
       const uint8_t* src = r.framebuffer.data() + (static_cast<size_t>(y0 + h - 1 - row) * r.fb_width + x0) * 4;
@@ -429,19 +432,19 @@ void Renderer::Impl::copyTiles(const RendererOptions& options, size_t views, siz
   }
 }
 
-void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, uint8_t* out) {
-  if (static_cast<int>(views.size()) > options_.max_views) {
-    throw std::invalid_argument("renderer: " + std::to_string(views.size()) + " views requested, built for " +
-                                std::to_string(options_.max_views));
+void Renderer::render(const std::vector<ViewRequest>& views, RenderMode mode, uint8_t* out, int first_tile) {
+  if (first_tile < 0 || first_tile + static_cast<int>(views.size()) > options_.max_views) {
+    throw std::invalid_argument("renderer: " + std::to_string(views.size()) + " views requested from tile " +
+                                std::to_string(first_tile) + ", built for " + std::to_string(options_.max_views));
   }
   const bool segmentation = mode == RenderMode::kSegmentation;
   const Rgb sky = segmentation ? Rgb{} : options_.colors.sky;
   impl_->frame.clear();
   for (size_t k = 0; k < views.size(); ++k) {
-    impl_->appendView(options_, k, views[k], segmentation, Eigen::Vector3f(sky.r, sky.g, sky.b));
+    impl_->appendView(options_, first_tile + k, views[k], segmentation, Eigen::Vector3f(sky.r, sky.g, sky.b));
   }
   impl_->draw(sky);
-  impl_->copyTiles(options_, views.size(), imageBytes(), out);
+  impl_->copyTiles(options_, static_cast<size_t>(first_tile), views.size(), imageBytes(), out);
 }
 
 }  // namespace hideseek_game

@@ -69,7 +69,7 @@ ArenaStep World::conclude(int i, const StepResult& result) {
   ArenaStep out;
   out.result = result;
   if (result.done()) {
-    if (!terminal_hider_images_.empty()) renderTerminalViews(i);
+    if (!terminal_images_.empty()) renderTerminalViews(i);
     out.finished = EpisodeSummary{episodes_[i],   a.seed(),  a.stepCount(), a.episodeReturn(),
                                   result.outcome, a.hider(), a.seeker(),    a.labels()};
     out.finished->seeker_return = a.seekerEpisodeReturn();
@@ -106,17 +106,17 @@ void World::renderViews(bool seeker, uint8_t* out, RenderMode mode) {
 
 void World::keepTerminalViews(bool seeker) {
   if (!renderer_) throw std::logic_error("World: built without a renderer, so it keeps no terminal view");
-  terminal_hider_images_.assign(imageBytes() * arenas_.size(), 0);
-  terminal_seeker_images_.assign(seeker ? imageBytes() * arenas_.size() : 0, 0);
+  terminal_images_.assign(imageBytes() * arenas_.size(), 0);
+  terminal_seeker_ = seeker;
 }
 
 void World::renderTerminalViews(int i) {
   syncScenes();  // arena i's layout is still its ended episode's
   const Arena& a = arenas_[i];
-  const size_t at = imageBytes() * static_cast<size_t>(i);
-  renderer_->render({{i, a.hider(), a.seeker(), false}}, RenderMode::kColor, terminal_hider_images_.data() + at);
-  if (!terminal_seeker_images_.empty())
-    renderer_->render({{i, a.seeker(), a.hider(), true}}, RenderMode::kColor, terminal_seeker_images_.data() + at);
+  const ViewRequest view =
+      terminal_seeker_ ? ViewRequest{i, a.seeker(), a.hider(), true} : ViewRequest{i, a.hider(), a.seeker(), false};
+  // Arena i's tile, as renderViews gives it: the same pixels as the batch.
+  renderer_->render({view}, RenderMode::kColor, terminal_images_.data() + imageBytes() * static_cast<size_t>(i), i);
 }
 
 void World::renderSeekerView(int i, uint8_t* out, RenderMode mode) {

@@ -54,6 +54,28 @@ def test_the_verdict_counts_cases_failures_errors_and_an_unreadable_file(tmp_pat
     assert tests.count(str(tmp_path)) == (2, 3)
 
 
+def test_a_run_that_stops_on_a_build_error_fails_even_where_every_result_passed(tmp_path):
+    """catkin_make run_tests stopped by a target that does not link: the tests that ran passed, the
+    rest never ran, and the verdict is a failure that says why (stand-in catkin tools)."""
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    (bin_dir / "catkin_make").write_text(
+        "#!/bin/bash\nmkdir -p build/test_results/pkg\n"
+        "echo '<testsuite><testcase name=\"ran\"/></testsuite>' > build/test_results/pkg/gtest-ran.xml\n"
+        "echo 'collect2: error: ld returned 1 exit status'\nexit 2\n")
+    (bin_dir / "catkin_test_results").write_text("#!/bin/bash\necho 'Summary: 1 tests, 0 errors, 0 failures'\n")
+    for tool in bin_dir.iterdir():
+        tool.chmod(0o755)
+    root = tmp_path / "ws"
+    (root / "scripts").mkdir(parents=True)
+    (root / "scripts" / "env.sh").write_text("export PATH=%s:$PATH\n" % bin_dir)
+    said = []
+    assert tests.run_tests(str(root), say=said.append) == 1
+    assert "collect2: error: ld returned 1 exit status" in said
+    assert any("stopped with exit status 2 before every test ran" in line for line in said)
+    assert said[-1] == "1 passed, 1 failed"
+
+
 @pytest.fixture
 def checkout(tmp_path):
     """Stand-ins in a checkout with basic (a feed-forward and a GRU policy shipped) and slowerhider

@@ -37,9 +37,9 @@ py::array_t<uint8_t> images(const VecGame& g, const std::vector<uint8_t>& bytes)
 py::array_t<uint8_t> observations(const VecGame& g) { return images(g, g.observations()); }
 
 // The terminal images of the episodes the last step ended (zeros, or an earlier episode's, elsewhere).
-py::array_t<uint8_t> terminalObservations(const VecGame& g, bool seeker) {
-  if (seeker && !g.seekerOutside()) throw std::invalid_argument("the scripted seeker renders no images");
-  return images(g, seeker ? g.terminalSeekerObservations() : g.terminalObservations());
+py::array_t<uint8_t> terminalObservations(const VecGame& g) {
+  if (g.terminalObservations().empty()) throw std::logic_error("keep_terminal_views() was not called");
+  return images(g, g.terminalObservations());
 }
 
 py::array_t<uint8_t> seekerObservations(const VecGame& g) {
@@ -219,14 +219,17 @@ PYBIND11_MODULE(_core, m) {
           "one step: the hider's actions, and the seeker's where it plays from outside (seeker_outside)")
       .def("observations", locked(&observations), "uint8 [num_envs, height, width, 3], rgb, rows top down")
       .def(
-          "terminal_observations",
-          [](const VecGame& g, bool seeker) {
+          "keep_terminal_views",
+          [](VecGame& g, bool seeker) {
             std::lock_guard<std::mutex> lock(g.mutex());
-            return terminalObservations(g, seeker);
+            g.keepTerminalViews(seeker);
           },
           py::arg("seeker") = false,
-          "where the last step ended an episode: its terminal state's image (the hider's camera, or the seeker's "
-          "where seeker_outside), uint8 [num_envs, height, width, 3]; elsewhere zeros or an earlier episode's")
+          "from now on, render each ended episode's terminal state as one side's camera shows it (the seeker's: "
+          "seeker_outside only)")
+      .def("terminal_observations", locked(&terminalObservations),
+           "where the last step ended an episode: its terminal state's image, uint8 [num_envs, height, width, 3]; "
+           "elsewhere zeros or an earlier episode's")
       .def("rewards", locked([](const VecGame& g) { return toArray(g.rewards()); }))
       .def("seeker_observations", locked(&seekerObservations),
            "seeker_outside: the seekers' camera images, uint8 [num_envs, height, width, 3]")

@@ -47,7 +47,6 @@ VecGame::VecGame(const hg::VariantConfig& variant, int num_envs, uint32_t seed, 
       finished_(num_envs),
       starts_(num_envs, 0),
       evaders_(std::size(hideseek_hider::kAllEvaders)) {
-  game_.world().keepTerminalViews(seeker_outside);
   seekers_.reserve(num_envs);
   for (int i = 0; i < num_envs; ++i) {
     seekers_.emplace_back(hideseek_seeker::seekerOptionsFor(variant_));
@@ -144,6 +143,12 @@ void VecGame::step(const std::vector<uint8_t>& actions, const std::vector<uint8_
     finished_[i] = d.steps[i].finished;
     if (finished_[i]) episodeStarted(i);
   }
+}
+
+void VecGame::keepTerminalViews(bool seeker) {
+  if (seeker && !seeker_outside_)
+    throw std::invalid_argument("the scripted seeker's side is not played: no seeker view");
+  game_.world().keepTerminalViews(seeker);
 }
 
 std::vector<uint8_t> VecGame::randomSeekerActions() const {

@@ -186,7 +186,7 @@ def test_bad_variant_file_names_file_and_field(tmp_path):
 def test_a_variant_file_of_ones_own_and_a_misnamed_one(tmp_path):
     real = hideseek._core.config_directory()
     mine = tmp_path / "mine.yaml"
-    mine.write_text("variant: mine\nmap: %s/maps/deterministic.yaml\nepisode: {max_steps: 7}\n" % real)
+    mine.write_text("variant: mine\nmap: deterministic.yaml\nepisode: {max_steps: 7}\n")  # the game's map folder
     env = hideseek.make_vec("mine", num_envs=2, seed=1000, variant_config=mine)
     assert env.variant == "mine"
     env.reset(seed=1000)
@@ -208,6 +208,29 @@ def test_a_variant_file_of_ones_own_and_a_misnamed_one(tmp_path):
     (config / "variants" / "renamed.yaml").write_text(open(os.path.join(real, "variants", "basic.yaml")).read())
     with pytest.raises(hideseek.ConfigError, match="renamed.yaml.*is 'basic', but the file was given as variant"):
         hideseek.make_vec("renamed", num_envs=1, config_dir=str(config))
+
+
+@pytest.mark.parametrize("role,opponent", [("hider", None), ("hider", "random"), ("seeker", None)])
+def test_final_obs_is_what_the_side_played_would_see(tmp_path, role, opponent):
+    """A twin whose episodes last longer observes the terminal state one step later: final_obs is
+    that image, byte for byte, from the camera of the side played (also where the seeker plays from
+    outside on the hider's side), on the ended episode's layout (stochasticmaps)."""
+    short = tmp_path / "short.yaml"
+    short.write_text("variant: short\nmap: stochastic.yaml\nseeker: {policy: stochastic}\nepisode: {max_steps: 5}\n")
+    going = hideseek.make_vec("stochasticmaps", num_envs=4, seed=1000, role=role, opponent=opponent)
+    ended = hideseek.make_vec("short", num_envs=4, seed=1000, role=role, opponent=opponent, variant_config=short)
+    rng = np.random.default_rng(0)
+    for _ in range(5):
+        a = rng.integers(0, going.single_action_space.n, 4)
+        obs, *_ = going.step(a)
+        nobs, _, _, _, infos = ended.step(a)
+    lasted = infos["_final_info"] & (infos["final_info"]["length"] == 5)
+    assert lasted.sum() >= 3
+    for i in np.flatnonzero(lasted):
+        assert np.array_equal(infos["final_obs"][i], obs[i]), i
+        assert not np.array_equal(nobs[i], obs[i])
+    going.close()
+    ended.close()
 
 
 def test_the_single_environment_returns_the_terminal_state_and_reset_starts_the_next():

@@ -11,7 +11,6 @@
 
 #include "hideseek_game/config_error.h"
 #include "hideseek_game/map.h"
-#include "hideseek_game/renderer.h"
 #include "hideseek_play/scripted_game.h"
 
 using hideseek_python::VecGame;
@@ -87,46 +86,45 @@ TEST(VecGame, SeedsPerEnvironmentOneSeedOrTheNextOnes) {
   EXPECT_EQ(game.info(1).seed, 10u);
 }
 
-// An ended episode's terminal state is rendered as its camera shows it, on that episode's layout
-// (stochasticmaps draws a new one each episode), while the observation is already the next
-// episode's first image; the seeker's side gets the seeker's camera.
-TEST(VecGame, AnEndedEpisodesTerminalStateIsRenderedAsItsCameraShowsIt) {
+// An ended episode's terminal state is rendered exactly as the batch shows that state: a twin game
+// whose episodes last longer observes the same state one step later, arena by arena (8 arenas: the
+// tiles differ), on the ended episode's layout (stochasticmaps draws one each episode), on both
+// sides; the observation itself is already the next episode's first image.
+TEST(VecGame, AnEndedEpisodesTerminalStateIsTheImageTheBatchShows) {
   namespace hg = hideseek_game;
   const hg::VariantConfig v = hideseek_python::loadVariant(HIDESEEK_CONFIG_DIR, "v3", "stochasticmaps");
-  const auto map = std::make_shared<const hg::MapSpec>(hg::loadMapFile(v.map_file));
+  hg::VariantConfig short_episodes = v;
+  short_episodes.game.max_steps = 7;
   for (const bool seeker_side : {false, true}) {
-    VecGame game(v, 2, 1000, 1, seeker_side);
-    const hg::GameOptions& played = game.variant().game;
-    int ended = 0;
-    for (int t = 0; ended < 3 && t < 5000; ++t) {
+    VecGame ended(short_episodes, 8, 1000, 1, seeker_side), going(v, 8, 1000, 1, seeker_side);
+    ended.keepTerminalViews(seeker_side);
+    for (int t = 0; t < 7; ++t) {
+      const std::vector<uint8_t> hider = going.scriptedActions(hideseek_hider::EvaderKind::kRandom);
       if (seeker_side) {
-        game.step(game.scriptedActions(hideseek_hider::EvaderKind::kRandom), game.randomSeekerActions());
+        const std::vector<uint8_t> seeker = going.randomSeekerActions();
+        ended.step(hider, seeker);
+        going.step(hider, seeker);
       } else {
-        game.step(game.scriptedActions(hideseek_hider::EvaderKind::kRandom));
-      }
-      for (int i = 0; i < 2; ++i) {
-        if (!game.finished(i)) continue;
-        ++ended;
-        const hg::EpisodeSummary& e = *game.finished(i);
-        hg::Arena arena(played, map);
-        arena.reset(e.seed);  // the ended episode's layout
-        hg::Renderer renderer(hg::rendererOptionsFor(played, map->colors, 1));
-        renderer.setScene(0, arena.layout());
-        std::vector<uint8_t> expected(renderer.imageBytes());
-        renderer.render({{0, seeker_side ? e.seeker : e.hider, seeker_side ? e.hider : e.seeker, seeker_side}},
-                        hg::RenderMode::kColor, expected.data());
-        const std::vector<uint8_t>& terminal =
-            seeker_side ? game.terminalSeekerObservations() : game.terminalObservations();
-        const std::vector<uint8_t>& next = seeker_side ? game.seekerObservations() : game.observations();
-        const size_t at = expected.size() * i;
-        EXPECT_TRUE(std::equal(expected.begin(), expected.end(), terminal.begin() + at))
-            << "arena " << i << ", seed " << e.seed << (seeker_side ? ", seeker" : ", hider");
-        EXPECT_FALSE(std::equal(expected.begin(), expected.end(), next.begin() + at))
-            << "the observation is the next episode's first image";
+        ended.step(hider);
+        going.step(hider);
       }
     }
-    EXPECT_GE(ended, 3);
+    const std::vector<uint8_t>& shown = seeker_side ? going.seekerObservations() : going.observations();
+    const std::vector<uint8_t>& next = seeker_side ? ended.seekerObservations() : ended.observations();
+    const size_t bytes = shown.size() / 8;
+    int compared = 0;
+    for (int i = 0; i < 8; ++i) {
+      if (!ended.finished(i) || ended.finished(i)->steps != 7) continue;  // caught earlier in both
+      ASSERT_EQ(going.info(i).step, 7u);
+      ++compared;
+      const auto at = [&](const std::vector<uint8_t>& images) { return images.begin() + bytes * i; };
+      EXPECT_TRUE(std::equal(at(shown), at(shown) + bytes, at(ended.terminalObservations())))
+          << "arena " << i << (seeker_side ? ", seeker's camera" : ", hider's camera");
+      EXPECT_FALSE(std::equal(at(shown), at(shown) + bytes, at(next))) << "the next episode's first image";
+    }
+    EXPECT_GE(compared, 6) << (seeker_side ? "seeker" : "hider");
   }
+  EXPECT_THROW(VecGame(v, 1, 0, 1).keepTerminalViews(true), std::invalid_argument);  // no seeker camera
 }
 
 TEST(VecGame, BadInputIsRefusedAndChangesNothing) {

@@ -49,8 +49,9 @@ if [ -s "$dir/work/rollout.bag" ]; then
   "$(catkin_find hideseek_analysis analyze_bag --first-only)" --variant-config "$dir/mine.yaml" mine \
     "$(/usr/bin/python3 "$root/../hideseek_analysis/scripts/hideseek_registry.py" shipped basic)" "$dir/gap.bag" \
     "$dir/mine" > "$dir/mine.log" 2>&1
-  grep -q "this analysis is of variant 'mine', game v3" "$dir/mine.log" ||
-    failures+=("--variant-config was not analysed as variant 'mine': $(head -c 300 "$dir/mine.log")")
+  { grep -q "this analysis is of variant 'mine', game v3" "$dir/mine.log" &&
+    grep -q "decisions 100 to 100 are missing" "$dir/mine.log"; } ||
+    failures+=("--variant-config was not read as variant 'mine' to the missing step: $(head -c 300 "$dir/mine.log")")
   "$(catkin_find hideseek_analysis analyze_bag --first-only)" --variant-config "$dir/mine.yaml" yours \
     "$(/usr/bin/python3 "$root/../hideseek_analysis/scripts/hideseek_registry.py" shipped basic)" "$dir/gap.bag" \
     "$dir/yours" > "$dir/yours.log" 2>&1

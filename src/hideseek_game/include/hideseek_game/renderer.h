@@ -52,7 +52,10 @@ class Renderer {
   void setScene(int scene, const Layout& layout);
 
   // Renders views into `out`: views.size() images of height x width x 3 bytes, rows top down.
-  void render(const std::vector<ViewRequest>& views, RenderMode mode, uint8_t* out);
+  // View k takes tile first_tile + k of the framebuffer. A view's pixels depend on its tile (by a
+  // level, here and there), so a view rendered alone matches the batch where it takes the tile the
+  // batch gave it.
+  void render(const std::vector<ViewRequest>& views, RenderMode mode, uint8_t* out, int first_tile = 0);
 
   int width() const { return options_.camera.width; }
   int height() const { return options_.camera.height; }

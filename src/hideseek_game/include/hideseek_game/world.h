@@ -75,15 +75,14 @@ class World {
   size_t imageBytes() const;
 
   // From now on, also renders each episode's terminal state before its arena starts the next
-  // episode: the hider's camera, and the seeker's where `seeker`. The game itself never shows it
-  // (an ended episode's observation is the next one's first image); a learner that bootstraps on a
-  // truncation needs it (the Python module's final_obs). One view per episode end; off by default.
+  // episode: the hider's camera, or the seeker's (`seeker`), exactly as the batch would show it
+  // (arena i's tile). The game itself never shows it (an ended episode's observation is the next
+  // one's first image); a learner that bootstraps on a truncation needs it (the Python module's
+  // final_obs). One view per episode end; off by default.
   void keepTerminalViews(bool seeker);
-  // Arena i's image (at i * imageBytes()) of the last episode it ended; empty until
-  // keepTerminalViews (the seeker's: keepTerminalViews(true)).
-  const std::vector<uint8_t>& terminalImages(bool seeker) const {
-    return seeker ? terminal_seeker_images_ : terminal_hider_images_;
-  }
+  // Arena i's terminal image (at i * imageBytes()) of the last episode it ended; empty until
+  // keepTerminalViews.
+  const std::vector<uint8_t>& terminalImages() const { return terminal_images_; }
 
  private:
   void startEpisode(int i, uint32_t seed);
@@ -104,7 +103,8 @@ class World {
   std::vector<std::optional<StepResult>> results_;  // each arena's step result once it is over
   std::unique_ptr<Renderer> renderer_;
   std::vector<ViewRequest> views_;
-  std::vector<uint8_t> terminal_hider_images_, terminal_seeker_images_;  // keepTerminalViews
+  std::vector<uint8_t> terminal_images_;  // keepTerminalViews
+  bool terminal_seeker_ = false;
 };
 
 }  // namespace hideseek_game

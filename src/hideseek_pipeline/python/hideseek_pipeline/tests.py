@@ -43,6 +43,9 @@ def run_tests(root, say=print):
             if SHOWN.search(line):
                 say(line.rstrip())
     say("")
+    # A target that fails to build stops run_tests part way: the results then hold only what ran
+    # before it, and every test after it is missing, not passed.
+    stopped = p.returncode != 0
     summary = subprocess.run(["bash", "-c", "source scripts/env.sh && catkin_test_results build/test_results --all"],
                              cwd=root, capture_output=True, text=True)
     with open(os.path.join(root, "build", "test_summary.txt"), "w") as f:
@@ -55,5 +58,9 @@ def run_tests(root, say=print):
         failed = 1  # no result at all: the tests did not run
     elif summary.returncode != 0 and failed == 0:
         failed = 1
+    if stopped:
+        failed += 1  # the run itself, which stopped before every test ran
+        say("catkin_make run_tests stopped with exit status %d before every test ran (a target failed to build: "
+            "its error is above); the counts cover only the tests that ran" % p.returncode)
     say("%d passed, %d failed" % (passed, failed))
     return 0 if summary.returncode == 0 and failed == 0 else 1

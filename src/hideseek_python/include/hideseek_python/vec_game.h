@@ -89,12 +89,13 @@ class VecGame {
   ArenaInfo info(int env) const;
   // The episode the last step ended in arena env (length, return, terminal state), if it did.
   const std::optional<hideseek_game::EpisodeSummary>& finished(int env) const { return finished_[env]; }
-  // The terminal state of that episode as its camera shows it (arena env's image at env *
-  // height() * width() * 3, where finished(env)): the hider's; the seeker's where seeker_outside.
-  // The game itself never shows it; rendered once an episode, for a learner that bootstraps on a
-  // truncation (Gymnasium's final_obs).
-  const std::vector<uint8_t>& terminalObservations() const { return game_.world().terminalImages(false); }
-  const std::vector<uint8_t>& terminalSeekerObservations() const { return game_.world().terminalImages(true); }
+  // From now on, renders the terminal state of every episode that ends as the camera of one side
+  // shows it (the seeker's: seeker_outside only); the game itself never shows it. For a learner
+  // that bootstraps on a truncation (Gymnasium's final_obs); one view an episode.
+  void keepTerminalViews(bool seeker);
+  // That episode's terminal image (arena env's at env * height() * width() * 3, where
+  // finished(env)); empty before keepTerminalViews.
+  const std::vector<uint8_t>& terminalObservations() const { return game_.world().terminalImages(); }
   // Decision steps taken since construction.
   uint64_t decisions() const { return game_.decisions(); }
   // VecGame is not thread-safe: the Python layer holds this around every call, so that two threads

@@ -159,6 +159,7 @@ class HideSeekVecEnv(_VectorBase):
         outside = role == "seeker" or opponent not in (None, "scripted")
         self._game = _core.VecGame(config_dir, game, variant, int(num_envs), seed, int(render_threads), outside,
                                    os.fspath(variant_config) if variant_config is not None else "")
+        self._game.keep_terminal_views(role == "seeker")  # final_obs: the side played's camera
         self.variant, self.game, self.role = variant, game, role
         self.opponent = opponent if opponent is not None else ("scripted" if role == "hider" else "random")
         self.num_envs = self._game.num_envs
@@ -212,7 +213,7 @@ class HideSeekVecEnv(_VectorBase):
             infos["final_info"] = _with_masks(final, done)
             infos["_final_info"] = done
             # Gymnasium's layout: an object array, the terminal image where an episode ended, else None
-            terminal = game.terminal_observations(self.role == "seeker")
+            terminal = game.terminal_observations()
             final_obs = np.full(n, None, dtype=object)
             for i in np.flatnonzero(done):
                 final_obs[i] = terminal[i]
