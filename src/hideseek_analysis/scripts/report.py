@@ -95,10 +95,25 @@ def probes(labels, representations, out, splits=5):
     return rows
 
 
+# t-SNE's perplexity, the neighbours each point weighs; fewer samples take a smaller one.
+PERPLEXITY = 30.0
+
+
+def tsne_perplexity(samples):
+    """PERPLEXITY, or at most a third of the other samples where there are fewer than 91 (scikit-learn
+    needs it below the sample count; a third is the usual bound)."""
+    return min(PERPLEXITY, max(1.0, (samples - 1) / 3.0))
+
+
 def tsne(features, labels, out, title, max_samples, seed=0):
     rng = np.random.default_rng(seed)
     pick = rng.choice(len(features), size=min(max_samples, len(features)), replace=False)
-    embedded = TSNE(n_components=2, init="pca", random_state=seed, perplexity=30).fit_transform(features[pick])
+    perplexity = tsne_perplexity(len(pick))
+    if perplexity < PERPLEXITY:
+        print("report: warning: t-SNE of %d samples only, at perplexity %.1f (%g with 91 or more): record more "
+              "(analyze.launch's steps)" % (len(pick), perplexity, PERPLEXITY))
+        title = "%s\n(%d samples, perplexity %.1f)" % (title, len(pick), perplexity)
+    embedded = TSNE(n_components=2, init="pca", random_state=seed, perplexity=perplexity).fit_transform(features[pick])
     for target, meaning in (("S", "hider sees seeker"), ("H", "seeker sees hider")):
         fig, ax = plt.subplots(figsize=(5, 5))
         on = labels[target].astype(int)[pick] == 1

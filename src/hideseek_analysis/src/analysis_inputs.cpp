@@ -295,12 +295,18 @@ void writeLayouts(const std::vector<ArenaStepRecord>& records, const hw::Variant
 AnalysisInputsSummary writeAnalysisInputs(const StepLog& log, hideseek_hider::HiderNet& trained,
                                           const hw::VariantConfig& variant, std::shared_ptr<const hw::MapSpec> map,
                                           const AnalysisInputsOptions& options, const std::string& dir) {
+  if (log.numImages() == 0) {
+    // Before any file is written: the report's probes and t-SNE are of the recorded images.
+    throw std::runtime_error(
+        "the recording holds no hider image (recorded with record_images:=false, or image_every 0): the probes "
+        "and the t-SNE are of the images, so record again with them; nothing was analysed");
+  }
   AnalysisInputsSummary summary;
   summary.steps = log.records().size();
   const std::set<uint32_t> seeds = writeTrainedSteps(log.records(), dir);
   summary.episodes = seeds.size();
   summary.images = log.numImages();
-  if (summary.images > 0) writeFeatures(log, trained, variant, map, options, dir, summary);
+  writeFeatures(log, trained, variant, map, options, dir, summary);
   writeRandomSteps(variant, map, seeds.empty() ? 0 : *seeds.begin(), dir, summary);
   writeLayouts(log.records(), variant, map, options, dir, summary);
   return summary;

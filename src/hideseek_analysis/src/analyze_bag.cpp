@@ -33,9 +33,9 @@ int main(int argc, char** argv) {
       ("variant-config", po::value(&variant_config),
        "a variant file of one's own, named VARIANT (none: the project's config/variants/VARIANT.yaml)")  //
       ("policy", po::value(&policy)->required(),
-       "the policy the bag recorded (a checkpoint, random, scripted/EVADER)")  //
-      ("bag", po::value(&bag)->required(), "the recording")                    //
-      ("output", po::value(&output_dir)->required(), "where the arrays go")    //
+       "the checkpoint the bag recorded (its network gives the features; random and scripted hiders have none)")  //
+      ("bag", po::value(&bag)->required(), "the recording")                                                       //
+      ("output", po::value(&output_dir)->required(), "where the arrays go")                                       //
       ("report", po::value(&report_dir), "where the report goes (default: OUTPUT_DIR/report)");
   line.positional.add("variant", 1).add("policy", 1).add("bag", 1).add("output", 1).add("report", 1);
   int exit_code = 0;

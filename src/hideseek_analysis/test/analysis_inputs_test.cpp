@@ -73,7 +73,7 @@ TEST(ExtractFeatures, GivesTheNetworksFeaturesWhateverTheBatch) {
 // the state before each decision (image every 5th decision), then the actions and results. The
 // log starts at decision `first`; `all_images`, when given, receives every decision's images.
 StepLog rollout(const hw::VariantConfig& v, std::shared_ptr<const hw::MapSpec> map, int decisions, int first = 0,
-                std::vector<std::vector<uint8_t>>* all_images = nullptr) {
+                std::vector<std::vector<uint8_t>>* all_images = nullptr, int image_every = 5) {
   const int n = 2;
   hw::World world(v.game, map, n, 10000, true, 1);
   std::vector<hideseek_seeker::SeekerPolicy> seekers;
@@ -88,7 +88,7 @@ StepLog rollout(const hw::VariantConfig& v, std::shared_ptr<const hw::MapSpec> m
     if (all_images && d >= first) all_images->push_back(images);
     DecisionRecord r;
     r.decision = static_cast<uint64_t>(d);
-    if (d % 5 == 0) {
+    if (image_every > 0 && d % image_every == 0) {
       r.height = v.game.camera.height;
       r.width = v.game.camera.width;
       r.images = images;
@@ -143,6 +143,23 @@ TEST(WriteAnalysisInputs, WritesEveryArrayTheReportReads) {
   // The random network differs from the trained one: its features are not the same numbers.
   EXPECT_NE(slurp(d + "features_trained.npy"), slurp(d + "features_random.npy"));
   EXPECT_NE(slurp(d + "layouts.csv").find("\n" + std::to_string(s.trajectory_seeds[0]) + ","), std::string::npos);
+}
+
+// A recording without images (record_images:=false) is refused by name before anything is written.
+TEST(WriteAnalysisInputs, RefusesARecordingWithoutImages) {
+  TempDir dir;
+  const auto v = variant("basic");
+  const auto map = mapOf(v);
+  const StepLog log = rollout(v, map, 40, 0, nullptr, 0);
+  hideseek_hider::HiderNet net(v.game.camera.height, v.game.camera.width);
+  try {
+    writeAnalysisInputs(log, net, v, map, {}, dir.path.string());
+    FAIL() << "a recording without images was analysed";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("no hider image (recorded with record_images:=false"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path));
 }
 
 TEST(WriteAnalysisInputs, RefusesARecordingOfAnotherMap) {

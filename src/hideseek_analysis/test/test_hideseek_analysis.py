@@ -373,3 +373,17 @@ def test_report_stops_in_one_line_where_a_label_has_one_class_and_warns_on_few_e
     assert r.stderr.strip().splitlines()[-1] == "report: probe: the train split holds one class only; " \
         "record more episodes"
     assert "warning: the images come from 4 episodes only (120 images)" in r.stdout
+
+
+def test_tsne_of_a_short_recording_lowers_its_perplexity_and_says_so(tmp_path, capsys):
+    """24 images (a short realtime recording): scikit-learn refuses perplexity 30 for so few samples,
+    so the report takes a third of the others and says so, instead of stopping."""
+    import report
+
+    rng = np.random.default_rng(0)
+    labels = {"S": (rng.random(24) < 0.5).astype(int), "H": (rng.random(24) < 0.5).astype(int)}
+    report.tsne(rng.normal(size=(24, 512)).astype(np.float32), labels, str(tmp_path), "few", 3000)
+    for name in ("tsne_S.png", "tsne_H.png"):
+        assert (tmp_path / name).stat().st_size > 0
+    assert "t-SNE of 24 samples only, at perplexity 7.7" in capsys.readouterr().out
+    assert report.tsne_perplexity(200) == report.PERPLEXITY == 30.0
