@@ -283,8 +283,9 @@ class HideSeekEnv(_EnvBase):
         self._fresh = True  # an episode has just started and taken no step
         self._terminal = None  # the image of the episode the last step ended, until reset
 
+    # The vector environment of one arena, or a clear error naming this environment once closed.
     @property
-    def _live(self):
+    def _open_vec(self):
         if self._vec._game is None:
             raise RuntimeError("%r is closed: make a new environment" % self)
         return self._vec
@@ -292,7 +293,7 @@ class HideSeekEnv(_EnvBase):
     def reset(self, *, seed=None, options=None):
         if options:
             raise ValueError("hideseek environments take no reset options, got %r" % (options,))
-        vec = self._live
+        vec = self._open_vec
         if seed is not None:
             seed = _seed(seed)  # one integer: Gymnasium's Env takes no list, nor numpy's integers
         if seed is not None or not self._fresh:
@@ -303,7 +304,7 @@ class HideSeekEnv(_EnvBase):
         return vec._observations()[0], self._info()
 
     def step(self, action):
-        vec = self._live
+        vec = self._open_vec
         a = np.asarray(action)
         if a.shape != ():
             raise ValueError("action must be one integer in [0, %d), got an array of shape %s"
@@ -322,10 +323,10 @@ class HideSeekEnv(_EnvBase):
         return obs[0], float(rewards[0]), False, False, self._info()
 
     def scripted_action(self, name):
-        return int(self._live.scripted_actions(name)[0])
+        return int(self._open_vec.scripted_actions(name)[0])
 
     def render(self):
-        vec = self._live
+        vec = self._open_vec
         if self.render_mode != "rgb_array":
             return None
         return self._terminal if self._terminal is not None else vec._observations()[0]
@@ -336,7 +337,7 @@ class HideSeekEnv(_EnvBase):
     def _info(self):
         # The arena's episode counter is left out: it counts resets, so that a reset with the same
         # seed gives the same info (check_env's determinism).
-        return {k: v[0] for k, v in self._live._live.infos().items() if k != "episode_index"}
+        return {k: v[0] for k, v in self._open_vec._live.infos().items() if k != "episode_index"}
 
     def __repr__(self):
         v = self._vec
