@@ -18,9 +18,9 @@ DecisionScheduler::DecisionScheduler(ClockMode mode, int num_arenas, double stal
 Verdict DecisionScheduler::offer(Player player, int arena, uint8_t action, uint32_t step_id, uint32_t current_step) {
   if (action >= actions(player)) return Verdict::kInvalidAction;
   if (mode_ == ClockMode::kRealtime) {
-    // The hider answers a step's start only; the seeker may be asked again inside the step, so
-    // only an answer to the seeker decision being played is late.
-    if (player == Player::kHider && executing_) return Verdict::kLate;
+    // An answer to the decision being played is late: the hider's to the step, the seeker's to its
+    // decision inside the step (it may be asked again there). Any other id is a wrong step.
+    if (player == Player::kHider && executing_ && step_id == current_step) return Verdict::kLate;
     if (player == Player::kSeeker && seeker_executing_ && step_id == current_step) return Verdict::kLate;
   }
   std::optional<uint32_t>& superseded = superseded_[index(player, arena)];

@@ -90,6 +90,9 @@ TEST(DecisionScheduler, RealtimeWaitsForAnswersThenLetsASilentAgentStandStill) {
   // Its answer, arriving while the step's frames play, is late: it is not applied to the next step.
   EXPECT_TRUE(s.executing());
   EXPECT_EQ(s.offer(Player::kHider, 0, kForwardId, 0, 0), Verdict::kLate);
+  // An id that answers no step is a wrong step, not a late answer, while the step plays too.
+  EXPECT_EQ(s.offer(Player::kHider, 0, kForwardId, 9, 0), Verdict::kWrongStep);
+  EXPECT_EQ(s.offer(Player::kSeeker, 0, kForwardId, 9, 0), Verdict::kWrongStep);
   s.finishDecision();
   EXPECT_FALSE(s.answered(Player::kHider, 0));
   // The next decision waits its own full timeout.

@@ -326,10 +326,12 @@ void WorldNode::onActions(const ros::MessageEvent<const hideseek_game::CheckedAc
         ++rejected_.wrong_step;
         WallThrottle& throttle = throttles_.wrong_step;
         if (throttle.ready()) {
-          ROS_WARN(
-              "world: rejected %s action for arena %zu: step id %u, current step is %u (%lu more like it since the "
-              "last)",
-              channel.name.c_str(), i, msg.step[i], current, static_cast<unsigned long>(throttle.suppressed()));
+          const std::string awaited = current == hideseek_game::kNoStep
+                                          ? std::string("none is awaited while a decision step plays")
+                                          : "the current step is " + std::to_string(current);
+          ROS_WARN("world: rejected %s action for arena %zu: step id %u, %s (%lu more like it since the last)",
+                   channel.name.c_str(), i, msg.step[i], awaited.c_str(),
+                   static_cast<unsigned long>(throttle.suppressed()));
         }
         break;
       }

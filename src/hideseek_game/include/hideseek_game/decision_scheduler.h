@@ -47,7 +47,8 @@ class DecisionScheduler {
   DecisionScheduler(ClockMode mode, int num_arenas, double stale_action_timeout, double resend_period,
                     int seeker_actions = kNumActions);
 
-  // An action of `player` for `arena`, answering step `step_id` while the arena is at `current_step`.
+  // An action of `player` for `arena`, answering step `step_id` while the arena is at `current_step`
+  // (in realtime while a decision's frames play, the step or seeker decision being played).
   Verdict offer(Player player, int arena, uint8_t action, uint32_t step_id, uint32_t current_step);
   // Both agents answered every arena.
   bool complete() const { return completeFor(Player::kHider) && completeFor(Player::kSeeker); }
