@@ -50,7 +50,7 @@ uint32_t GameLoop::expectedStepId(Player player, int arena) const {
 Verdict GameLoop::offer(Player player, int arena, uint8_t action, uint32_t step_id) {
   // Realtime, while a step's frames play: the hider's answer to that step is late, any other a wrong step.
   const uint32_t current = player == Player::kHider && scheduler_.executing()
-                               ? static_cast<uint32_t>(world_.arena(arena).stepCount())
+                               ? static_cast<uint32_t>(world_.stepPlaying(arena))
                                : expectedStepId(player, arena);
   return scheduler_.offer(player, arena, action, step_id, current);
 }

@@ -41,10 +41,14 @@ ArenaStep World::stepArena(int i, Action hider, const SeekerDecide& seeker) {
   return conclude(i, playDecisionStep(arenas_[i], hider, seeker));
 }
 
-uint32_t World::seekerDecisionId(int i) const {
+int World::stepPlaying(int i) const {
   // An arena whose step ended early (a capture) has counted that step already.
-  const int step = arenas_[i].stepCount() - (results_[i] ? 1 : 0);
-  return static_cast<uint32_t>(step * options_.seekerDecisionsPerStep() + frame_ / options_.seeker_decision_frames);
+  return arenas_[i].stepCount() - (results_[i] ? 1 : 0);
+}
+
+uint32_t World::seekerDecisionId(int i) const {
+  return static_cast<uint32_t>(stepPlaying(i) * options_.seekerDecisionsPerStep() +
+                               frame_ / options_.seeker_decision_frames);
 }
 
 std::optional<std::vector<ArenaStep>> World::advanceFrame(const std::vector<Action>& hider,

@@ -195,6 +195,26 @@ TEST(GameLoop, RealtimeRefusesTheHidersAnswerWhileAStepPlaysAndStartsWithoutASil
   EXPECT_EQ(game.offer(Player::kHider, 0, 1, 1), Verdict::kAccepted);
 }
 
+// A capture ends an arena's step early while the others' frames play on (here: the seeker within
+// capture distance at once, arena 0 only caught in the step's first frame): the step it was playing
+// still counts as playing, so the hider's answer to it is late and one to the next step a wrong step.
+TEST(GameLoop, RealtimeCountsAnAnswerToAStepACaptureEndedEarlyAsLate) {
+  VariantConfig v = loadVariant("basic");
+  v.game.capture_distance = 1000.0;  // every arena is caught in its first frame
+  GameLoopOptions o = unrendered(2, 0, ClockMode::kRealtime);
+  GameLoop game(v.game, loadMap("deterministic"), o);
+  for (int i = 0; i < 2; ++i) {
+    ASSERT_EQ(game.offer(Player::kHider, i, 1, 0), Verdict::kAccepted);
+  }
+  ASSERT_EQ(game.realtimeStart(0.0, true, false), RealtimeStart::kStale);  // no seeker node
+  game.takeDecision();
+  ASSERT_FALSE(game.playFrame());  // caught, but the step's frames play on
+  ASSERT_EQ(game.world().arena(0).stepCount(), 1);
+  EXPECT_EQ(game.world().stepPlaying(0), 0);
+  EXPECT_EQ(game.offer(Player::kHider, 0, 1, 0), Verdict::kLate);
+  EXPECT_EQ(game.offer(Player::kHider, 0, 1, 1), Verdict::kWrongStep);
+}
+
 // A seeker that decides once a step (a learned one, or one of your own with seeker_decides:=step)
 // and answers after stale_action_timeout: its answer is late, as the hider's is, and is not played
 // in the next step in place of the answer to that step.

@@ -9,8 +9,8 @@
 // Realtime: a decision starts once both agents answered every arena, or once stale_action_timeout
 //   has passed since it could have started (a silent agent then stands still for that step), or at
 //   once while an agent is absent; the seeker's later decisions likewise. While a decision's
-//   frames play, the hider's answers are late and refused, and so is the seeker's answer to the
-//   decision being played (never kept for its next one).
+//   frames play, the hider's answers to that step are late and refused, and so is the seeker's
+//   answer to the decision being played (never kept for its next one); any other id is a wrong step.
 #pragma once
 
 #include <cstdint>

@@ -71,8 +71,8 @@ class GameLoop {
   // The actions `player` may take in this game (codes 0 .. actions - 1).
   int actions(Player player) const { return scheduler_.actions(player); }
   // Takes the decision due: at a step's start both agents' actions, inside it the seeker's
-  // (STAY where an answer is missing). Realtime: the hider's answers are late until the step ends,
-  // the seeker's answer to the decision taken until its frames have played.
+  // (STAY where an answer is missing). Realtime: the hider's answers to the step are late until it
+  // ends, the seeker's answer to the decision taken until its frames have played.
   void takeDecision();
   // Plays one physics frame of the decision taken; returns the decision once its step ended
   // (finished episodes replaced by their next ones, the hider views rendered).

@@ -57,6 +57,10 @@ class World {
   // the seeker decides before every seeker_decision_frames-th of them (SeekerObservationBatch).
   int frameInStep() const { return frame_; }
   bool seekerDecisionDue() const { return frame_ % options_.seeker_decision_frames == 0; }
+  // The decision step arena i is in, counted from its episode's start: its step count, less the
+  // step a capture ended early while the other arenas' frames play. At a step's start, the step
+  // about to be taken.
+  int stepPlaying(int i) const;
   // Arena i's seeker decision about to be taken, counted from its episode's start: the step id
   // of the seeker's exchange (the hider's step id when the seeker decides once a step).
   uint32_t seekerDecisionId(int i) const;
