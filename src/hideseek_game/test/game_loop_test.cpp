@@ -178,7 +178,7 @@ TEST(GameLoop, RealtimeRefusesTheHidersAnswerWhileAStepPlaysAndStartsWithoutASil
   EXPECT_EQ(game.realtimeStart(10.6, true, true), RealtimeStart::kStale);
   game.takeDecision();
   EXPECT_FALSE(game.playFrame());
-  EXPECT_EQ(game.offer(Player::kHider, 0, 1, 0), Verdict::kLate);  // an answer to the step playing
+  EXPECT_EQ(game.offer(Player::kHider, 0, 1, 0), Verdict::kLate);       // an answer to the step playing
   EXPECT_EQ(game.offer(Player::kHider, 0, 1, 1), Verdict::kWrongStep);  // step 1 was never asked
   EXPECT_EQ(game.offer(Player::kHider, 0, 1, 77), Verdict::kWrongStep);
   // Inside the step only the seeker is waited for, and an absent seeker not at all.
