@@ -195,9 +195,9 @@ TEST(GameLoop, RealtimeRefusesTheHidersAnswerWhileAStepPlaysAndStartsWithoutASil
   EXPECT_EQ(game.offer(Player::kHider, 0, 1, 1), Verdict::kAccepted);
 }
 
-// A capture ends an arena's step early while the others' frames play on (here: the seeker within
-// capture distance at once, arena 0 only caught in the step's first frame): the step it was playing
-// still counts as playing, so the hider's answer to it is late and one to the next step a wrong step.
+// A capture ends an arena's step early while the step's frames play on (here: a capture distance
+// that catches every arena in the step's first frame): the step it was playing still counts as
+// playing, so the hider's answer to it is late and one to the next step a wrong step.
 TEST(GameLoop, RealtimeCountsAnAnswerToAStepACaptureEndedEarlyAsLate) {
   VariantConfig v = loadVariant("basic");
   v.game.capture_distance = 1000.0;  // every arena is caught in its first frame
