@@ -73,7 +73,7 @@ ArenaStep World::conclude(int i, const StepResult& result) {
   ArenaStep out;
   out.result = result;
   if (result.done()) {
-    if (!terminal_images_.empty()) renderTerminalViews(i);
+    if (!terminal_images_.empty()) renderTerminalView(i);
     out.finished = EpisodeSummary{episodes_[i],   a.seed(),  a.stepCount(), a.episodeReturn(),
                                   result.outcome, a.hider(), a.seeker(),    a.labels()};
     out.finished->seeker_return = a.seekerEpisodeReturn();
@@ -114,7 +114,7 @@ void World::keepTerminalViews(bool seeker) {
   terminal_seeker_ = seeker;
 }
 
-void World::renderTerminalViews(int i) {
+void World::renderTerminalView(int i) {
   syncScenes();  // arena i's layout is still its ended episode's
   const Arena& a = arenas_[i];
   const ViewRequest view =

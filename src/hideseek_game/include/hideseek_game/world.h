@@ -94,8 +94,8 @@ class World {
   void syncScenes();
   // Every arena's hider camera, or (`seeker`) seeker camera.
   void renderViews(bool seeker, uint8_t* out, RenderMode mode);
-  // Arena i's terminal views, while its ended episode is still in place.
-  void renderTerminalViews(int i);
+  // Arena i's terminal view, while its ended episode is still in place.
+  void renderTerminalView(int i);
 
   GameOptions options_;
   std::vector<Arena> arenas_;
