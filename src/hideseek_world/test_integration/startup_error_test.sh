@@ -5,7 +5,8 @@
 # stop the game with a FATAL line naming the problem, as does a variant file of one's own named
 # otherwise than variant:=. A variant's launch file given another variant
 # refuses before any node starts, as train.launch does a misspelt role. A lockstep game refuses a
-# master whose /clock is taken.
+# master whose /clock is taken. A launch on a master that outlives it reads nothing an earlier
+# launch left there.
 # usage: startup_error_test.sh XUNIT_OUTPUT
 set -uo pipefail
 source "$(dirname "$0")/xunit.sh"
@@ -82,9 +83,18 @@ clock_pid=$!
 for _ in $(seq 100); do rostopic info /clock 2>/dev/null | grep -q clock_source && break; sleep 0.2; done
 launch_port=$clock_port expect_fatal second_clock "/clock is already published on this master, by /clock_source" \
   basic.launch mode:=lockstep policy:=random
+# This master outlives its launches, and roslaunch deletes no parameter: a launch that gave a bad
+# precision and a misspelt variant file must leave nothing the next launch's nodes read.
+launch_port=$clock_port expect_fatal stale_first "field 'hider.sped': unknown field" basic.launch policy:=random \
+  precision:=fp16 variant_config:="$dir/typo.yaml"
 roslaunch -p "$clock_port" hideseek_world basic.launch policy:=random > "$dir/realtime_beside_clock.log" 2>&1 &
 beside=$!
 for _ in $(seq 600); do grep -qF "starting realtime" "$dir/realtime_beside_clock.log" && break; sleep 0.2; done
+for stale in /hider/precision /world/variant_config /seeker/variant_config /hider/variant_config; do
+  if value=$(rosparam get "$stale" 2> /dev/null); then
+    failures+=("stale_params: $stale is still '$value' from the launch before")
+  fi
+done
 kill -INT "$beside" 2> /dev/null
 wait "$beside" 2> /dev/null
 grep -F "[ WARN]" "$dir/realtime_beside_clock.log" | grep -qF "/clock is published on this master, by /clock_source" ||
