@@ -83,14 +83,14 @@ struct MakeOptions {
   uint32_t seed = 0;
 };
 
+constexpr const char* kUsage =
+    "usage: probe_set make OUT_DIR [--config DIR] [--game GAME|FILE] [--first-seed N] [--episodes N] "
+    "[--every N] [--per-cell N] [--test-fraction F] [--seed N]\n"
+    "       probe_set features PROBE_DIR OUT.npy (--policy CHECKPOINT | --random-init SEED [--network ff|gru])\n"
+    "probe_set COMMAND --help says what each option means\n";
+
 int usage(const std::string& why) {
-  std::fprintf(stderr,
-               "probe_set: %s\n"
-               "usage: probe_set make OUT_DIR [--config DIR] [--game GAME|FILE] [--first-seed N] [--episodes N] "
-               "[--every N] [--per-cell N] [--test-fraction F] [--seed N]\n"
-               "       probe_set features PROBE_DIR OUT.npy (--policy CHECKPOINT | --random-init SEED "
-               "[--network ff|gru])\n",
-               why.c_str());
+  std::fprintf(stderr, "probe_set: %s\n%s", why.c_str(), kUsage);
   return 2;
 }
 
@@ -334,6 +334,13 @@ int main(int argc, char** argv) {
   namespace po = boost::program_options;
   if (argc < 2) return usage("name a command: make or features (probe_set COMMAND --help)");
   const std::string command = argv[1];
+  if (command == "--help" || command == "-h") {
+    std::printf(
+        "probe_set: the shared probe set of the representation study (the scripted and random hiders' images\n"
+        "of every variant, labelled S and H) and a network's mid-level features of it\n%s",
+        kUsage);
+    return 0;
+  }
   try {
     if (command == "make") {
       MakeOptions o;

@@ -98,3 +98,13 @@ def test_bad_input_is_refused_by_name(made, tmp_path):
     assert r.returncode == 1 and "not a [N, H, W, 3] uint8 image array" in r.stderr
     r = subprocess.run([BIN, "features", str(made), str(tmp_path / "o.npy")], capture_output=True, text=True)
     assert r.returncode == 2 and "exactly one of --policy and --random-init" in r.stderr
+
+
+def test_help_names_both_commands_and_an_unknown_command_is_refused():
+    assert os.path.isfile(BIN), "PROBE_SET_BIN (%r) does not name the built probe_set" % BIN
+    for flag in ("--help", "-h"):
+        r = subprocess.run([BIN, flag], capture_output=True, text=True, timeout=60)
+        assert r.returncode == 0, (flag, r.stderr)
+        assert "probe_set make OUT_DIR" in r.stdout and "probe_set features PROBE_DIR" in r.stdout, r.stdout
+    r = subprocess.run([BIN, "nosuch"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2 and "unknown command 'nosuch'" in r.stderr, (r.returncode, r.stderr)
