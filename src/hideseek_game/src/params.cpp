@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 #include "hideseek_game/config_error.h"
 #include "hideseek_game/game_selection.h"
@@ -89,7 +90,12 @@ VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
       throw bad(nh, "game", "names no game: " + std::string(e.what()));
     }
   }
-  if (game_file.empty() && variant_file.empty()) return selectGame(config, game, variant).config;
+  // ~game left empty plays config/games.yaml's default: the parameter then says which game that was.
+  const auto played = [&](VariantConfig v) {
+    if (game.empty()) nh.setParam("game", v.game.name);
+    return v;
+  };
+  if (game_file.empty() && variant_file.empty()) return played(selectGame(config, game, variant).config);
   VariantConfig v = loadVariantConfig(game_file.empty() ? gameFile(config, game) : game_file,
                                       variant_file.empty() ? variantFile(config, variant) : variant_file);
   // The variant's name labels what the nodes write (evaluations, logs, checkpoints): a file of one's
@@ -105,7 +111,7 @@ VariantConfig loadVariantParams(const ros::NodeHandle& nh) {
                   variant + "': give the variant as the file names it (variant.launch.xml variant:=" + v.name +
                   "), or change the file's variant field");
   }
-  return v;
+  return played(std::move(v));
 }
 
 }  // namespace hideseek_game

@@ -125,9 +125,10 @@ Learner::Learner(const LearnerOptions& o)
     throw std::invalid_argument("parameter " + ros::NodeHandle("~").resolveName("memoryless") + " is true for " +
                                 o.policy + ": " + e.what());
   }
-  ROS_INFO("%s: policy %s (variant '%s', game %s, network %s, %ld training steps) on %s in %s, %s%s", role_.c_str(),
-           o.policy.c_str(), info.variant.c_str(), info.game.c_str(), networkName(info.network),
-           static_cast<long>(info.steps), o.device.str().c_str(), precision.reason.c_str(), layout.reason.c_str(),
+  ROS_INFO("%s: policy %s (variant '%s', game %s, network %s, %ld training steps), %s, on %s in %s, %s%s",
+           role_.c_str(), o.policy.c_str(), info.variant.c_str(), info.game.c_str(), networkName(info.network),
+           static_cast<long>(info.steps), o.greedy ? "greedy (its most likely action)" : "sampling its actions",
+           o.device.str().c_str(), precision.reason.c_str(), layout.reason.c_str(),
            o.memoryless ? ", memoryless (the GRU state zeroed at every step)" : "");
   if (info.game != o.variant.game.name) {
     ROS_WARN("%s: %s was trained on game %s and plays game %s here (an evaluation across games)", role_.c_str(),

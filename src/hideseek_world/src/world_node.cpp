@@ -193,8 +193,6 @@ WorldNode::WorldNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   if (options_.status_period > 0.0) {
     status_timer_ = nh_.createWallTimer(ros::WallDuration(options_.status_period), &WorldNode::printStatus, this);
   }
-  // ~game left empty plays config/games.yaml's default: the parameter then says which game that was.
-  if (private_nh.param<std::string>("game", "").empty()) private_nh.setParam("game", game.name);
   ROS_INFO("world: game '%s', variant '%s', map '%s', %d arena(s), %s mode, seed %u, images %dx%d", game.name.c_str(),
            options_.variant.name.c_str(), options_.map.name.c_str(), n, lockstep ? "lockstep" : "realtime",
            options_.loop.seed, game.camera.width, game.camera.height);

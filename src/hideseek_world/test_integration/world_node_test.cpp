@@ -18,6 +18,8 @@
 #include <functional>
 #include <map>
 
+#include "hideseek_game/game_selection.h"
+#include "hideseek_game/package_paths.h"
 #include "hideseek_game/params.h"
 #include "test_helpers.h"
 
@@ -169,6 +171,24 @@ TEST(Params, CheckTypeAndRangeAndNameTheParameter) {
               hideseek_game::requireString(pnh, "nothing", "a file path");
             }).find("params_test/nothing is required (a file path)"),
             std::string::npos);
+}
+
+// A node given a variant and no game plays config/games.yaml's default, and its ~game then says
+// which game that was (rosparam get /hider/game); a game named stays as it was named.
+TEST(Params, ANodeGivenNoGameWritesTheDefaultItPlaysIntoItsGameParameter) {
+  ros::NodeHandle unnamed("~variant_params_test");
+  unnamed.setParam("variant", std::string("basic"));
+  const hideseek_game::VariantConfig v = hideseek_game::loadVariantParams(unnamed);
+  std::string game;
+  ASSERT_TRUE(unnamed.getParam("game", game));
+  EXPECT_EQ(game, hideseek_game::defaultGame(hideseek_game::configDirectory()));
+  EXPECT_EQ(game, v.game.name);
+  ros::NodeHandle named("~variant_params_named_test");
+  named.setParam("variant", std::string("basic"));
+  named.setParam("game", std::string("v2"));
+  EXPECT_EQ(hideseek_game::loadVariantParams(named).game.name, "v2");
+  ASSERT_TRUE(named.getParam("game", game));
+  EXPECT_EQ(game, "v2");
 }
 
 TEST_F(WorldNodeTest, TfTreeJoinsMapToBothCameraOpticalFrames) {
