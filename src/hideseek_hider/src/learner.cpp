@@ -127,7 +127,7 @@ Learner::Learner(const LearnerOptions& o)
   }
   ROS_INFO("%s: policy %s (variant '%s', game %s, network %s, %ld training steps), %s, on %s in %s, %s%s",
            role_.c_str(), o.policy.c_str(), info.variant.c_str(), info.game.c_str(), networkName(info.network),
-           static_cast<long>(info.steps), o.greedy ? "greedy (its most likely action)" : "sampling its actions",
+           static_cast<long>(info.steps), o.greedy ? "greedy (its most likely action)" : "sampled",
            o.device.str().c_str(), precision.reason.c_str(), layout.reason.c_str(),
            o.memoryless ? ", memoryless (the GRU state zeroed at every step)" : "");
   if (info.game != o.variant.game.name) {

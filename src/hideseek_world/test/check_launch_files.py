@@ -11,8 +11,9 @@ shows none in rosparam. train.launch is loaded again with role:=seeker and with 
 as the opponent (both given steps and checkpoint_interval), evaluate.launch with
 seeker_mode:=random and with external sides, and basic.launch and play.launch with record:=true, whose world must wait for
 the recorder (one more listener of world/steps and world/episodes than without); policy:=external
-and seeker_mode:=external start no node for that side; and that a path
-argument starting with ~/ reaches its node under $HOME.
+and seeker_mode:=external start no node for that side; that a path
+argument starting with ~/ reaches its node under $HOME; and that game_config:= and variant_config:=
+reach every node that reads the game.
 Writes an xunit result. hideseek_world's package.xml declares the packages its launch files start
 (catkin_lint checks that); this checks that each named executable exists.
 
@@ -90,6 +91,29 @@ def home_problems(path):
     got = config.params[param].value if param in config.params else None
     want = os.path.expanduser(argument.split(":=", 1)[1])
     return [] if got == want else ["%s gives %s = %s, not %s" % (argument, param, got, want)]
+
+
+# Loads given files of one's own: each reaches every node that resolves the game (each node with a
+# ~variant), under $HOME where given with ~/, and no node of the game is left to the config's.
+OWN_FILES = ["game_config:=~/hs_check/game.yaml", "variant_config:=~/hs_check/variant.yaml"]
+OWN_FILE_LOADS = ("basic.launch", "evaluate.launch", "train.launch", "analyze.launch")
+
+
+def own_file_problems(path):
+    """game_config:= and variant_config:= reach every node that reads the game."""
+    if os.path.basename(path) not in OWN_FILE_LOADS:
+        return []
+    config = roslaunch.config.ROSLaunchConfig()
+    roslaunch.xmlloader.XmlLoader().load(path, config, argv=OWN_FILES, verbose=False)
+    nodes = sorted(k[:-len("/variant")] for k in config.params if k.endswith("/variant"))
+    problems = [] if len(nodes) >= 3 else ["only %s read the variant" % nodes]
+    for node in nodes:
+        for argument in OWN_FILES:
+            key, value = argument.split(":=", 1)
+            got = config.params[node + "/" + key].value if node + "/" + key in config.params else None
+            if got != os.path.expanduser(value):
+                problems.append("%s gives %s/%s = %s" % (argument, node, key, got))
+    return problems
 
 
 def listeners(path, argv):
@@ -185,6 +209,7 @@ def check(path, argv=None):
     problems += external_problems(config, argv)
     if argv is None:
         problems += home_problems(path)
+        problems += own_file_problems(path)
     for node in config.nodes + config.tests:
         if node.output == "screen" and ("ROSCONSOLE_STDOUT_LINE_BUFFERED", "1") not in node.env_args:
             problems.append("node %s writes to the screen without ROSCONSOLE_STDOUT_LINE_BUFFERED=1: redirected "

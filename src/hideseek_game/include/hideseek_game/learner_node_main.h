@@ -22,7 +22,7 @@ int learnerNodeMain(int argc, char** argv, const std::string& name) {
   // A learner trains or infers batches of images: reuse freed memory instead of faulting it in
   // again every update (heap.h).
   if (!keepFreedMemoryInHeap()) {
-    ROS_WARN("%s: the allocator refused its settings; training may be slower", name.c_str());
+    ROS_WARN("%s: the allocator refused its settings; its network may train and act slower", name.c_str());
   }
   // The node handles outlive the try block: an error thrown while the node starts is logged
   // while roscpp still runs, so roslaunch shows it instead of only "process has died".

@@ -25,8 +25,9 @@ bool readBool(const ros::NodeHandle& nh, const std::string& name, bool fallback)
 // The game and variant a node plays, as game_selection.h resolves them: ~game (a game's name;
 // unset or empty: config/games.yaml's default) and ~variant (a variant's name) in the installed
 // config/. A file of one's own replaces either: ~game_config (a game file), ~variant_config (a
-// variant file; tests). Throws naming the parameter, or the file and field at fault. Where ~game
-// was left empty, writes the game it played into ~game, so that rosparam says which one it was.
+// variant file). Throws naming the parameter, or the file and field at fault. Where ~game was
+// left empty, writes the game it played into ~game (with ~game_config, that file's game field), so
+// that rosparam says which one it was.
 VariantConfig loadVariantParams(const ros::NodeHandle& private_nh);
 
 }  // namespace hideseek_game
