@@ -156,6 +156,7 @@ def test_partial_records_each_unfinished_run_s_log_and_curve_and_clears_a_done_r
     (runs / "slowerhider_seed0").mkdir(parents=True)
     (runs / "slowerhider_seed0" / "training_log.csv").write_text(log)
     (runs / "slowerhider_seed0" / "checkpoint.pt").write_bytes(b"x")
+    (runs / "slowerhider_seed0" / "paused_s").write_text("60\n")  # a make test held it 60 s of its 89.7
     (runs / "basic_seed1").mkdir()
     (runs / "basic_seed1" / "training_log.csv").write_text(header)  # started, nothing logged yet
     (runs / "slowerhider_seed1").mkdir()  # trained all its steps, its evaluation under way: not partial
@@ -166,7 +167,7 @@ def test_partial_records_each_unfinished_run_s_log_and_curve_and_clears_a_done_r
     unfinished = rec / "docs" / "runs" / "slowerhider_seed0" / "partial"
     assert (unfinished / "training_log.csv").read_text() == log
     assert (unfinished / "learning_curve.png").read_bytes()[:4] == b"\x89PNG"
-    assert "slowerhider_seed0: 39,936 of 2,000,000 steps, 89 s of training" in r.stdout
+    assert "slowerhider_seed0: 39,936 of 2,000,000 steps, 29 s of training" in r.stdout
     assert not stale.exists() and (rec / "docs" / "runs" / "basic_seed0" / "evaluation.csv").exists()
     assert not (rec / "docs" / "runs" / "basic_seed1").exists()
     assert not (rec / "docs" / "runs" / "slowerhider_seed1").exists()

@@ -77,6 +77,12 @@ def progress(log, steps, paused_s=0):
     return text
 
 
+def _held_s(sweep, name):
+    """The seconds the sweep held a run paused, as its paused_s on this machine books them (0: none)."""
+    held = last_line(os.path.join(sweep.runs_dir, name, "paused_s")).split(".")[0]
+    return int(held) if held.isdigit() else 0
+
+
 def _record_log(ws, log, dest, prefix, so_far, wall_s):
     """A training log and its learning curve, unfinished, into `dest` as <prefix>training_log.csv
     and <prefix>learning_curve.png."""
@@ -120,9 +126,8 @@ def _status_line(sweep, run, training):
         return "%-34s training  generations saved: %s (of %d a side), then its cross-play" % (
             name, _saved(os.path.join(sweep.runs_dir, name, "generations.yaml")), run.phase.generations)
     if training:
-        held = last_line(os.path.join(sweep.runs_dir, name, "paused_s")).split(".")[0]
         return "%-34s training  %s%s" % (name, progress(os.path.join(sweep.runs_dir, name, "training_log.csv"),
-                                                        run.phase.steps, int(held) if held.isdigit() else 0),
+                                                        run.phase.steps, _held_s(sweep, name)),
                                          " (retraining)" if run.retrain else "")
     if rec.is_done(run) and run.phase.role == "selfplay":
         return "%-34s done      %d generations, cross-play and records in %s" % (
@@ -175,7 +180,9 @@ def partial(sweep):
             print("sweep: %s: trained all its steps; the queue is evaluating and recording it (or its records "
                   "failed: %s)" % (run.name, os.path.join(sweep.logs, run.name + ".log")))
             continue
-        _record_log(ws, log, dest, "", "{}: {:,} of {:,} steps".format(run.name, done, run.phase.steps), wall_s)
+        # The log's wall time counts the time a pause held the run; its training time does not.
+        _record_log(ws, log, dest, "", "{}: {:,} of {:,} steps".format(run.name, done, run.phase.steps),
+                    max(wall_s - _held_s(sweep, run.name), 0.0))
         written += 1
     print("sweep: %d unfinished runs recorded, %d done runs' partial records removed%s" % (
         written, removed, " (commit docs/runs/*/partial)" if written or removed else ""))
@@ -244,8 +251,7 @@ def _run_s(sweep, run, entries):
     where this machine kept it."""
     if run.phase.role == "selfplay":
         generations = _generations(sweep.records.docs(run.name, "generations.yaml"))
-        held = last_line(os.path.join(sweep.runs_dir, run.name, "paused_s")).split(".")[0]
-        return sum(selfplay.generation_seconds(generations)) - (int(held) if held.isdigit() else 0)
+        return sum(selfplay.generation_seconds(generations)) - _held_s(sweep, run.name)
     return _wall_s(entries.get(run.name))
 
 
