@@ -4,6 +4,7 @@ no training, no ROS master."""
 import io
 import os
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -17,7 +18,7 @@ from stand_ins import stand_in_workspace
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 PACKAGE = os.path.join(ROOT, "src", "hideseek_pipeline", "python")
 sys.path.insert(0, PACKAGE)
-from hideseek_pipeline import sweep_config  # noqa: E402
+from hideseek_pipeline import runner, sweep_config  # noqa: E402
 
 TWO_PHASES = """
 precision: bf16
@@ -658,7 +659,6 @@ def test_the_held_time_in_training_is_read_from_an_older_pin_s_wall_s_recorded_a
     rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000000, [100], [90])})
     sys.path.insert(0, os.path.join(ROOT, "src", "hideseek_analysis", "python"))
     from hideseek_analysis import registry as reg
-    from hideseek_pipeline import runner
     registry = str(rec / "policies" / "policies.yaml")
     stand_in = types.SimpleNamespace(records=types.SimpleNamespace(
         registry=reg, registry_path=registry, docs=lambda name, *parts: os.path.join(rec, "docs", "runs", name, *parts)))
@@ -991,3 +991,13 @@ def test_a_seeker_s_phase_is_named_apart_and_ships_nothing():
             assert False, change
         except sweep_config.ConfigError as e:
             assert message in str(e)
+
+
+def test_a_run_stopped_by_a_signal_is_said_to_resume_not_to_have_failed():
+    """sweep stop interrupts each run's trainer: the queue's log says it stopped and resumes, where
+    a trainer's own error is a failure with its exit status."""
+    said = runner.ended_early("basic_v3_seed4", -signal.SIGINT, "/s/logs/basic_v3_seed4.log")
+    assert said.startswith("basic_v3_seed4: stopped (SIGINT); it resumes from its last checkpoint") and "fail" not in said
+    assert "stopped (SIGTERM)" in runner.ended_early("basic_v3_seed4", -signal.SIGTERM, "l")
+    assert runner.ended_early("basic_v3_seed4", 1, "l") == "basic_v3_seed4: failed (exit 1); see l"
+    assert "failed (exit -9)" in runner.ended_early("basic_v3_seed4", -signal.SIGKILL, "l")  # killed: no checkpoint written

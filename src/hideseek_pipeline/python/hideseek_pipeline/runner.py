@@ -107,7 +107,7 @@ def job(sweep, run, slot):
             cmd += ["--opponent", phase.opponent]
     rc = _logged(cmd, env, log, "w")
     if rc != 0:
-        say("%s: failed (exit %d); see %s" % (run.name, rc, log))
+        say(ended_early(run.name, rc, log))
         return rc
     # paused_s again, the training's part of the held time (none when 0): a trainer of an older pin
     # kept an earlier training's paused time in an entry of the same name when it read none.
@@ -163,6 +163,15 @@ def _pinned_env(tree):
 def _own_env():
     """hideseek_pipeline as this checkout has it (the analysis and records, which train nothing)."""
     return dict(os.environ, PYTHONPATH=package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
+
+
+def ended_early(name, rc, log):
+    """What the queue says of a run whose trainer exited with `rc` (a signal's as negative): a
+    stop (sweep stop, Ctrl-C, the end of a session) is no failure; the run resumes."""
+    if rc in (-signal.SIGINT, -signal.SIGTERM):
+        return "%s: stopped (%s); it resumes from its last checkpoint at the queue's next start (log: %s)" % (
+            name, signal.Signals(-rc).name, log)
+    return "%s: failed (exit %d); see %s" % (name, rc, log)
 
 
 def _logged(cmd, env, log, mode="a"):
