@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -27,8 +26,10 @@ torch::Device deviceFrom(const std::string& name, const std::string& param) {
 }
 
 // What every rank of a training across machines must share, compared at the rendezvous.
+// `network`: what the rank was asked to train ("auto" where the checkpoint decides); `seed`: the
+// run's seed (the launch gives rank r seed + r x num_arenas).
 Fingerprint trainingFingerprint(const TrainingOptions& t, const PpoOptions& p, int num_arenas,
-                                const hideseek_game::VariantConfig& variant) {
+                                const hideseek_game::VariantConfig& variant, const std::string& network, int64_t seed) {
   auto text = [](double v) {
     std::ostringstream s;
     s.precision(17);
@@ -38,7 +39,8 @@ Fingerprint trainingFingerprint(const TrainingOptions& t, const PpoOptions& p, i
   return {{"role", t.role},
           {"variant", t.variant},
           {"game", variant.game.name},
-          {"network", networkName(t.network)},
+          {"network", network},
+          {"seed", std::to_string(seed)},
           {"precision", precisionName(t.precision)},
           {"code_version", codeVersion()},
           {"image", std::to_string(t.image_width) + "x" + std::to_string(t.image_height)},
@@ -144,20 +146,21 @@ void Learner::startTraining(const LearnerOptions& options) {
   o.precision = precision.precision;
   const MemoryFormatChoice layout = chooseMemoryFormat(options.memory_format, o.precision, cpu);
   o.memory_format = layout.format;
-  // auto: a run resumed from a checkpoint keeps its network; a new run is feed-forward.
-  o.network = options.network.value_or(NetworkKind::kFeedForward);
-  const std::string resume_from = o.output_dir + "/checkpoint.pt";
-  if (!options.network && std::ifstream(resume_from).good()) o.network = readCheckpointInfo(resume_from).network;
   // A resumed run restores its own generator state.
   torch::manual_seed(static_cast<uint64_t>(options.seed));
   if (options.rendezvous.world_size > 1) {
     RendezvousOptions r = options.rendezvous;
-    r.fingerprint = trainingFingerprint(o, options.ppo, options.num_arenas, options.variant);
+    r.fingerprint = trainingFingerprint(o, options.ppo, options.num_arenas, options.variant,
+                                        options.network ? networkName(*options.network) : "auto",
+                                        options.seed - static_cast<int64_t>(r.rank) * options.num_arenas);
     ROS_INFO("%s: rank %d of %d: joining the rendezvous at %s (waits up to %.0f s for the other ranks)", who, r.rank,
              r.world_size, r.address.c_str(), r.timeout_s);
     collective_ = joinRanks(r);
     ROS_INFO("%s: rank %d of %d: every rank joined; gradients are averaged over Gloo", who, r.rank, r.world_size);
   }
+  // auto: a run resumed from a checkpoint keeps its network (rank 0's checkpoint's, across ranks); a
+  // new run is feed-forward.
+  o.network = trainingNetwork(options.network, o.output_dir, collective_.get());
   training_ = std::make_unique<TrainingRun>(o, options.ppo, options.num_arenas, options.device, collective_.get());
   ROS_INFO("%s: training %s PPO, network %s, on %s in %s, %s; BLAS: %s", who, o.variant.c_str(), networkName(o.network),
            options.device.str().c_str(), precision.reason.c_str(), layout.reason.c_str(), blasDescription().c_str());

@@ -89,6 +89,18 @@ std::string resumeSource(const TrainingOptions& o, Collective* c) {
 
 }  // namespace
 
+NetworkKind trainingNetwork(const std::optional<NetworkKind>& asked, const std::string& output_dir,
+                            Collective* collective) {
+  if (asked) return *asked;
+  const std::string own = output_dir + "/checkpoint.pt";
+  const bool decides = worldOf(collective) == 1 || collective->rank() == 0;
+  NetworkKind network = decides && exists(own) ? readCheckpointInfo(own).network : NetworkKind::kFeedForward;
+  if (worldOf(collective) > 1) {
+    network = parseNetwork(broadcastBytes(*collective, networkName(network)), "rank 0's network");
+  }
+  return network;
+}
+
 int64_t wholeRollouts(int64_t requested, int64_t rollout) {
   if (rollout < 1) throw std::invalid_argument("a rollout must hold at least one sample");
   return (requested + rollout - 1) / rollout * rollout;

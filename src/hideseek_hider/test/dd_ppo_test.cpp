@@ -6,13 +6,16 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <functional>
 #include <future>
 #include <string>
 #include <vector>
 
 #include "dd_ppo_synthetic.h"
+#include "hideseek_hider/checkpoint.h"
 #include "hideseek_hider/collective.h"
+#include "hideseek_hider/training_run.h"
 
 namespace hideseek_hider {
 namespace {
@@ -153,6 +156,49 @@ TEST(DdPpo, BadOptionsAreRefusedBeforeAnyConnection) {
   EXPECT_THROW(parseHostPort("host:12ab", "rendezvous"), std::invalid_argument);
   EXPECT_EQ(parseHostPort("10.0.0.2:29500", "rendezvous"), std::make_pair(std::string("10.0.0.2"), 29500));
   EXPECT_EQ(localAddressTowards("127.0.0.1"), "127.0.0.1");
+}
+
+// network auto resumes the checkpoint's network. Only rank 0 writes checkpoints, so a rank 1 reading
+// its own output folder would build a feed-forward network beside rank 0's resumed GRU, and the run
+// that every doc says resumes by running the same commands again would not.
+TEST(DdPpo, NetworkAutoTakesRank0sCheckpointsNetworkOnEveryRank) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / ("dd_ppo_network_" + std::to_string(getpid()));
+  fs::remove_all(root);
+  const std::string dirs[2] = {(root / "rank0").string(), (root / "rank1").string()};
+  for (const std::string& d : dirs) fs::create_directories(d);
+  HiderNet gru(36, 36, NetworkKind::kGru);
+  CheckpointInfo info;
+  info.architecture = gru->architecture();
+  info.image_height = info.image_width = 36;
+  info.variant = "basic";
+  saveCheckpoint(dirs[0] + "/checkpoint.pt", gru, info);
+
+  // One process: its own checkpoint decides; none: feed-forward; a network asked for: that one.
+  EXPECT_EQ(trainingNetwork(std::nullopt, dirs[0]), NetworkKind::kGru);
+  EXPECT_EQ(trainingNetwork(std::nullopt, dirs[1]), NetworkKind::kFeedForward);
+  EXPECT_EQ(trainingNetwork(NetworkKind::kFeedForward, dirs[0]), NetworkKind::kFeedForward);
+
+  int port = freePort();
+  const auto [n0, n1] = bothRanks([&](int rank) {
+    std::unique_ptr<Collective> c = joinRanks(ranks(rank, port));
+    return trainingNetwork(std::nullopt, dirs[rank], c.get());
+  });
+  EXPECT_EQ(n0, NetworkKind::kGru);
+  EXPECT_EQ(n1, NetworkKind::kGru) << "rank 1 has no checkpoint of its own; rank 0's decides";
+
+  // Rank 1's own folder holds a checkpoint too (a shared disk, an older run): rank 0's still decides.
+  HiderNet ff(36, 36, NetworkKind::kFeedForward);
+  info.architecture = ff->architecture();
+  saveCheckpoint(dirs[1] + "/checkpoint.pt", ff, info);
+  port = freePort();
+  const auto [m0, m1] = bothRanks([&](int rank) {
+    std::unique_ptr<Collective> c = joinRanks(ranks(rank, port));
+    return trainingNetwork(std::nullopt, dirs[rank], c.get());
+  });
+  EXPECT_EQ(m0, NetworkKind::kGru);
+  EXPECT_EQ(m1, NetworkKind::kGru);
+  fs::remove_all(root);
 }
 
 }  // namespace

@@ -38,6 +38,14 @@ struct TrainingOptions {
 // The run's length: `requested` steps rounded up to whole rollouts of `rollout` samples.
 int64_t wholeRollouts(int64_t requested, int64_t rollout);
 
+// The network a training runs: `asked`, or with none asked (network auto) the network of the
+// checkpoint it resumes from output_dir, else feed-forward. With several ranks only rank 0 writes
+// checkpoints, so rank 0's decides and reaches the others: every rank calls this after the
+// rendezvous, which compares what each was asked (a rank 1 with no checkpoint of its own would
+// otherwise build a feed-forward network beside rank 0's resumed GRU).
+NetworkKind trainingNetwork(const std::optional<NetworkKind>& asked, const std::string& output_dir,
+                            Collective* collective = nullptr);
+
 // "42 s", "12 min 05 s", "3 h 07 min": an ETA or a duration that reads at every scale.
 std::string formatDuration(double seconds);
 

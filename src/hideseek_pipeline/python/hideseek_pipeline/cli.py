@@ -1,6 +1,7 @@
 """hideseek_pipeline: the project's pipeline, one command with subcommands.
 
-  hideseek_pipeline train basic --seed 1   one run: trained, exported, recorded, evaluated
+  hideseek_pipeline train VARIANT [...]    one run (--name RUN where the sweep's name is taken): trained,
+                                           exported, recorded, evaluated
   hideseek_pipeline evaluate RUN WEIGHTS   a recorded run's evaluation (seeds 0-99) and trajectories
   hideseek_pipeline analyze RUN WEIGHTS    a recorded run's probes, t-SNE and behaviour
   hideseek_pipeline evaluate-seeker SEEKER  a learned seeker's captures, beside the scripted seeker's
@@ -111,7 +112,7 @@ def _train_parser(sub, common):
     t.add_argument("--num-arenas", type=int, help="default: train.launch's")
     t.add_argument("--hider-threads", type=int, help="the learner's intra-op threads (default: train.launch's)")
     t.add_argument("--ppo-config", help="default: config/ppo.yaml")
-    t.add_argument("--port", type=int, help="ROS master port (default 11700 + seed, + 50 for the GRU)")
+    t.add_argument("--port", type=int, help="ROS master port (default 11700 + seed, + 50 for the GRU, + 25 for a seeker)")
     t.add_argument("--eval-port", type=int, help="the evaluation's master port (default: the run's + 1000)")
     t.add_argument("--eval-modes", nargs="+", choices=list(evaluate.MODES), default=["greedy"])
     t.add_argument("--paused-file", help="a file holding the seconds the run was held paused (the sweep's)")

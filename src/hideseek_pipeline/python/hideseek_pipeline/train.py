@@ -45,7 +45,7 @@ class TrainOptions:
     num_arenas: Optional[int] = None  # None: train.launch's
     ppo_config: Optional[str] = None
     hider_threads: Optional[int] = None
-    port: Optional[int] = None        # None: 11700 + seed (+ 50 for the GRU); the evaluation uses port + 1000
+    port: Optional[int] = None        # None: 11700 + seed (+ 50 for the GRU, + 25 for a seeker); the evaluation uses port + 1000
     eval_port: Optional[int] = None
     eval_modes: tuple = ("greedy",)
     paused_file: Optional[str] = None  # the seconds the sweep held the run paused, left out of wall_s

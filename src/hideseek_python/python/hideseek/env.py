@@ -295,7 +295,7 @@ class HideSeekEnv(_EnvBase):
             raise ValueError("hideseek environments take no reset options, got %r" % (options,))
         vec = self._open_vec
         if seed is not None:
-            seed = _seed(seed)  # one integer: Gymnasium's Env takes no list, nor numpy's integers
+            seed = _seed(seed)  # one integer (numpy's too); no list, as Gymnasium's Env takes none
         if seed is not None or not self._fresh:
             vec._live.reset(_seed_list(seed, 1))
         if HAVE_GYMNASIUM:
