@@ -96,7 +96,7 @@ def home_problems(path):
 # Loads given files of one's own: each reaches every node that resolves the game (each node with a
 # ~variant), under $HOME where given with ~/, and no node of the game is left to the config's.
 OWN_FILES = ["game_config:=~/hs_check/game.yaml", "variant_config:=~/hs_check/variant.yaml"]
-OWN_FILE_LOADS = ("basic.launch", "evaluate.launch", "train.launch", "analyze.launch")
+OWN_FILE_LOADS = ("basic.launch", "evaluate.launch", "train.launch", "analyze.launch", "play.launch")
 
 
 def own_file_problems(path):
