@@ -2,13 +2,11 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <sstream>
 #include <stdexcept>
 
 #include "hideseek_game/game_selection.h"
 #include "hideseek_game/params.h"
 #include "hideseek_hider/checkpoint.h"
-#include "hideseek_hider/code_version.h"
 
 namespace hideseek_hider {
 
@@ -23,37 +21,6 @@ torch::Device deviceFrom(const std::string& name, const std::string& param) {
     return torch::kCUDA;
   }
   throw std::runtime_error("parameter " + param + " must be 'cpu' or 'cuda', got '" + name + "'");
-}
-
-// What every rank of a training across machines must share, compared at the rendezvous.
-// `network`: what the rank was asked to train ("auto" where the checkpoint decides); `seed`: the
-// run's seed (the launch gives rank r seed + r x num_arenas).
-Fingerprint trainingFingerprint(const TrainingOptions& t, const PpoOptions& p, int num_arenas,
-                                const hideseek_game::VariantConfig& variant, const std::string& network, int64_t seed) {
-  auto text = [](double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
-  };
-  return {{"role", t.role},
-          {"variant", t.variant},
-          {"game", variant.game.name},
-          {"network", network},
-          {"seed", std::to_string(seed)},
-          {"precision", precisionName(t.precision)},
-          {"code_version", codeVersion()},
-          {"image", std::to_string(t.image_width) + "x" + std::to_string(t.image_height)},
-          {"num_arenas", std::to_string(num_arenas)},
-          {"total_steps", std::to_string(t.total_steps)},
-          {"ppo", "rollout_steps=" + std::to_string(p.rollout_steps) + " epochs=" + std::to_string(p.epochs) +
-                      " minibatches=" + std::to_string(p.minibatches) + " learning_rate=" + text(p.learning_rate) +
-                      " anneal=" + std::to_string(p.anneal_learning_rate) + " adam_epsilon=" + text(p.adam_epsilon) +
-                      " gamma=" + text(p.gamma) + " gae_lambda=" + text(p.gae_lambda) + " clip=" + text(p.clip) +
-                      " clip_value_loss=" + std::to_string(p.clip_value_loss) + " value_coef=" + text(p.value_coef) +
-                      " entropy_coef=" + text(p.entropy_coef) + " max_grad_norm=" + text(p.max_grad_norm) +
-                      " normalize_advantages=" + std::to_string(p.normalize_advantages) +
-                      " sequence_length=" + std::to_string(p.sequence_length)}};
 }
 
 }  // namespace
@@ -150,18 +117,23 @@ void Learner::startTraining(const LearnerOptions& options) {
   torch::manual_seed(static_cast<uint64_t>(options.seed));
   if (options.rendezvous.world_size > 1) {
     RendezvousOptions r = options.rendezvous;
-    r.fingerprint = trainingFingerprint(o, options.ppo, options.num_arenas, options.variant,
-                                        options.network ? networkName(*options.network) : "auto",
-                                        options.seed - static_cast<int64_t>(r.rank) * options.num_arenas);
+    r.fingerprint = trainingFingerprint(o, options.ppo, options.num_arenas, options.network, options.seed, r.rank);
     ROS_INFO("%s: rank %d of %d: joining the rendezvous at %s (waits up to %.0f s for the other ranks)", who, r.rank,
              r.world_size, r.address.c_str(), r.timeout_s);
     collective_ = joinRanks(r);
     ROS_INFO("%s: rank %d of %d: every rank joined; gradients are averaged over Gloo", who, r.rank, r.world_size);
   }
-  // auto: a run resumed from a checkpoint keeps its network (rank 0's checkpoint's, across ranks); a
-  // new run is feed-forward.
-  o.network = trainingNetwork(options.network, o.output_dir, collective_.get());
-  training_ = std::make_unique<TrainingRun>(o, options.ppo, options.num_arenas, options.device, collective_.get());
+  try {
+    // auto: a run resumed from a checkpoint keeps its network (rank 0's checkpoint's, across ranks);
+    // a new run is feed-forward.
+    o.network = trainingNetwork(options.network, o.output_dir, collective_.get());
+    training_ = std::make_unique<TrainingRun>(o, options.ppo, options.num_arenas, options.device, collective_.get());
+  } catch (const std::exception& e) {
+    // The other ranks wait in the same collective calls: they stop naming this reason instead of
+    // waiting out the timeout.
+    if (collective_) collective_->abort(e.what());
+    throw;
+  }
   ROS_INFO("%s: training %s PPO, network %s, on %s in %s, %s; BLAS: %s", who, o.variant.c_str(), networkName(o.network),
            options.device.str().c_str(), precision.reason.c_str(), layout.reason.c_str(), blasDescription().c_str());
   if (training_->totalSteps() != o.total_steps) {

@@ -12,11 +12,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
 
 #include "hideseek_hider/checkpoint.h"
+#include "hideseek_hider/code_version.h"
 
 namespace hideseek_hider {
 
@@ -99,6 +101,34 @@ NetworkKind trainingNetwork(const std::optional<NetworkKind>& asked, const std::
     network = parseNetwork(broadcastBytes(*collective, networkName(network)), "rank 0's network");
   }
   return network;
+}
+
+Fingerprint trainingFingerprint(const TrainingOptions& t, const PpoOptions& p, int num_arenas,
+                                const std::optional<NetworkKind>& network, int64_t seed, int rank) {
+  auto text = [](double v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << v;
+    return s.str();
+  };
+  return {{"role", t.role},
+          {"variant", t.variant},
+          {"game", t.game},
+          {"network", network ? networkName(*network) : "auto"},
+          {"seed (train.launch's)", std::to_string(seed - static_cast<int64_t>(rank) * num_arenas)},
+          {"precision", precisionName(t.precision)},
+          {"code_version", codeVersion()},
+          {"image", std::to_string(t.image_width) + "x" + std::to_string(t.image_height)},
+          {"num_arenas", std::to_string(num_arenas)},
+          {"total_steps", std::to_string(t.total_steps)},
+          {"ppo", "rollout_steps=" + std::to_string(p.rollout_steps) + " epochs=" + std::to_string(p.epochs) +
+                      " minibatches=" + std::to_string(p.minibatches) + " learning_rate=" + text(p.learning_rate) +
+                      " anneal=" + std::to_string(p.anneal_learning_rate) + " adam_epsilon=" + text(p.adam_epsilon) +
+                      " gamma=" + text(p.gamma) + " gae_lambda=" + text(p.gae_lambda) + " clip=" + text(p.clip) +
+                      " clip_value_loss=" + std::to_string(p.clip_value_loss) + " value_coef=" + text(p.value_coef) +
+                      " entropy_coef=" + text(p.entropy_coef) + " max_grad_norm=" + text(p.max_grad_norm) +
+                      " normalize_advantages=" + std::to_string(p.normalize_advantages) +
+                      " sequence_length=" + std::to_string(p.sequence_length)}};
 }
 
 int64_t wholeRollouts(int64_t requested, int64_t rollout) {

@@ -201,5 +201,24 @@ TEST(DdPpo, NetworkAutoTakesRank0sCheckpointsNetworkOnEveryRank) {
   fs::remove_all(root);
 }
 
+// train.launch gives rank r the seed seed + r x num_arenas and each rank the network asked: the
+// ranks of one launch agree, and ranks launched with other seeds or networks do not.
+TEST(DdPpo, RanksOfOneTrainLaunchShareAFingerprintAndOtherSeedsOrNetworksDiffer) {
+  TrainingOptions t;
+  t.variant = "basic";
+  t.game = "v3";
+  const PpoOptions ppo;
+  const int arenas = 16;
+  const Fingerprint rank0 = trainingFingerprint(t, ppo, arenas, std::nullopt, 5, 0);
+  EXPECT_EQ(trainingFingerprint(t, ppo, arenas, std::nullopt, 5 + arenas, 1), rank0);
+  EXPECT_EQ(rank0.at("network"), "auto");
+  EXPECT_EQ(rank0.at("seed (train.launch's)"), "5");
+  EXPECT_EQ(rank0.at("game"), "v3");
+  // rank 1 launched with the same seed as rank 0 (its node's seed is not offset): another run's seeds
+  EXPECT_NE(trainingFingerprint(t, ppo, arenas, std::nullopt, 5, 1), rank0);
+  EXPECT_NE(trainingFingerprint(t, ppo, arenas, NetworkKind::kGru, 5 + arenas, 1), rank0);
+  EXPECT_EQ(trainingFingerprint(t, ppo, arenas, NetworkKind::kGru, 5, 0).at("network"), "gru");
+}
+
 }  // namespace
 }  // namespace hideseek_hider

@@ -8,6 +8,12 @@ echo "roslaunch $*" >> "$CALLS"
 for a in "$@"; do case $a in *:=*) declare "${a%%:=*}=${a#*:=}";; esac; done
 case " $* " in
   *" train.launch "*)
+    if [ -n "${HOLD:-}" ]; then  # train until a Ctrl-C, then write the log of STOP_AT steps and end as roslaunch does
+      trap 'printf "update,steps,wall_s,x\n1,%s,1.0,0\n" "$STOP_AT" > "$output_dir/training_log.csv"
+            echo ckpt > "$output_dir/checkpoint.pt"; exit 0' INT
+      touch "$HOLD"
+      while true; do sleep 0.1; done
+    fi
     echo "[ INFO] PPO, network $network, on cpu in auto: bf16, because" > /dev/null
     echo "hider: PPO, network $network, on cpu in auto: fp32, this CPU has neither"
     printf 'update,steps,wall_s,x\n1,%s,123.7,0\n' "${STOP_AT:-$steps}" > "$output_dir/training_log.csv"

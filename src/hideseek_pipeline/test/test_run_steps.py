@@ -4,8 +4,10 @@ no ROS master and no training. The real tools' outputs were checked against the 
 steps replaced (docs/architecture.md, "The scripts' move")."""
 import hashlib
 import os
+import signal
 import subprocess
 import sys
+import time
 
 import pytest
 import yaml
@@ -68,6 +70,33 @@ def test_a_run_that_stops_short_records_nothing(ws, tmp_path):
     r = pipeline(w, rec, calls, "train", "basic", "--steps", "4096", "--runs-dir", str(tmp_path / "runs"),
                  STOP_AT="2048")
     assert r.returncode == 1 and "stopped at 2048 of 4096 steps" in r.stderr and "nothing recorded" in r.stderr
+    assert not entries(rec)
+
+
+def test_a_run_a_ctrl_c_stops_says_it_resumes_and_exits_130(ws, tmp_path):
+    """Ctrl-C at the terminal reaches the whole process group: roslaunch stops the training, which
+    writes its checkpoint, and the pipeline, left to wait for it, says where the run stopped and
+    exits 130, which the sweep's queue reads as a stop, not a failure."""
+    w, rec, calls = ws
+    hold = tmp_path / "training"
+    e = dict(os.environ, PYTHONPATH=PACKAGE, CALLS=str(calls), PATH="/usr/bin:" + os.environ["PATH"], HOLD=str(hold),
+             STOP_AT="2048")
+    p = subprocess.Popen([sys.executable, "-m", "hideseek_pipeline", "train", "basic", "--name", "mine", "--steps",
+                          "4096", "--runs-dir", str(tmp_path / "runs"), "--workspace", str(w), "--record-root",
+                          str(rec)], env=e, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         start_new_session=True)
+    try:
+        deadline = time.time() + 60
+        while not hold.exists() and time.time() < deadline and p.poll() is None:
+            time.sleep(0.1)
+        assert hold.exists(), p.communicate()
+        os.killpg(p.pid, signal.SIGINT)
+        _, err = p.communicate(timeout=60)
+    finally:
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGKILL)
+    assert p.returncode == 130, err
+    assert "mine stopped at 2048 of 4096 steps" in err and "the same command resumes it from its checkpoint" in err
     assert not entries(rec)
 
 

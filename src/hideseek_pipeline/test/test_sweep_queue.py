@@ -999,5 +999,8 @@ def test_a_run_stopped_by_a_signal_is_said_to_resume_not_to_have_failed():
     said = runner.ended_early("basic_v3_seed4", -signal.SIGINT, "/s/logs/basic_v3_seed4.log")
     assert said.startswith("basic_v3_seed4: stopped (SIGINT); it resumes from its last checkpoint") and "fail" not in said
     assert "stopped (SIGTERM)" in runner.ended_early("basic_v3_seed4", -signal.SIGTERM, "l")
+    # hideseek_pipeline train catches the SIGINT, lets the training write its checkpoint, and exits 130
+    assert "stopped (SIGINT)" in runner.ended_early("basic_v3_seed4", 130, "l")
     assert runner.ended_early("basic_v3_seed4", 1, "l") == "basic_v3_seed4: failed (exit 1); see l"
-    assert "failed (exit -9)" in runner.ended_early("basic_v3_seed4", -signal.SIGKILL, "l")  # killed: no checkpoint written
+    # SIGKILL is no stop the queue sends: something else killed the trainer
+    assert "failed (exit -9)" in runner.ended_early("basic_v3_seed4", -signal.SIGKILL, "l")

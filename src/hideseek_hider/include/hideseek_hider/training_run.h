@@ -46,6 +46,14 @@ int64_t wholeRollouts(int64_t requested, int64_t rollout);
 NetworkKind trainingNetwork(const std::optional<NetworkKind>& asked, const std::string& output_dir,
                             Collective* collective = nullptr);
 
+// What every rank of a training across machines must share, compared at the rendezvous: role,
+// variant, game, the network as asked ("auto" where none was: rank 0's checkpoint decides it after
+// the rendezvous), the run's seed, precision, code version, image size, arenas, steps and every
+// PPO option. `seed` is this rank's (train.launch gives rank r seed + r x num_arenas): the
+// fingerprint holds the run's, the seed less that offset.
+Fingerprint trainingFingerprint(const TrainingOptions& t, const PpoOptions& p, int num_arenas,
+                                const std::optional<NetworkKind>& network, int64_t seed, int rank);
+
 // "42 s", "12 min 05 s", "3 h 07 min": an ETA or a duration that reads at every scale.
 std::string formatDuration(double seconds);
 

@@ -26,7 +26,7 @@ from hideseek_pipeline import analyze, control, evaluate, runner, seeker, selfpl
 from hideseek_pipeline.measure import MeasureError
 from hideseek_pipeline.queue import Sweep, SweepError
 from hideseek_pipeline.records import Records
-from hideseek_pipeline.workspace import ToolError, Workspace
+from hideseek_pipeline.workspace import Interrupted, ToolError, Workspace
 
 SWEEP_COMMANDS = {
     "start": "start the queue in the background and return (it builds the first phase's worktree first, a later "
@@ -368,6 +368,9 @@ def main(argv=None):
         print("%s: %s" % ("sweep" if args.command == "sweep" else "hideseek_pipeline " + args.command, e),
               file=sys.stderr)
         return 2
+    except Interrupted as e:
+        print("hideseek_pipeline: %s" % e, file=sys.stderr)
+        return 130
     except ToolError as e:
         print("hideseek_pipeline: %s" % e, file=sys.stderr)
         return 1

@@ -167,10 +167,13 @@ def _own_env():
 
 def ended_early(name, rc, log):
     """What the queue says of a run whose trainer exited with `rc` (a signal's as negative): a
-    stop (sweep stop, Ctrl-C, the end of a session) is no failure; the run resumes."""
-    if rc in (-signal.SIGINT, -signal.SIGTERM):
+    stop (sweep stop, Ctrl-C, the end of a session) is no failure; the run resumes. A trainer that
+    dies of the signal gives -2 or -15 (a pin's from before 2026-11-30); one that catches it and
+    stops cleanly, 130 (hideseek_pipeline train's Interrupted) or 143."""
+    stopped = {-signal.SIGINT: "SIGINT", -signal.SIGTERM: "SIGTERM", 130: "SIGINT", 143: "SIGTERM"}
+    if rc in stopped:
         return "%s: stopped (%s); it resumes from its last checkpoint at the queue's next start (log: %s)" % (
-            name, signal.Signals(-rc).name, log)
+            name, stopped[rc], log)
     return "%s: failed (exit %d); see %s" % (name, rc, log)
 
 

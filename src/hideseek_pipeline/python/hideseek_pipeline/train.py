@@ -25,7 +25,7 @@ from hideseek_pipeline import own_variant
 from hideseek_pipeline import seeker as seeker_evaluation
 from hideseek_pipeline import sweep_config
 from hideseek_pipeline.evaluate import evaluate
-from hideseek_pipeline.workspace import ToolError
+from hideseek_pipeline.workspace import Interrupted, ToolError
 
 ROLES = ("hider", "seeker")
 # The hiders a seeker's run is evaluated against besides its opponent: the scripted evaders.
@@ -147,8 +147,9 @@ def train(ws, records, o, say=print):
     if trained < o.steps:
         again = "; the same command resumes it from its checkpoint" if os.path.isfile(
             os.path.join(run, "checkpoint.pt")) else ""
-        raise ToolError("train: %s stopped at %d of %d steps (see %s); nothing recorded%s" % (
-            name, trained, o.steps, launch_log, again))
+        raise (Interrupted if ws.interrupted else ToolError)(
+            "train: %s stopped at %d of %d steps (see %s); nothing recorded%s" % (name, trained, o.steps, launch_log,
+                                                                                 again))
     ws.command([ws.tool("hideseek_hider", "export_policy"), os.path.join(run, "checkpoint.pt"),
                 os.path.join(run, "policy.pt")])
     docs = records.docs(name)

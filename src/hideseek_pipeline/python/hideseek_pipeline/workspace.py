@@ -12,9 +12,15 @@ class ToolError(Exception):
     """A step of the pipeline failed; the message names it and where its log is."""
 
 
+class Interrupted(ToolError):
+    """A Ctrl-C (or sweep stop's SIGINT) stopped a step, which resumes where it stopped; the
+    command exits 130, as a shell reports a command that SIGINT ended."""
+
+
 class Workspace:
     def __init__(self, root):
         self.root = os.path.realpath(root)
+        self.interrupted = False  # a SIGINT reached a command run through_interrupt
         if not os.path.isfile(os.path.join(self.root, "scripts", "env.sh")):
             raise ToolError("%s is not a hideseek checkout (no scripts/env.sh)" % self.root)
 
@@ -28,7 +34,7 @@ class Workspace:
         full_env = dict(os.environ, **(env or {}))
         if log:
             # A handler, not SIG_IGN, which the command would inherit.
-            previous = signal.signal(signal.SIGINT, lambda *_: None) if through_interrupt else None
+            previous = signal.signal(signal.SIGINT, self._note_interrupt) if through_interrupt else None
             try:
                 with open(log, "w") as f:
                     r = subprocess.run(wrapped, cwd=self.root, env=full_env, stdout=f, stderr=subprocess.STDOUT)
@@ -45,6 +51,9 @@ class Workspace:
                                                    (r.stderr.strip().splitlines() or ["no message"])[-1])
             raise ToolError("%s exited %d (%s)" % (os.path.basename(str(args[0])), r.returncode, where))
         return out
+
+    def _note_interrupt(self, *_):
+        self.interrupted = True
 
     def tool(self, package, name):
         return os.path.join(self.root, "devel", "lib", package, name)
