@@ -539,6 +539,8 @@ def test_the_queue_trains_phase_by_phase_records_ships_and_keeps_each_phase_s_ru
     code, env, r = queue_in(tmp_path, repo, rec, TWO_PHASES, calls)
     assert r.returncode == 0, r.stdout + r.stderr
     assert "every run of the queue is done" in r.stdout
+    assert "basic_seed0: training from step 0 (phase first, slot 0, port" in r.stdout
+    assert "1 learner thread; log" in r.stdout and "2 learner threads; log" in r.stdout
     events = [line.split() for line in calls.read_text().splitlines() if line.split()[0] in ("start", "end")]
     starts = [e[1] for e in events if e[0] == "start"]
     # two at once: the queue starts them in order, and either may write its first line first
@@ -630,6 +632,7 @@ def test_pauses_booked_after_a_run_s_last_checkpoint_come_off_its_paused_s_when_
     _, _, r = queue_in(tmp_path, repo, rec, one, tmp_path / "calls.txt")
     assert r.returncode == 0, r.stdout + r.stderr
     assert "basic_seed0: 40 s of pauses after its last checkpoint left out of its paused_s" in r.stdout, r.stdout
+    assert "basic_seed0: resuming from its checkpoint (phase" in r.stdout
     e = yaml.safe_load((rec / "policies" / "policies.yaml").read_text())["basic_seed0"]
     assert (e["wall_s"], e["paused_s"]) == (93, 30)
 
@@ -1001,6 +1004,9 @@ def test_a_run_stopped_by_a_signal_is_said_to_resume_not_to_have_failed():
     assert "stopped (SIGTERM)" in runner.ended_early("basic_v3_seed4", -signal.SIGTERM, "l")
     # hideseek_pipeline train catches the SIGINT, lets the training write its checkpoint, and exits 130
     assert "stopped (SIGINT)" in runner.ended_early("basic_v3_seed4", 130, "l")
+    # stopped before its first checkpoint (every 300 s), it has nothing to resume from
+    said = runner.ended_early("basic_v3_8m_seed0", 130, "l", has_checkpoint=False)
+    assert "no checkpoint yet, so it starts again from step 0" in said and "resumes" not in said
     assert runner.ended_early("basic_v3_seed4", 1, "l") == "basic_v3_seed4: failed (exit 1); see l"
     # SIGKILL is no stop the queue sends: something else killed the trainer
     assert "failed (exit -9)" in runner.ended_early("basic_v3_seed4", -signal.SIGKILL, "l")

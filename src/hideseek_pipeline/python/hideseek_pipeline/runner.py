@@ -68,8 +68,11 @@ def job(sweep, run, slot):
         say("%s: the worktree is not clean; not started" % run.name)
         return 3
     log = os.path.join(sweep.logs, run.name + ".log")
-    say("%s: training (phase %s, slot %d, port %d, %d learner threads; log %s)" % (
-        run.name, phase.name, slot, port, phase.hider_threads, log))
+    checkpoint = os.path.join(sweep.runs_dir, run.name, "checkpoint.pt")
+    start = ("training" if phase.role == "selfplay"  # (it resumes from its saved generations)
+             else "resuming from its checkpoint" if os.path.isfile(checkpoint) else "training from step 0")
+    say("%s: %s (phase %s, slot %d, port %d, %d learner thread%s; log %s)" % (
+        run.name, start, phase.name, slot, port, phase.hider_threads, "" if phase.hider_threads == 1 else "s", log))
     paused = os.path.join(sweep.runs_dir, run.name, "paused_s")
     script = os.path.join(tree, "scripts", "train_variant.sh")
     if os.path.isfile(script) and phase.role != "hider":
@@ -107,7 +110,7 @@ def job(sweep, run, slot):
             cmd += ["--opponent", phase.opponent]
     rc = _logged(cmd, env, log, "w")
     if rc != 0:
-        say(ended_early(run.name, rc, log))
+        say(ended_early(run.name, rc, log, os.path.isfile(checkpoint)))
         return rc
     # paused_s again, the training's part of the held time (none when 0): a trainer of an older pin
     # kept an earlier training's paused time in an entry of the same name when it read none.
@@ -165,15 +168,17 @@ def _own_env():
     return dict(os.environ, PYTHONPATH=package_path() + os.pathsep + os.environ.get("PYTHONPATH", ""))
 
 
-def ended_early(name, rc, log):
+def ended_early(name, rc, log, has_checkpoint=True):
     """What the queue says of a run whose trainer exited with `rc` (a signal's as negative): a
-    stop (sweep stop, Ctrl-C, the end of a session) is no failure; the run resumes. A trainer that
-    dies of the signal gives -2 or -15 (a pin's from before 2026-11-30); one that catches it and
-    stops cleanly, 130 (hideseek_pipeline train's Interrupted) or 143."""
+    stop (sweep stop, Ctrl-C, the end of a session) is no failure; the run resumes from its
+    checkpoint, or, stopped before its first, starts again. A trainer that dies of the signal gives
+    -2 or -15 (a pin's from before 2026-11-30); one that catches it and stops cleanly, 130
+    (hideseek_pipeline train's Interrupted) or 143."""
     stopped = {-signal.SIGINT: "SIGINT", -signal.SIGTERM: "SIGTERM", 130: "SIGINT", 143: "SIGTERM"}
     if rc in stopped:
-        return "%s: stopped (%s); it resumes from its last checkpoint at the queue's next start (log: %s)" % (
-            name, stopped[rc], log)
+        then = ("it resumes from its last checkpoint" if has_checkpoint else
+                "it had written no checkpoint yet, so it starts again from step 0")
+        return "%s: stopped (%s); %s at the queue's next start (log: %s)" % (name, stopped[rc], then, log)
     return "%s: failed (exit %d); see %s" % (name, rc, log)
 
 
