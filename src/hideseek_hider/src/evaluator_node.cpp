@@ -28,6 +28,7 @@ struct EvaluatorOptions {
   int first_seed = 0;
   std::string output_dir = ".";
   std::string variant;
+  std::string game;    // the game played, as the world resolves ~game, ~game_config and ~variant_config
   std::string policy;  // as the table names it: the file played, greedy or sampled
 };
 
@@ -38,11 +39,13 @@ EvaluatorOptions loadEvaluatorOptions(const ros::NodeHandle& pnh) {
   o.first_seed = hideseek_game::readInt(pnh, "first_seed", 0, 0, hideseek_game::kMaxSeed);
   o.output_dir = hideseek_game::readString(pnh, "output_dir", ".");
   o.variant = hideseek_game::readString(pnh, "variant", "unknown");
+  // The table names the game: the same parameters as the world's, resolved the same way.
+  const hideseek_game::VariantConfig played = hideseek_game::loadVariantParams(pnh);
+  o.game = played.game.name;
   // A network policy is evaluated either greedily or sampling its actions: the table says which.
   o.policy = hideseek_game::readString(pnh, "policy", "random");
   if (o.policy == hideseek_game::kShippedPolicy) {
     // The table names the file the hider plays (the hider node resolves it the same way).
-    const hideseek_game::VariantConfig played = hideseek_game::loadVariantParams(pnh);
     o.policy = hideseek_game::shippedPolicyFile(
         hideseek_game::requireString(pnh, "policy_registry", "the run registry file"), played.name,
         hideseek_game::readString(pnh, "network", "auto") == "gru" ? "gru" : "ff", played.game.name);
@@ -100,9 +103,9 @@ int main(int argc, char** argv) {
   while (ros::ok() && !tally.complete()) ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.1));
   if (!tally.complete()) return 1;
   const auto summary = tally.summary();
-  const std::string md = hideseek_hider::evaluationMarkdown(options.variant, options.policy, summary);
+  const std::string md = hideseek_hider::evaluationMarkdown(options.variant, options.policy, options.game, summary);
   const std::pair<std::string, std::string> files[] = {
-      {"evaluation.csv", hideseek_hider::evaluationCsv(options.variant, options.policy, summary)},
+      {"evaluation.csv", hideseek_hider::evaluationCsv(options.variant, options.policy, options.game, summary)},
       {"episodes.csv", hideseek_hider::episodesCsv(tally.records())},
       {"evaluation.md", md}};
   for (const auto& [name, text] : files) {

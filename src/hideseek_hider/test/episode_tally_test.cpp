@@ -32,9 +32,18 @@ TEST(EpisodeTally, CountsOnlyTheSeedsFromFirstSeedOn) {
   EXPECT_EQ(tally.records().count(1001), 1u);
 }
 
-TEST(EpisodeTally, WritesTheCsvColumnsTheIssueNames) {
-  const std::string csv = evaluationCsv("basic", "random", {100, 123.456, 0.05});
-  EXPECT_EQ(csv, "variant,policy,episodes,avg_living_steps,success_rate\nbasic,random,100,123.46,0.0500\n");
+TEST(EpisodeTally, WritesTheCsvColumnsTheIssueNamesThenTheGame) {
+  const std::string csv = evaluationCsv("basic", "random", "v3", {100, 123.456, 0.05});
+  EXPECT_EQ(csv, "variant,policy,episodes,avg_living_steps,success_rate,game\nbasic,random,100,123.46,0.0500,v3\n");
+}
+
+// The table a person reads names the game beside the variant: v2's and v3's basic are other games.
+TEST(EpisodeTally, WritesTheMarkdownTableWithTheGameBesideTheVariant) {
+  const std::string md = evaluationMarkdown("basic", "basic_v3_seed0 (greedy)", "v3", {100, 218.79, 0.17});
+  EXPECT_EQ(md,
+            "| variant | game | policy | episodes | average living steps | success rate |\n"
+            "| --- | --- | --- | --- | --- | --- |\n"
+            "| basic | v3 | basic_v3_seed0 (greedy) | 100 | 218.8 | 17.00 % |\n");
 }
 
 TEST(EpisodeTally, WritesOneRowPerEpisodeInSeedOrder) {

@@ -27,8 +27,12 @@ else
     failures+=("evaluation.csv names '$named', not the shipped $policy (greedy)")
   [ -f "$dir/evaluation.md" ] || failures+=("no evaluation.md")
   [ -f "$dir/evaluation.csv" ] || failures+=("no evaluation.csv")
-  [ "$(head -n 1 "$dir/evaluation.csv" 2>/dev/null)" = "variant,policy,episodes,avg_living_steps,success_rate" ] ||
+  [ "$(head -n 1 "$dir/evaluation.csv" 2>/dev/null)" = "variant,policy,episodes,avg_living_steps,success_rate,game" ] ||
     failures+=("evaluation.csv header differs")
+  # game:= left unset plays config/games.yaml's default game, which the table names
+  default_game=$(sed -n 's/^default: *\([a-z0-9]*\).*/\1/p' "$(rospack find hideseek_game)/config/games.yaml")
+  [ -n "$default_game" ] && [ "$(tail -n 1 "$dir/evaluation.csv" 2>/dev/null | cut -d, -f6)" = "$default_game" ] ||
+    failures+=("evaluation.csv does not name the default game '$default_game'")
   [ "$(tail -n 1 "$dir/evaluation.csv" 2>/dev/null | cut -d, -f3)" = "100" ] || failures+=("not 100 episodes")
   [ "$(head -n 1 "$dir/episodes.csv" 2>/dev/null)" = "seed,living_steps,outcome" ] || failures+=("episodes.csv header differs")
   [ "$(tail -n +2 "$dir/episodes.csv" 2>/dev/null | wc -l)" = "100" ] || failures+=("episodes.csv has not 100 rows")

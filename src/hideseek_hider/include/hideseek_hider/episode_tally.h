@@ -41,8 +41,12 @@ class EpisodeTally {
 // captured or survived), so that single episodes can be compared and replayed.
 std::string episodesCsv(const std::map<uint32_t, EpisodeRecord>& records);
 
-// evaluation.md and evaluation.csv (columns variant,policy,episodes,avg_living_steps,success_rate).
-std::string evaluationCsv(const std::string& variant, const std::string& policy, const EvaluationSummary& s);
-std::string evaluationMarkdown(const std::string& variant, const std::string& policy, const EvaluationSummary& s);
+// evaluation.csv (columns variant,policy,episodes,avg_living_steps,success_rate,game: the game last,
+// so that the columns of evaluations written before it came keep their places) and evaluation.md
+// (variant, game, policy, ...). `game` is the game played, as config/games.yaml or a game file names it.
+std::string evaluationCsv(const std::string& variant, const std::string& policy, const std::string& game,
+                          const EvaluationSummary& s);
+std::string evaluationMarkdown(const std::string& variant, const std::string& policy, const std::string& game,
+                               const EvaluationSummary& s);
 
 }  // namespace hideseek_hider
