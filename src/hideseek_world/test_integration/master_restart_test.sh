@@ -24,8 +24,9 @@ roslaunch -p "$port" hideseek_world basic.launch mode:=lockstep num_arenas:=2 po
 launch=$!
 wait_until 300 grep -a -q "episode .* (seed" "$dir/game.log"
 episodes() { grep -a -c "episode .* (seed" "$dir/game.log"; }
-# The master and its rosout die as a crash would.
-kill -KILL $(pgrep -f "rosmaster --core -p $port") $(pgrep -f "rosout.*__name:=rosout") "$core" 2> /dev/null
+# The master and its rosout die as a crash would: roscore's children only (rosmaster and rosout),
+# never another graph's rosout on this machine (a held sweep's, a second checkout's tests).
+kill -KILL $(pgrep -P "$core") "$core" 2> /dev/null
 said() { grep -a "$1" "$dir/game.log" | grep -a -o "/[a-z]*: $2" | sort -u | tr '\n' ' '; }  # (the log holds NULs)
 wait_until 120 eval '[ "$(said "does not answer" "the ROS")" = "/hider: the ROS /seeker: the ROS /world: the ROS " ]'
 gone=$(said "does not answer" "the ROS")
