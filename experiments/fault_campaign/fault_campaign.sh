@@ -8,7 +8,7 @@ cd "$(dirname "$0")/../.."
 source scripts/env.sh
 report=${1:-/dev/stdout}
 dir=$(mktemp -d /tmp/hideseek_faults.XXXXXX)
-port=$((12400 + RANDOM % 100))  # apart from the sweep (12100-12112) and the tests (11600-12099)
+port=$((12400 + RANDOM % 100))  # apart from the sweep (12100-12112) and the tests (docs/testing.md, "Ports")
 export ROS_MASTER_URI=http://localhost:$port
 rows=()
 row() { rows+=("| $1 | $2 | $3 | $4 |"); echo "fault_campaign: $1: $4" >&2; }
