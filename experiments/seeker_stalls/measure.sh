@@ -45,6 +45,7 @@ own_variant() {  # SOURCE NAME [MAP]
 import sys
 import yaml
 variant = yaml.safe_load(open(sys.argv[1]))
+variant["variant"] = sys.argv[2].rsplit("/", 1)[-1][:-len(".yaml")]  # a file's variant field names it
 if sys.argv[3] == "true":
     variant.setdefault("seeker", {})["path_following"] = "no_backtrack"
 if sys.argv[4]:

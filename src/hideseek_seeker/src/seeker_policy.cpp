@@ -55,6 +55,7 @@ void SeekerPolicy::setGoal(const AgentState& pose, Vec2 goal) {
   // Replan only when the goal moved: a chase re-targets every step, but a straight line needs no search.
   if (goal_ && distance(*goal_, goal) < options_.grid_resolution && !path_.empty()) return;
   goal_ = goal;
+  ++plans_;
   if (planner_->lineOfSight(pose.position, goal)) {
     path_ = {goal};
   } else {
@@ -158,6 +159,23 @@ Action SeekerPolicy::decide(const SeekerPerception& p) {
   if (no_backtrack) {  // the points before the one it heads for are passed: it does not come back for them
     path_.erase(path_.begin(), path_.begin() + static_cast<std::ptrdiff_t>(target));
     target = 0;
+    // The point it heads for has lost its straight line (a turn taken while moving cut a corner, a
+    // slide along a wall): it plans afresh from here to the same goal, rather than drive into the
+    // obstacle for good, and heads for the farthest point of the new path in sight. The line is
+    // judged from the centre of its grid cell, as the planner judges a plan's first point (so a
+    // new plan's holds); from a cell the grid counts as blocked, touching an obstacle, no line is
+    // clear, and it keeps its path.
+    const hideseek_game::FreeSpaceGrid& grid = planner_->grid();
+    const Vec2 centre = grid.centerOf(grid.cellOf(here));
+    if (goal_ && planner_->isFree(here) && !planner_->lineOfSight(centre, path_.front())) {
+      const Vec2 goal = *goal_;
+      goal_.reset();
+      setGoal(p.pose, goal);
+      if (path_.empty()) return Action::kStay;
+      while (target + 1 < path_.size() && planner_->lineOfSight(here, path_[target + 1])) ++target;
+      path_.erase(path_.begin(), path_.begin() + static_cast<std::ptrdiff_t>(target));
+      target = 0;
+    }
   }
   target_ = path_[target];
   return steerTowards(p.pose, path_[target]);

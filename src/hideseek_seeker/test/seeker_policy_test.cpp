@@ -174,8 +174,8 @@ TEST(SeekerPolicy, DeterministicSeekerCatchesAStandingHiderItCanSee) {
 
 // seeker.path_following (docs/calibration.md, "The scripted seeker's stalls"), game v3's wandering
 // seeker moving frame by frame: the point it heads for is always on its path; under no_backtrack it
-// is the path's first point, and until the seeker plans afresh the path only loses points from its
-// front, so the seeker never turns back for a point it has passed.
+// is the path's first point, and until the seeker plans afresh (plans() counts) the path only loses
+// points from its front, so the seeker never turns back for a point it has passed.
 TEST(SeekerPolicy, UnderNoBacktrackTheSeekerNeverTurnsBackForAPassedPoint) {
   auto v3 = hideseek_game::loadVariantConfig(kConfig + "/game_v3.yaml", kConfig + "/variants/stochasticseeker.yaml");
   const Layout layout = deterministicLayout();
@@ -188,7 +188,7 @@ TEST(SeekerPolicy, UnderNoBacktrackTheSeekerNeverTurnsBackForAPassedPoint) {
     seeker.reset(layout, 7);
     AgentState s{{-6.0, -6.0}, 0.0, 0.0, {}};
     std::vector<Vec2> before;
-    std::optional<Vec2> goal_before;
+    size_t plans_before = 0;
     int targets = 0, passed = 0;
     for (int frame = 0; frame < 6000; ++frame) {
       const Action a = seeker.act({s, std::nullopt});
@@ -202,22 +202,81 @@ TEST(SeekerPolicy, UnderNoBacktrackTheSeekerNeverTurnsBackForAPassedPoint) {
           EXPECT_EQ(on_path, path.begin()) << "frame " << frame << ": a point before the target is kept";
         }
       }
-      const bool same_goal =
-          goal_before && seeker.goal() && goal_before->x == seeker.goal()->x && goal_before->y == seeker.goal()->y;
-      if (no_backtrack && same_goal && path.size() <= before.size()) {
+      if (no_backtrack && seeker.plans() == plans_before) {
         // The same plan: what is left is the end of what was there.
+        ASSERT_LE(path.size(), before.size()) << "frame " << frame << ": the path grew without a plan";
         EXPECT_TRUE(std::equal(path.begin(), path.end(), before.end() - static_cast<std::ptrdiff_t>(path.size()),
                                [](Vec2 p, Vec2 q) { return p.x == q.x && p.y == q.y; }))
             << "frame " << frame << ": the path regained a point it had dropped";
         passed += static_cast<int>(before.size() - path.size());
       }
       before = path;
-      goal_before = seeker.goal();
+      plans_before = seeker.plans();
       hideseek_game::advanceAgent(s, a, v3.game.seeker, v3.game.physics_dt, layout, v3.game.agent_radius);
     }
     EXPECT_GT(targets, 5000) << "the seeker should be on its way nearly every frame";
     if (no_backtrack) {
       EXPECT_GT(passed, 10) << "the seeker should pass points on its paths";
+    }
+  }
+}
+
+// Under no_backtrack, a seeker whose point to head for has lost its straight line (here: moved
+// behind the cross's arm between two decisions, as a turn taken while moving or a slide can carry
+// it) plans afresh to the same goal and heads for a point it sees; under next_point it keeps
+// heading for the hidden point, as the shipped games always did (what they recorded replays).
+TEST(SeekerPolicy, UnderNoBacktrackTheSeekerPlansAfreshWhenItsPointIsOutOfSight) {
+  auto v3 = hideseek_game::loadVariantConfig(kConfig + "/game_v3.yaml", kConfig + "/variants/basic.yaml");
+  const Layout layout = deterministicLayout();
+  const SeekerOptions options = seekerOptionsFor(v3);
+  const GridPlanner sight(layout, options.radius, options.grid_resolution);
+  // South of the cross's east arm, in a cell the grid counts free, the hider glimpsed once north of
+  // it: a path round the arm's end.
+  const AgentState start{{0.6, -1.6}, hideseek_game::kPi / 2, 0.0, {}};
+  const Vec2 behind{0.6, 1.2};
+  ASSERT_TRUE(sight.isFree(start.position));
+  for (const auto following :
+       {hideseek_game::SeekerPathFollowing::kNextPoint, hideseek_game::SeekerPathFollowing::kNoBacktrack}) {
+    const bool no_backtrack = following == hideseek_game::SeekerPathFollowing::kNoBacktrack;
+    SCOPED_TRACE(no_backtrack ? "no_backtrack" : "next_point");
+    v3.game.seeker_path_following = following;
+    SeekerPolicy seeker(seekerOptionsFor(v3));
+    seeker.reset(layout, 1);
+    seeker.act({start, behind});
+    ASSERT_TRUE(seeker.target().has_value());
+    const Vec2 point = *seeker.target();
+    ASSERT_TRUE(sight.lineOfSight(start.position, point));
+    // The nearest free place, within 2 m, from which every point of its path is hidden and the
+    // goal still reachable.
+    const std::vector<Vec2> path = seeker.path();
+    const auto hidden = [&](Vec2 q) {
+      return std::none_of(path.begin(), path.end(), [&](Vec2 pt) { return sight.lineOfSight(q, pt); });
+    };
+    std::optional<Vec2> moved;
+    for (double r = 0.1; r <= 2.0 && !moved; r += 0.1) {
+      for (int k = 0; k < 72 && !moved; ++k) {
+        const Vec2 q{start.position.x + r * std::cos(k * hideseek_game::kPi / 36),
+                     start.position.y + r * std::sin(k * hideseek_game::kPi / 36)};
+        const Vec2 centre = sight.grid().centerOf(sight.grid().cellOf(q));
+        if (sight.isFree(q) && hidden(q) && hidden(centre) && !sight.plan(q, behind).empty()) moved = q;
+      }
+    }
+    ASSERT_TRUE(moved.has_value()) << "no place near the start hides the path from (" << point.x << ", " << point.y
+                                   << ") on";
+    const size_t plans = seeker.plans();
+    seeker.act({AgentState{*moved, start.yaw, 0.0, {}}, std::nullopt});  // still heading for `behind`
+    ASSERT_TRUE(seeker.target().has_value());
+    const Vec2 now = *seeker.target();
+    if (no_backtrack) {
+      EXPECT_EQ(seeker.plans(), plans + 1) << "one new plan";
+      // in sight from the centre of the seeker's grid cell, as the planner sees (0.05 m from it at most)
+      const Vec2 centre = sight.grid().centerOf(sight.grid().cellOf(*moved));
+      EXPECT_TRUE(sight.lineOfSight(centre, now)) << "it heads for (" << now.x << ", " << now.y << "), out of sight";
+      ASSERT_TRUE(seeker.goal().has_value());
+      EXPECT_NEAR(hideseek_game::distance(*seeker.goal(), behind), 0.0, 1e-9) << "the same goal";
+    } else {
+      EXPECT_EQ(seeker.plans(), plans) << "next_point plans nothing new for the same goal";
+      EXPECT_FALSE(sight.lineOfSight(*moved, now)) << "next_point keeps heading for a point out of sight";
     }
   }
 }

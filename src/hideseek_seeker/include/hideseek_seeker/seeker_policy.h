@@ -70,6 +70,9 @@ class SeekerPolicy {
   const std::vector<Vec2>& path() const { return path_; }
   std::optional<Vec2> target() const { return target_; }
   std::optional<Vec2> goal() const { return goal_; }
+  // Paths planned since the seeker was made (a straight line to the goal counts): a path is one
+  // plan while this stays the same.
+  size_t plans() const { return plans_; }
 
  private:
   Action decide(const SeekerPerception& perception);
@@ -85,6 +88,7 @@ class SeekerPolicy {
   std::optional<Vec2> goal_;
   std::vector<Vec2> path_;
   std::optional<Vec2> target_;
+  size_t plans_ = 0;
   SeekerMode mode_ = SeekerMode::kPatrol;
   Action last_action_ = Action::kStay;  // what act() answered last, for steering hysteresis
   std::mt19937 rng_;
