@@ -31,10 +31,12 @@ def episodes_csv(path):
     return os.path.join(path, "episodes.csv") if os.path.isdir(path) else path
 
 
-def variant_of(episodes):
-    """The variant evaluate.launch names in the evaluation.csv beside `episodes`, or None."""
+def played(episodes):
+    """(variant, game) as evaluate.launch names them in the evaluation.csv beside `episodes`; None
+    where it is not there (the game: in an evaluation written before 2026-12-02, which has no game
+    column)."""
     rows = read_csv(os.path.join(os.path.dirname(os.path.abspath(episodes)), "evaluation.csv"))
-    return rows[-1].get("variant") if rows else None
+    return (rows[-1].get("variant"), rows[-1].get("game")) if rows else (None, None)
 
 
 def main(argv=None):
@@ -68,11 +70,15 @@ def main(argv=None):
     d, (lo, hi), n = paired
     print("%s minus %s: %.1f [%.1f, %.1f] living steps (paired over the %d seeds both played)"
           % (labels[0], labels[1], d, lo, hi, n))
-    variants = [variant_of(x) for x in paths]
-    if None not in variants and variants[0] != variants[1]:
+    (variant_a, game_a), (variant_b, game_b) = [played(x) for x in paths]
+    if None not in (variant_a, variant_b) and variant_a != variant_b:
         # A seed draws its variant's layout and spawns: on two maps one seed is two other starts.
         print("  (%s and %s are other variants: a seed is the same start only where both play one map;"
-              " otherwise the pairing pairs nothing)" % tuple(variants))
+              " otherwise the pairing pairs nothing)" % (variant_a, variant_b))
+    if None not in (game_a, game_b) and game_a != game_b:
+        # Each game has its own maps and rules: one seed starts two other episodes.
+        print("  (games %s and %s: each plays its own maps and rules, so a seed is not the same start"
+              " and the pairing pairs nothing)" % (game_a, game_b))
     p_better, (lo, hi) = st.probability_of_improvement(living[0], living[1], st.keyed_rng(a.seed, "poi"),
                                                        a.reps)["episodes"]
     print("P(an episode of %s lives longer than one of %s) = %.2f [%.2f, %.2f]" % (labels[0], labels[1],

@@ -103,4 +103,17 @@ def test_the_example_refuses_two_evaluations_of_one_name(tmp_path):
     assert r.returncode == 2 and "shipped: no such file" in r.stderr
     r = subprocess.run([sys.executable, EXAMPLE, str(tmp_path / "a" / "eval"), str(tmp_path / "b" / "eval"),
                         "--labels", "a", "b", "--reps", "50"], capture_output=True, text=True, timeout=120)
-    assert r.returncode == 0 and "a minus b: 0.0" in r.stdout
+    assert r.returncode == 0 and "a minus b: 0.0" in r.stdout and "pairs nothing" not in r.stdout
+    # Evaluations that name their game (from 2026-12-02): one seed on two games pairs nothing, and
+    # the example says so; one written before has no game column and is taken as it is.
+    header = "variant,policy,episodes,avg_living_steps,success_rate,game\n"
+    write(tmp_path / "a" / "eval" / "evaluation.csv", header + "basic,p,1,12.00,0.0000,v2\n")
+    write(tmp_path / "b" / "eval" / "evaluation.csv", header + "basic,p,1,12.00,0.0000,v3\n")
+    r = subprocess.run([sys.executable, EXAMPLE, str(tmp_path / "a" / "eval"), str(tmp_path / "b" / "eval"),
+                        "--labels", "a", "b", "--reps", "50"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and "(games v2 and v3: each plays its own maps and rules" in r.stdout
+    write(tmp_path / "b" / "eval" / "evaluation.csv",
+          "variant,policy,episodes,avg_living_steps,success_rate\nbasic,p,1,12.00,0.0000\n")
+    r = subprocess.run([sys.executable, EXAMPLE, str(tmp_path / "a" / "eval"), str(tmp_path / "b" / "eval"),
+                        "--labels", "a", "b", "--reps", "50"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and "pairs nothing" not in r.stdout

@@ -34,20 +34,20 @@ std::string episodesCsv(const std::map<uint32_t, EpisodeRecord>& records) {
 
 std::string evaluationCsv(const std::string& variant, const std::string& policy, const std::string& game,
                           const EvaluationSummary& s) {
-  char line[768];
-  std::snprintf(line, sizeof(line), "%s,%s,%d,%.2f,%.4f,%s\n", variant.c_str(), policy.c_str(), s.episodes,
-                s.avg_living_steps, s.success_rate, game.c_str());
-  return "variant,policy,episodes,avg_living_steps,success_rate,game\n" + std::string(line);
+  char numbers[64];
+  std::snprintf(numbers, sizeof(numbers), "%d,%.2f,%.4f", s.episodes, s.avg_living_steps, s.success_rate);
+  return "variant,policy,episodes,avg_living_steps,success_rate,game\n" + variant + "," + policy + "," + numbers + "," +
+         game + "\n";
 }
 
 std::string evaluationMarkdown(const std::string& variant, const std::string& policy, const std::string& game,
                                const EvaluationSummary& s) {
-  char line[768];
-  std::snprintf(line, sizeof(line), "| %s | %s | %s | %d | %.1f | %.2f %% |\n", variant.c_str(), game.c_str(),
-                policy.c_str(), s.episodes, s.avg_living_steps, 100.0 * s.success_rate);
+  char numbers[96];
+  std::snprintf(numbers, sizeof(numbers), "%d | %.1f | %.2f %%", s.episodes, s.avg_living_steps,
+                100.0 * s.success_rate);
   return "| variant | game | policy | episodes | average living steps | success rate |\n"
-         "| --- | --- | --- | --- | --- | --- |\n" +
-         std::string(line);
+         "| --- | --- | --- | --- | --- | --- |\n| " +
+         variant + " | " + game + " | " + policy + " | " + numbers + " |\n";
 }
 
 }  // namespace hideseek_hider

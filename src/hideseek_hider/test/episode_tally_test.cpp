@@ -35,6 +35,11 @@ TEST(EpisodeTally, CountsOnlyTheSeedsFromFirstSeedOn) {
 TEST(EpisodeTally, WritesTheCsvColumnsTheIssueNamesThenTheGame) {
   const std::string csv = evaluationCsv("basic", "random", "v3", {100, 123.456, 0.05});
   EXPECT_EQ(csv, "variant,policy,episodes,avg_living_steps,success_rate,game\nbasic,random,100,123.46,0.0500,v3\n");
+  // However long the policy's name (a deep path, a seeker's beside it), the row keeps every column.
+  const std::string long_policy = "/home/me/" + std::string(900, 'p') + ".pt (greedy) against the seeker random";
+  EXPECT_EQ(
+      evaluationCsv("basic", long_policy, "v3", {100, 1.0, 0.0}),
+      "variant,policy,episodes,avg_living_steps,success_rate,game\nbasic," + long_policy + ",100,1.00,0.0000,v3\n");
 }
 
 // The table a person reads names the game beside the variant: v2's and v3's basic are other games.

@@ -22,7 +22,8 @@ case " $* " in
     [ "$variant" = "${FAIL_VARIANT:-}" ] && exit 0  # a required node died: no evaluation, roslaunch exits 0
     # the sweep held the run EVAL_HELD seconds more while it was evaluated, booked as 'sweep resume' books it
     [ -z "${EVAL_HELD:-}" ] || echo "$(( $(head -n 1 "$EVAL_HELD_FILE") + EVAL_HELD ))" > "$EVAL_HELD_FILE"
-    printf 'variant,policy,episodes,avg_living_steps,success_rate\n%s,%s,100,321.00,0.2500\n' "$variant" "$policy" \
+    # as the evaluator writes it since 2026-12-02, the game last (the pins' evaluators write no game)
+    printf 'variant,policy,episodes,avg_living_steps,success_rate,game\n%s,%s,100,321.00,0.2500,v3\n' "$variant" "$policy" \
       > "$output_dir/evaluation.csv"
     printf 'seed,living_steps,outcome\n0,321,captured\n' > "$output_dir/episodes.csv"
     echo "| $policy |" > "$output_dir/evaluation.md" ;;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <utility>
 
 namespace hideseek_seeker {
 
@@ -46,6 +47,7 @@ void SeekerPolicy::reset(const Layout& layout, uint32_t seed) {
   goal_.reset();
   path_.clear();
   target_.reset();
+  afresh_cell_.reset();
   mode_ = options_.type == SeekerPolicyType::kDeterministic ? SeekerMode::kPatrol : SeekerMode::kWander;
   rng_.seed(seed ^ 0x5eed5eedu);
   last_action_ = Action::kStay;
@@ -154,25 +156,32 @@ Action SeekerPolicy::decide(const SeekerPerception& p) {
     while (path_.size() > 1 && distance(here, path_.front()) <= reach) path_.erase(path_.begin());
   }
   if (path_.empty()) return Action::kStay;
+  // next_point judges a straight line from where the seeker stands; no_backtrack from the centre of
+  // its grid cell, where the planner starts a plan, so that a line does not come and go with every
+  // centimetre moved (its plan afresh, below, then holds while the seeker stays in the cell).
+  const hideseek_game::FreeSpaceGrid& grid = planner_->grid();
+  const Vec2 from = no_backtrack ? grid.centerOf(grid.cellOf(here)) : here;
   size_t target = 0;
-  while (target + 1 < path_.size() && planner_->lineOfSight(here, path_[target + 1])) ++target;
+  while (target + 1 < path_.size() && planner_->lineOfSight(from, path_[target + 1])) ++target;
   if (no_backtrack) {  // the points before the one it heads for are passed: it does not come back for them
     path_.erase(path_.begin(), path_.begin() + static_cast<std::ptrdiff_t>(target));
     target = 0;
     // The point it heads for has lost its straight line (a turn taken while moving cut a corner, a
     // slide along a wall): it plans afresh from here to the same goal, rather than drive into the
-    // obstacle for good, and heads for the farthest point of the new path in sight. The line is
-    // judged from the centre of its grid cell, as the planner judges a plan's first point (so a
-    // new plan's holds); from a cell the grid counts as blocked, touching an obstacle, no line is
-    // clear, and it keeps its path.
-    const hideseek_game::FreeSpaceGrid& grid = planner_->grid();
-    const Vec2 centre = grid.centerOf(grid.cellOf(here));
-    if (goal_ && planner_->isFree(here) && !planner_->lineOfSight(centre, path_.front())) {
-      const Vec2 goal = *goal_;
-      goal_.reset();
-      setGoal(p.pose, goal);
-      if (path_.empty()) return Action::kStay;
-      while (target + 1 < path_.size() && planner_->lineOfSight(here, path_[target + 1])) ++target;
+    // obstacle for good, and heads for the farthest point of the new path in sight (the planner
+    // starts from this cell's centre, so its first point is). At most once in a grid cell: a new
+    // plan's first point may lie within reach, be dropped at the next decision and leave a hidden
+    // one again, and planning again there would search every frame to the same end. From a cell
+    // the grid counts as blocked, touching an obstacle, no line is clear; there, and where no path
+    // is found, it keeps the path it has.
+    const hideseek_game::GridCell cell = grid.cellOf(here);
+    const bool planned_here = afresh_cell_ && afresh_cell_->x == cell.x && afresh_cell_->y == cell.y;
+    if (goal_ && !planned_here && planner_->isFree(here) && !planner_->lineOfSight(from, path_.front())) {
+      std::vector<Vec2> fresh = planner_->plan(here, *goal_);
+      ++plans_;
+      afresh_cell_ = cell;
+      if (!fresh.empty()) path_ = std::move(fresh);
+      while (target + 1 < path_.size() && planner_->lineOfSight(from, path_[target + 1])) ++target;
       path_.erase(path_.begin(), path_.begin() + static_cast<std::ptrdiff_t>(target));
       target = 0;
     }

@@ -186,11 +186,16 @@ TEST(SeekerPolicy, UnderNoBacktrackTheSeekerNeverTurnsBackForAPassedPoint) {
     v3.game.seeker_path_following = following;
     SeekerPolicy seeker(seekerOptionsFor(v3));
     seeker.reset(layout, 7);
+    const GridPlanner planner(layout, seekerOptionsFor(v3).radius, seekerOptionsFor(v3).grid_resolution);
+    const hideseek_game::FreeSpaceGrid& grid = planner.grid();
     AgentState s{{-6.0, -6.0}, 0.0, 0.0, {}};
     std::vector<Vec2> before;
     size_t plans_before = 0;
-    int targets = 0, passed = 0;
+    std::optional<Vec2> goal_before;
+    std::optional<hideseek_game::GridCell> afresh_in;  // the cell of the last frame's plan afresh
+    int targets = 0, passed = 0, afresh = 0;
     for (int frame = 0; frame < 6000; ++frame) {
+      const hideseek_game::GridCell cell = grid.cellOf(s.position);
       const Action a = seeker.act({s, std::nullopt});
       const std::vector<Vec2>& path = seeker.path();
       if (const auto target = seeker.target()) {
@@ -210,13 +215,29 @@ TEST(SeekerPolicy, UnderNoBacktrackTheSeekerNeverTurnsBackForAPassedPoint) {
             << "frame " << frame << ": the path regained a point it had dropped";
         passed += static_cast<int>(before.size() - path.size());
       }
+      // A plan for the goal it already had is a plan afresh (no_backtrack's lost point): never two
+      // frames running in one grid cell, which would be a new search every frame.
+      const bool same_goal =
+          goal_before && seeker.goal() && goal_before->x == seeker.goal()->x && goal_before->y == seeker.goal()->y;
+      const bool planned_afresh = seeker.plans() > plans_before && same_goal;
+      EXPECT_FALSE(planned_afresh && afresh_in && afresh_in->x == cell.x && afresh_in->y == cell.y)
+          << "frame " << frame << ": planned afresh again in the same cell";
+      if (!no_backtrack) {
+        EXPECT_FALSE(planned_afresh) << "frame " << frame << ": next_point planned afresh for the same goal";
+      }
+      afresh += planned_afresh;
+      afresh_in.reset();
+      if (planned_afresh) afresh_in = cell;
       before = path;
       plans_before = seeker.plans();
+      goal_before = seeker.goal();
       hideseek_game::advanceAgent(s, a, v3.game.seeker, v3.game.physics_dt, layout, v3.game.agent_radius);
     }
     EXPECT_GT(targets, 5000) << "the seeker should be on its way nearly every frame";
     if (no_backtrack) {
       EXPECT_GT(passed, 10) << "the seeker should pass points on its paths";
+      // a search on at most one frame in 20 (91 here when written)
+      EXPECT_LT(afresh, 300) << "plans afresh in 6000 frames";
     }
   }
 }
@@ -269,9 +290,10 @@ TEST(SeekerPolicy, UnderNoBacktrackTheSeekerPlansAfreshWhenItsPointIsOutOfSight)
     const Vec2 now = *seeker.target();
     if (no_backtrack) {
       EXPECT_EQ(seeker.plans(), plans + 1) << "one new plan";
-      // in sight from the centre of the seeker's grid cell, as the planner sees (0.05 m from it at most)
+      // in sight from where it stands or from the centre of its grid cell, where the planner starts
       const Vec2 centre = sight.grid().centerOf(sight.grid().cellOf(*moved));
-      EXPECT_TRUE(sight.lineOfSight(centre, now)) << "it heads for (" << now.x << ", " << now.y << "), out of sight";
+      EXPECT_TRUE(sight.lineOfSight(*moved, now) || sight.lineOfSight(centre, now))
+          << "it heads for (" << now.x << ", " << now.y << "), out of sight";
       ASSERT_TRUE(seeker.goal().has_value());
       EXPECT_NEAR(hideseek_game::distance(*seeker.goal(), behind), 0.0, 1e-9) << "the same goal";
     } else {

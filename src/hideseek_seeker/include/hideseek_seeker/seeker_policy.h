@@ -89,6 +89,7 @@ class SeekerPolicy {
   std::vector<Vec2> path_;
   std::optional<Vec2> target_;
   size_t plans_ = 0;
+  std::optional<hideseek_game::GridCell> afresh_cell_;  // where no_backtrack last planned afresh
   SeekerMode mode_ = SeekerMode::kPatrol;
   Action last_action_ = Action::kStay;  // what act() answered last, for steering hysteresis
   std::mt19937 rng_;
