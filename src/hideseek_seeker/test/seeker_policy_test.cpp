@@ -37,6 +37,19 @@ void advance(AgentState& s, Action a, const Layout& layout) {
   for (int i = 0; i < 6; ++i) hideseek_game::advanceAgent(s, a, m, 0.02, layout, 0.4);
 }
 
+// Both rules of seeker.path_following, the shipped games' first.
+const hideseek_game::SeekerPathFollowing kPathFollowings[] = {hideseek_game::SeekerPathFollowing::kNextPoint,
+                                                              hideseek_game::SeekerPathFollowing::kNoBacktrack};
+
+// A seeker of `variant` that follows its path by `following`, reset onto `layout` with `seed`.
+SeekerPolicy seekerFollowing(hideseek_game::VariantConfig variant, hideseek_game::SeekerPathFollowing following,
+                             const Layout& layout, uint32_t seed) {
+  variant.game.seeker_path_following = following;
+  SeekerPolicy seeker(seekerOptionsFor(variant));
+  seeker.reset(layout, seed);
+  return seeker;
+}
+
 }  // namespace
 
 TEST(SeekerPolicy, ReachesAGoalBehindTheCrossFromLastKnownPosition) {
@@ -177,15 +190,13 @@ TEST(SeekerPolicy, DeterministicSeekerCatchesAStandingHiderItCanSee) {
 // is the path's first point, and until the seeker plans afresh (plans() counts) the path only loses
 // points from its front, so the seeker never turns back for a point it has passed.
 TEST(SeekerPolicy, UnderNoBacktrackTheSeekerNeverTurnsBackForAPassedPoint) {
-  auto v3 = hideseek_game::loadVariantConfig(kConfig + "/game_v3.yaml", kConfig + "/variants/stochasticseeker.yaml");
+  const auto v3 =
+      hideseek_game::loadVariantConfig(kConfig + "/game_v3.yaml", kConfig + "/variants/stochasticseeker.yaml");
   const Layout layout = deterministicLayout();
-  for (const auto following :
-       {hideseek_game::SeekerPathFollowing::kNextPoint, hideseek_game::SeekerPathFollowing::kNoBacktrack}) {
+  for (const auto following : kPathFollowings) {
     const bool no_backtrack = following == hideseek_game::SeekerPathFollowing::kNoBacktrack;
     SCOPED_TRACE(no_backtrack ? "no_backtrack" : "next_point");
-    v3.game.seeker_path_following = following;
-    SeekerPolicy seeker(seekerOptionsFor(v3));
-    seeker.reset(layout, 7);
+    SeekerPolicy seeker = seekerFollowing(v3, following, layout, 7);
     const GridPlanner planner(layout, seekerOptionsFor(v3).radius, seekerOptionsFor(v3).grid_resolution);
     const hideseek_game::FreeSpaceGrid& grid = planner.grid();
     AgentState s{{-6.0, -6.0}, 0.0, 0.0, {}};
@@ -247,7 +258,7 @@ TEST(SeekerPolicy, UnderNoBacktrackTheSeekerNeverTurnsBackForAPassedPoint) {
 // it) plans afresh to the same goal and heads for a point it sees; under next_point it keeps
 // heading for the hidden point, as the shipped games always did (what they recorded replays).
 TEST(SeekerPolicy, UnderNoBacktrackTheSeekerPlansAfreshWhenItsPointIsOutOfSight) {
-  auto v3 = hideseek_game::loadVariantConfig(kConfig + "/game_v3.yaml", kConfig + "/variants/basic.yaml");
+  const auto v3 = hideseek_game::loadVariantConfig(kConfig + "/game_v3.yaml", kConfig + "/variants/basic.yaml");
   const Layout layout = deterministicLayout();
   const SeekerOptions options = seekerOptionsFor(v3);
   const GridPlanner sight(layout, options.radius, options.grid_resolution);
@@ -256,13 +267,10 @@ TEST(SeekerPolicy, UnderNoBacktrackTheSeekerPlansAfreshWhenItsPointIsOutOfSight)
   const AgentState start{{0.6, -1.6}, hideseek_game::kPi / 2, 0.0, {}};
   const Vec2 behind{0.6, 1.2};
   ASSERT_TRUE(sight.isFree(start.position));
-  for (const auto following :
-       {hideseek_game::SeekerPathFollowing::kNextPoint, hideseek_game::SeekerPathFollowing::kNoBacktrack}) {
+  for (const auto following : kPathFollowings) {
     const bool no_backtrack = following == hideseek_game::SeekerPathFollowing::kNoBacktrack;
     SCOPED_TRACE(no_backtrack ? "no_backtrack" : "next_point");
-    v3.game.seeker_path_following = following;
-    SeekerPolicy seeker(seekerOptionsFor(v3));
-    seeker.reset(layout, 1);
+    SeekerPolicy seeker = seekerFollowing(v3, following, layout, 1);
     seeker.act({start, behind});
     ASSERT_TRUE(seeker.target().has_value());
     const Vec2 point = *seeker.target();
