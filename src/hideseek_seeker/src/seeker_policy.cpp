@@ -58,6 +58,7 @@ void SeekerPolicy::setGoal(const AgentState& pose, Vec2 goal) {
   if (goal_ && distance(*goal_, goal) < options_.grid_resolution && !path_.empty()) return;
   goal_ = goal;
   ++plans_;
+  afresh_cell_.reset();  // no_backtrack's once a cell holds for one goal's plans: a new goal may plan afresh
   if (planner_->lineOfSight(pose.position, goal)) {
     path_ = {goal};
   } else {

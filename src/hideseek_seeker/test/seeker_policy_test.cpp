@@ -304,6 +304,30 @@ TEST(SeekerPolicy, UnderNoBacktrackTheSeekerPlansAfreshWhenItsPointIsOutOfSight)
           << "it heads for (" << now.x << ", " << now.y << "), out of sight";
       ASSERT_TRUE(seeker.goal().has_value());
       EXPECT_NEAR(hideseek_game::distance(*seeker.goal(), behind), 0.0, 1e-9) << "the same goal";
+      // Back at the start it glimpses the hider elsewhere behind the arm: a new goal, whose path is
+      // hidden from that cell too. Back there, it plans afresh again, for the new goal: once a cell
+      // holds for one goal's plans.
+      const Vec2 cell_centre = sight.grid().centerOf(sight.grid().cellOf(*moved));
+      std::optional<Vec2> elsewhere;
+      for (double x = -0.6; x <= 2.4 && !elsewhere; x += 0.3) {
+        const Vec2 goal{x, 1.4};
+        if (hideseek_game::distance(goal, behind) < 2 * options.grid_resolution || !sight.isFree(goal)) continue;
+        const std::vector<Vec2> other = sight.plan(start.position, goal);
+        if (other.empty() || sight.lineOfSight(start.position, goal)) continue;
+        if (std::none_of(other.begin(), other.end(), [&](Vec2 pt) {
+              return sight.lineOfSight(*moved, pt) || sight.lineOfSight(cell_centre, pt);
+            })) {
+          elsewhere = goal;
+        }
+      }
+      ASSERT_TRUE(elsewhere.has_value()) << "no goal behind the arm whose path that cell cannot see";
+      seeker.act({start, *elsewhere});
+      const size_t replanned = seeker.plans();
+      seeker.act({AgentState{*moved, start.yaw, 0.0, {}}, std::nullopt});  // heading for `elsewhere`
+      EXPECT_EQ(seeker.plans(), replanned + 1) << "a new goal's plan afresh in the same cell";
+      ASSERT_TRUE(seeker.target().has_value());
+      EXPECT_TRUE(sight.lineOfSight(*moved, *seeker.target()) || sight.lineOfSight(cell_centre, *seeker.target()))
+          << "it heads for (" << seeker.target()->x << ", " << seeker.target()->y << "), out of sight";
     } else {
       EXPECT_EQ(seeker.plans(), plans) << "next_point plans nothing new for the same goal";
       EXPECT_FALSE(sight.lineOfSight(*moved, now)) << "next_point keeps heading for a point out of sight";
