@@ -215,6 +215,17 @@ def test_hours_sums_each_phase_s_recorded_training_time_per_machine(tmp_path):
     assert table["seeker"][-1] == "1, - (no run of its kind done)"
     assert "In all: 3.9 machine-hours" in r.stdout
     assert "Left: about 3.2 machine-hours of training, estimated" in r.stdout
+    # a retrain queued (a done run whose weights are lost) is a run left of its phase
+    r = sweep(tmp_path, rec, "retrain", "slowerhider_seed0", config=config_file(tmp_path, three))
+    assert r.returncode == 0 and "queued for retraining" in r.stdout, r.stdout + r.stderr
+    r = sweep(tmp_path, rec, "hours", config=config_file(tmp_path, three))
+    table = {line.split("|")[1].strip(): [c.strip() for c in line.split("|")[2:-1]]
+             for line in r.stdout.splitlines() if line.startswith("| ") and not line.startswith("| phase")}
+    # at its own 39 min a run: 3 x 0.65 h (printed to one decimal)
+    left, h, why = re.match(r"(\d+), ([\d.]+) \((.*)\)$", table["first"][-1]).groups()
+    assert (left, why) == ("3", "its runs; 1 of them a retrain") and abs(float(h) - 1.95) < 0.051, r.stdout
+    total = float(re.search(r"Left: about ([\d.]+) machine-hours", r.stdout).group(1))
+    assert abs(total - (3.2 + 0.65)) < 0.11, r.stdout
 
 
 def test_phases_run_in_order_each_seed_major_and_names_tell_the_runs_apart(tmp_path):

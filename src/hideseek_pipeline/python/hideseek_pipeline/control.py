@@ -195,9 +195,9 @@ def hours(sweep):
     summed as run-hours (a self-play's: its generations' in all). A phase trains `jobs` runs at once,
     which share the machine, so its machine-hours are its run-hours / jobs. Retrains
     (<run>_retrain) are counted apart, as if trained `jobs` at once too; evaluations and analyses are
-    not counted. The runs left are estimated at the machine time per step of the phase's own done
-    runs or, where it has none, of the nearest earlier phase with the same role and network (the
-    same game first)."""
+    not counted. The runs left, retrains queued among them, are estimated at the machine time per
+    step of the phase's own done runs or, where it has none, of the nearest earlier phase with the
+    same role and network (the same game first)."""
     entries = sweep.records.entries()
     out = ["| phase | game | runs done | run-hours | jobs | machine-hours | machine minutes per run "
            "| retrains: runs, machine-hours | left: runs, machine-hours (estimated from) |",
@@ -214,14 +214,16 @@ def hours(sweep):
         total += machine_h + retrain_h
         if done and first_s > 0:
             per_step[phase.name] = machine_h * 3600.0 / (len(done) * phase.steps)
-        left, estimate = len(runs) - len(done), "-"
+        queued = sum(1 for r in sweep.retrain_runs() if r.phase is phase and sweep.wants_retrain(r))
+        left, estimate = len(runs) - len(done) + queued, "-"
         source = _rate_source(sweep.config.phases, phase, per_step)
+        among = "; %d of them %s" % (queued, "a retrain" if queued == 1 else "retrains") if queued else ""
         if left and source:
             h = left * phase.steps * per_step[source.name] / 3600.0
             left_h += h
-            estimate = "%d, %.1f (%s)" % (left, h, "its runs" if source is phase else source.name)
+            estimate = "%d, %.1f (%s%s)" % (left, h, "its runs" if source is phase else source.name, among)
         elif left:
-            estimate = "%d, - (no run of its kind done)" % left
+            estimate = "%d, - (no run of its kind done%s)" % (left, among)
         out.append("| %s | %s | %d of %d | %.1f | %d | %.1f | %s | %s | %s |" % (
             phase.name, phase.game, len(done), len(runs), first_s / 3600.0, phase.jobs, machine_h,
             "%.0f" % (machine_h * 60 / len(done)) if done else "-",
