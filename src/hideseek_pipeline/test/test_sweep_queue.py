@@ -226,6 +226,11 @@ def test_hours_sums_each_phase_s_recorded_training_time_per_machine(tmp_path):
     assert (left, why) == ("3", "its runs; 1 of them a retrain") and abs(float(h) - 1.95) < 0.051, r.stdout
     total = float(re.search(r"Left: about ([\d.]+) machine-hours", r.stdout).group(1))
     assert abs(total - (3.2 + 0.65)) < 0.11, r.stdout
+    # once its weights are back, the retrain is no longer left
+    (tmp_path / "sweep" / "runs" / "slowerhider_seed0").mkdir(parents=True, exist_ok=True)
+    (tmp_path / "sweep" / "runs" / "slowerhider_seed0" / "policy.pt").write_bytes(b"weights")
+    r = sweep(tmp_path, rec, "hours", config=config_file(tmp_path, three))
+    assert "| 2, 1.3 (its runs) |" in r.stdout and "Left: about 3.2 machine-hours" in r.stdout, r.stdout
 
 
 def test_phases_run_in_order_each_seed_major_and_names_tell_the_runs_apart(tmp_path):

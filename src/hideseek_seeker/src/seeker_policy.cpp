@@ -58,11 +58,14 @@ void SeekerPolicy::setGoal(const AgentState& pose, Vec2 goal) {
   if (goal_ && distance(*goal_, goal) < options_.grid_resolution && !path_.empty()) return;
   goal_ = goal;
   ++plans_;
-  afresh_cell_.reset();  // no_backtrack's once a cell holds for one goal's plans: a new goal may plan afresh
   if (planner_->lineOfSight(pose.position, goal)) {
     path_ = {goal};
   } else {
     path_ = planner_->plan(pose.position, goal);
+    // no_backtrack's once a cell holds for one searched plan: a new goal searched for may plan afresh
+    // where the last one did (a goal in a straight line, as a chase's often is, does not reopen it,
+    // so a chase searches at most twice for each search of its own)
+    afresh_cell_.reset();
   }
 }
 

@@ -321,8 +321,10 @@ TEST(SeekerPolicy, UnderNoBacktrackTheSeekerPlansAfreshWhenItsPointIsOutOfSight)
         }
       }
       ASSERT_TRUE(elsewhere.has_value()) << "no goal behind the arm whose path that cell cannot see";
+      const size_t before_new_goal = seeker.plans();
       seeker.act({start, *elsewhere});
       const size_t replanned = seeker.plans();
+      ASSERT_EQ(replanned, before_new_goal + 1) << "the new goal's own plan, and no plan afresh at the start";
       seeker.act({AgentState{*moved, start.yaw, 0.0, {}}, std::nullopt});  // heading for `elsewhere`
       EXPECT_EQ(seeker.plans(), replanned + 1) << "a new goal's plan afresh in the same cell";
       ASSERT_TRUE(seeker.target().has_value());

@@ -36,7 +36,8 @@ SWEEP_COMMANDS = {
     "status": "every phase, and every run in queue order: done (its evaluations, whether it is analysed and "
               "whether its weights are here), training, partial (a checkpoint) or missing",
     "hours": "machine time per phase (a Markdown table): the done runs' training time as run-hours, and as "
-             "machine-hours (run-hours / the runs the phase trains at once); retrains apart; the runs left (retrains queued among them), "
+             "machine-hours (run-hours / the runs the phase trains at once); retrains apart; the runs left "
+             "(retrains queued among them), "
              "estimated at the machine time per step of the phase's done runs or of an earlier phase of its kind",
     "partial": "record every unfinished run's training so far (log and curve, no weights) into docs/runs/<run>/"
                "partial/ of the records, before a machine goes; a done run's partial records are removed",
