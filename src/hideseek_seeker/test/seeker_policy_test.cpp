@@ -305,8 +305,8 @@ TEST(SeekerPolicy, UnderNoBacktrackTheSeekerPlansAfreshWhenItsPointIsOutOfSight)
       ASSERT_TRUE(seeker.goal().has_value());
       EXPECT_NEAR(hideseek_game::distance(*seeker.goal(), behind), 0.0, 1e-9) << "the same goal";
       // Back at the start it glimpses the hider elsewhere behind the arm: a new goal, whose path is
-      // hidden from that cell too. Back there, it plans afresh again, for the new goal: once a cell
-      // holds for one goal's plans.
+      // hidden from that cell too, and searched for. Back there, it plans afresh again, for the new
+      // goal: once a cell holds for one searched plan.
       const Vec2 cell_centre = sight.grid().centerOf(sight.grid().cellOf(*moved));
       std::optional<Vec2> elsewhere;
       for (double x = -0.6; x <= 2.4 && !elsewhere; x += 0.3) {
