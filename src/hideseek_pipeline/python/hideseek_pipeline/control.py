@@ -203,6 +203,7 @@ def hours(sweep):
            "| retrains: runs, machine-hours | left: runs, machine-hours (estimated from) |",
            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     total, left_h, per_step = 0.0, 0.0, {}  # per_step: phase name -> machine seconds per step
+    queued_retrains = [r for r in sweep.retrain_runs() if sweep.wants_retrain(r)]
     for phase in sweep.config.phases:
         runs = [r for r in sweep.config.runs() if r.phase is phase]
         done = [r for r in runs if sweep.records.is_done(r)]
@@ -214,7 +215,7 @@ def hours(sweep):
         total += machine_h + retrain_h
         if done and first_s > 0:
             per_step[phase.name] = machine_h * 3600.0 / (len(done) * phase.steps)
-        queued = sum(1 for r in sweep.retrain_runs() if r.phase is phase and sweep.wants_retrain(r))
+        queued = sum(1 for r in queued_retrains if r.phase is phase)
         left, estimate = len(runs) - len(done) + queued, "-"
         source = _rate_source(sweep.config.phases, phase, per_step)
         among = "; %d of them %s" % (queued, "a retrain" if queued == 1 else "retrains") if queued else ""
