@@ -2,6 +2,7 @@
 measurement, the tests' verdict from JUnit files, and report --from-scratch against stand-ins (fake
 roslaunch and analysis scripts): what it evaluates and analyses, in which order, and what it refuses."""
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -169,3 +170,32 @@ def test_a_malformed_log_is_named_not_a_traceback(tmp_path):
     log.write_text("update,steps,wall_s\n2,2000,10\n3,x,12\n")
     with pytest.raises(measure.MeasureError, match="training_log.csv: a malformed row"):
         measure.samples_per_s(log)
+
+
+def _test_port_ranges():
+    """The ranges of docs/testing.md's "Ports" table, and the port `make test` itself sets."""
+    text = open(os.path.join(ROOT, "docs", "testing.md")).read().split("## Ports", 1)[1].split("\n## ", 1)[0]
+    ranges = [(int(a), int(b)) for a, b in re.findall(r"^\| (\d+)-(\d+) \|", text, re.M)]
+    assert len(ranges) >= 10, "docs/testing.md's Ports table was not found"
+    return ranges + [(11411, 11411)]
+
+
+def test_pipeline_ports_by_default_stay_out_of_every_tests_range():
+    """A training, self-play, evaluation or report started by hand beside `make test` never lands on
+    a test's ROS master: every default port lies outside the ranges the tests draw from."""
+    from hideseek_pipeline import cli, train
+    parse = cli.parser().parse_args
+    defaults = {"report": parse(["report"]).port,
+                "selfplay": parse(["selfplay", "out"]).port,
+                "evaluate": parse(["evaluate", "run", "w.pt"]).port,
+                "evaluate-seeker": parse(["evaluate-seeker", "s.pt", "--output", "o"]).port}
+    ports = {"%s %d" % (name, port + k): port + k for name, port in defaults.items() for k in (0, 1, 2)}
+    for seed in range(10):
+        for network in ("ff", "gru"):
+            for role in ("hider", "seeker"):
+                port = train.default_port(seed, network, role)
+                for k in (0, 1000, 1001):
+                    ports["train seed %d %s %s %d" % (seed, network, role, port + k)] = port + k
+    ranges = _test_port_ranges()
+    clashes = [name for name, port in ports.items() if any(a <= port <= b for a, b in ranges)]
+    assert not clashes, "default ports inside a test's range (docs/testing.md, Ports): %s" % clashes

@@ -113,7 +113,7 @@ def _train_parser(sub, common):
     t.add_argument("--num-arenas", type=int, help="default: train.launch's")
     t.add_argument("--hider-threads", type=int, help="the learner's intra-op threads (default: train.launch's)")
     t.add_argument("--ppo-config", help="default: config/ppo.yaml")
-    t.add_argument("--port", type=int, help="ROS master port (default 11700 + seed, + 50 for the GRU, + 25 for a seeker)")
+    t.add_argument("--port", type=int, help="ROS master port (default 14000 + seed, + 50 for the GRU, + 25 for a seeker)")
     t.add_argument("--eval-port", type=int, help="the evaluation's master port (default: the run's + 1000)")
     t.add_argument("--eval-modes", nargs="+", choices=list(evaluate.MODES), default=["greedy"])
     t.add_argument("--paused-file", help="a file holding the seconds the run was held paused (the sweep's)")
@@ -175,7 +175,7 @@ def _seeker_parsers(sub, common):
     p.add_argument("--hider-threads", type=int, help="the learners' intra-op threads (default: train.launch's)")
     p.add_argument("--precision", choices=["auto", "fp32", "bf16"], default="auto")
     p.add_argument("--ppo-config", help="default: config/ppo.yaml (its annealing turned off)")
-    p.add_argument("--port", type=int, default=11620, help="ROS master ports: this, +1 and +2 (default 11620)")
+    p.add_argument("--port", type=int, default=14900, help="ROS master ports: this, +1 and +2 (default 14900)")
     p.add_argument("--crossplay", action="store_true",
                    help="then the cross-play table of every generation (a pair played to the end before, with as "
                    "many episodes, is kept: remove OUT/crossplay to play every pair again)")

@@ -52,7 +52,7 @@ class SelfPlayOptions:
     precision: str = "auto"
     ppo_config: Optional[str] = None  # default: the workspace's config/ppo.yaml, annealing off
     variant_config: Optional[str] = None  # a variant file of one's own (tests)
-    port: int = 11620
+    port: int = 14900
 
 
 def world_seed(seed, generation):

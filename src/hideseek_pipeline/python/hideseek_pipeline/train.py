@@ -45,7 +45,7 @@ class TrainOptions:
     num_arenas: Optional[int] = None  # None: train.launch's
     ppo_config: Optional[str] = None
     hider_threads: Optional[int] = None
-    port: Optional[int] = None        # None: 11700 + seed (+ 50 for the GRU, + 25 for a seeker); the evaluation uses port + 1000
+    port: Optional[int] = None        # None: default_port(seed, network, role); the evaluation uses port + 1000
     eval_port: Optional[int] = None
     eval_modes: tuple = ("greedy",)
     paused_file: Optional[str] = None  # the seconds the sweep held the run paused, left out of wall_s
@@ -59,6 +59,12 @@ class TrainOptions:
         game, the network and the budget, each where it is not the default (basic_v3_seed0,
         basic_v3_8m_seed0), so that no run takes the name of a run that differs from it."""
         return self.name or sweep_config.run_name(self.variant, self.seed, game, self.network, self.steps, self.role)
+
+
+def default_port(seed, network="ff", role="hider"):
+    """A run's ROS master port when --port is not given; its evaluation takes this + 1000 and + 1001.
+    Outside every test's range (docs/testing.md, "Ports"), so a run started by hand never meets a test."""
+    return 14000 + seed + (50 if network == "gru" else 0) + (25 if role == "seeker" else 0)
 
 
 def _commit(ws):
@@ -118,7 +124,7 @@ def train(ws, records, o, say=print):
     run = os.path.join(os.path.realpath(os.path.expanduser(o.runs_dir)), name)
     os.makedirs(run, exist_ok=True)
     own_variant.check_resume(run, fields, name, "train")
-    port = o.port or 11700 + o.seed + (50 if o.network == "gru" else 0) + (25 if o.role == "seeker" else 0)
+    port = o.port or default_port(o.seed, o.network, o.role)
     commit, commit_file = _commit(ws), os.path.join(run, "commit")
     lines = open(commit_file).read().splitlines() if os.path.isfile(commit_file) else []
     if not lines:
