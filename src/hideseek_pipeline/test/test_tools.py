@@ -52,12 +52,12 @@ def test_the_verdict_counts_cases_failures_errors_and_an_unreadable_file(tmp_pat
         '<testsuite><testcase name="p1"/><testcase name="p2"/><testcase name="f"><failure/></testcase>'
         '<testcase name="e"><error/></testcase><testcase name="s"><skipped/></testcase></testsuite>')
     (tmp_path / "broken.xml").write_text("<testsuite><testcase")
-    assert tests.count(str(tmp_path)) == (2, 3)
+    assert tests.tally(str(tmp_path)) == (2, 3, ["s"])
     # a skipped case is named with its reason (pytest's message attribute; gtest's text)
     (tmp_path / "a" / "two.xml").write_text(
         '<testsuite><testcase name="veth"><skipped message="needs CAP_SYS_ADMIN">long text</skipped></testcase>'
         '<testcase name="bare"><skipped/></testcase></testsuite>')
-    assert tests.skipped(str(tmp_path)) == ["s", "veth (needs CAP_SYS_ADMIN)", "bare"]
+    assert tests.tally(str(tmp_path)) == (2, 3, ["s", "veth (needs CAP_SYS_ADMIN)", "bare"])
 
 
 def test_a_run_that_stops_on_a_build_error_fails_even_where_every_result_passed(tmp_path):

@@ -12,39 +12,28 @@ SHOWN = re.compile(r"^\[ *(RUN|OK|FAILED|PASSED) *\]|^\[ROSTEST\]|^SUMMARY|^ \* 
 PORT = 11411  # tests that start roscore need a free port of their own
 
 
-def count(results):
-    """(passed, failed) test cases over every JUnit file under `results`; a file that cannot be read
-    counts as one failure, a skipped case as neither."""
+def tally(results):
+    """(passed, failed, skipped) over every JUnit file under `results`, each read once: a file that
+    cannot be read counts as one failure; a skipped case counts as neither and is named, as 'name
+    (why)', so that make test shows a case that did not run, not one taken for passed."""
     passed = failed = 0
-    for path in glob.glob(os.path.join(results, "**", "*.xml"), recursive=True):
-        try:
-            cases = ET.parse(path).getroot().iter("testcase")
-        except ET.ParseError:
-            failed += 1
-            continue
-        for case in cases:
-            if case.find("failure") is not None or case.find("error") is not None:
-                failed += 1
-            elif case.find("skipped") is None:
-                passed += 1
-    return passed, failed
-
-
-def skipped(results):
-    """Every skipped test case under `results`, as 'name (why)': make test names them, so that a
-    case that did not run is seen, not taken for one that passed."""
-    out = []
+    skipped = []
     for path in sorted(glob.glob(os.path.join(results, "**", "*.xml"), recursive=True)):
         try:
             cases = list(ET.parse(path).getroot().iter("testcase"))
         except ET.ParseError:
+            failed += 1
             continue
         for case in cases:
             skip = case.find("skipped")
-            if skip is not None and case.find("failure") is None and case.find("error") is None:
+            if case.find("failure") is not None or case.find("error") is not None:
+                failed += 1
+            elif skip is None:
+                passed += 1
+            else:
                 why = (skip.get("message") or skip.text or "").strip().splitlines()
-                out.append("%s%s" % (case.get("name", "?"), " (%s)" % why[0] if why else ""))
-    return out
+                skipped.append("%s%s" % (case.get("name", "?"), " (%s)" % why[0] if why else ""))
+    return passed, failed, skipped
 
 
 def run_tests(root, say=print):
@@ -70,7 +59,7 @@ def run_tests(root, say=print):
     lines = [x for x in (summary.stdout + summary.stderr).splitlines() if not x.startswith("Skipping")]
     for line in lines[-40:]:
         say(line)
-    passed, failed = count(results) if os.path.isdir(results) else (0, 0)
+    passed, failed, not_run = tally(results) if os.path.isdir(results) else (0, 0, [])
     if passed + failed == 0:
         failed = 1  # no result at all: the tests did not run
     elif summary.returncode != 0 and failed == 0:
@@ -79,8 +68,7 @@ def run_tests(root, say=print):
         failed += 1  # the run itself, which stopped before every test ran
         say("catkin_make run_tests stopped with exit status %d before every test ran (a target failed to build: "
             "its error is above); the counts cover only the tests that ran" % p.returncode)
-    passed_by = skipped(results) if os.path.isdir(results) else []
-    if passed_by:
-        say("%d skipped, counted neither passed nor failed: %s" % (len(passed_by), "; ".join(passed_by)))
+    if not_run:
+        say("%d skipped, counted neither passed nor failed: %s" % (len(not_run), "; ".join(not_run)))
     say("%d passed, %d failed" % (passed, failed))
     return 0 if summary.returncode == 0 and failed == 0 else 1
