@@ -19,7 +19,7 @@ kill_tree() {  # roslaunch starts each node in its own session: kill the tree by
 case "$mode" in
   realtime)
     [ $# -eq 3 ] || { sed -n 3,10p "$0"; exit 2; }
-    seconds=$2 out=$3 port=11950
+    seconds=$2 out=$3 port=14950
     mkdir -p "$out"
     export ROS_MASTER_URI=http://localhost:$port
     roslaunch -p "$port" hideseek_world basic.launch > "$out/launch.log" 2>&1 &

@@ -7,11 +7,11 @@
 # samples per hour. Take it with the sweep paused (hideseek_pipeline sweep pause).
 # usage: experiments/throughput/sweep_throughput.sh [ROUNDS=2]
 #   WORKSPACE (default this checkout): the built workspace to train with (the sweep's worktree:
-#   WORKSPACE=~/hideseek_sweep/tree). PORT (default 11900): masters on PORT and PORT + 1.
+#   WORKSPACE=~/hideseek_sweep/tree). PORT (default 14960): masters on PORT and PORT + 1.
 set -euo pipefail
 rounds=${1:-2}
 ws=$(realpath "${WORKSPACE:-$(dirname "$0")/../..}")
-port=${PORT:-11900}
+port=${PORT:-14960}
 here=$(dirname "$(realpath "$0")")/../../scripts
 source "$here/env.sh"
 source "$here/../experiments/throughput/measure.sh"

@@ -6,14 +6,16 @@ import re
 import shutil
 import subprocess
 import sys
+import xml.etree.ElementTree as ET
 
 import pytest
+import yaml
 from stand_ins import stand_in_workspace
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 PACKAGE = os.path.join(ROOT, "src", "hideseek_pipeline", "python")
 sys.path.insert(0, PACKAGE)
-from hideseek_pipeline import measure, tests  # noqa: E402
+from hideseek_pipeline import cli, measure, selfplay, tests, train  # noqa: E402
 
 
 def test_samples_per_s_counts_from_the_end_of_the_warm_up_to_the_last_update(tmp_path):
@@ -58,6 +60,10 @@ def test_the_verdict_counts_cases_failures_errors_and_an_unreadable_file(tmp_pat
         '<testsuite><testcase name="veth"><skipped message="needs CAP_SYS_ADMIN">long text</skipped></testcase>'
         '<testcase name="bare"><skipped/></testcase></testsuite>')
     assert tests.tally(str(tmp_path)) == (2, 3, ["s", "veth (needs CAP_SYS_ADMIN)", "bare"])
+    # a case marked skipped that also failed (a teardown error after the skip) is a failure, not named skipped
+    (tmp_path / "a" / "three.xml").write_text(
+        '<testsuite><testcase name="torn"><skipped message="x"/><error message="teardown"/></testcase></testsuite>')
+    assert tests.tally(str(tmp_path)) == (2, 4, ["s", "veth (needs CAP_SYS_ADMIN)", "bare"])
 
 
 def test_a_run_that_stops_on_a_build_error_fails_even_where_every_result_passed(tmp_path):
@@ -173,22 +179,27 @@ def test_a_malformed_log_is_named_not_a_traceback(tmp_path):
 
 
 def _test_port_ranges():
-    """The ranges of docs/testing.md's "Ports" table, and the port `make test` itself sets."""
+    """The ranges of docs/testing.md's "Ports" table (every row of it), and the port `make test` sets."""
     text = open(os.path.join(ROOT, "docs", "testing.md")).read().split("## Ports", 1)[1].split("\n## ", 1)[0]
-    ranges = [(int(a), int(b)) for a, b in re.findall(r"^\| (\d+)-(\d+) \|", text, re.M)]
-    assert len(ranges) >= 10, "docs/testing.md's Ports table was not found"
-    return ranges + [(11411, 11411)]
+    rows = [line for line in text.splitlines() if line.startswith("| ") and not line.startswith(("| range", "| ---"))]
+    ranges = [re.match(r"\| (\d+)-(\d+) \|", row) for row in rows]
+    assert len(rows) >= 10 and all(ranges), "docs/testing.md's Ports table: a row without a range: %s" % rows
+    return [(int(m.group(1)), int(m.group(2))) for m in ranges] + [(tests.PORT, tests.PORT)]
 
 
 def test_pipeline_ports_by_default_stay_out_of_every_tests_range():
-    """A training, self-play, evaluation or report started by hand beside `make test` never lands on
-    a test's ROS master: every default port lies outside the ranges the tests draw from."""
-    from hideseek_pipeline import cli, train
+    """A training, self-play, evaluation or report started by hand beside `make test`, and the sweep,
+    never land on a test's ROS master: every default port lies outside the ranges the tests draw from."""
     parse = cli.parser().parse_args
+    launch = ET.parse(os.path.join(ROOT, "src", "hideseek_pipeline", "launch", "selfplay.launch")).getroot()
+    launch_port = [int(a.get("default")) for a in launch.iter("arg") if a.get("name") == "port"]
+    assert launch_port == [parse(["selfplay", "out"]).port] == [selfplay.SelfPlayOptions(out="o").port]
+    sweep_port = yaml.safe_load(open(os.path.join(ROOT, "config", "sweep.yaml")))["port"]
     defaults = {"report": parse(["report"]).port,
                 "selfplay": parse(["selfplay", "out"]).port,
                 "evaluate": parse(["evaluate", "run", "w.pt"]).port,
-                "evaluate-seeker": parse(["evaluate-seeker", "s.pt", "--output", "o"]).port}
+                "evaluate-seeker": parse(["evaluate-seeker", "s.pt", "--output", "o"]).port,
+                "sweep slot 0": sweep_port, "sweep slot 1": sweep_port + 10, "sweep recovery": sweep_port + 90}
     ports = {"%s %d" % (name, port + k): port + k for name, port in defaults.items() for k in (0, 1, 2)}
     for seed in range(10):
         for network in ("ff", "gru"):

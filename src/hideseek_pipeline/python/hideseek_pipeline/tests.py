@@ -13,8 +13,8 @@ PORT = 11411  # tests that start roscore need a free port of their own
 
 
 def tally(results):
-    """(passed, failed, skipped) over every JUnit file under `results`, each read once: a file that
-    cannot be read counts as one failure; a skipped case counts as neither and is named, as 'name
+    """(passed, failed, skipped) over every JUnit file under `results`, each parsed once: a file that
+    cannot be parsed counts as one failure; a skipped case counts as neither and is named, as 'name
     (why)', so that make test shows a case that did not run, not one taken for passed."""
     passed = failed = 0
     skipped = []
