@@ -5,6 +5,7 @@ steps replaced (docs/architecture.md, "The scripts' move")."""
 import hashlib
 import os
 import signal
+import socket
 import subprocess
 import sys
 import time
@@ -63,6 +64,29 @@ def test_train_records_the_run_evaluates_it_and_keeps_the_paused_time_apart(ws, 
     for f in ("training_log.csv", "learning_curve.png", "trajectories.png", "sampled/evaluation.csv"):
         assert (docs / f).is_file(), f
     assert (tmp_path / "runs" / "basic_4096_seed3" / "policy.pt").read_text() == "ckpt\n"
+
+
+def test_a_taken_port_is_refused_before_anything_starts(ws, tmp_path):
+    """roslaunch -p joins a master already listening at its port, so a training or an evaluation on a
+    taken port would share a graph with whatever holds it: each step refuses, naming the port."""
+    w, rec, calls = ws
+    (rec / "policies" / "policies.yaml").write_text(
+        "basic_v3_seed0: {variant: basic, network: ff, game: v3, training_seed: 0, steps: 2048}\n")
+    weights = tmp_path / "policy.pt"
+    weights.write_text("w")
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as held:
+        held.bind(("127.0.0.1", 0))
+        held.listen(1)
+        port = held.getsockname()[1]
+        for args in (["train", "basic", "--steps", "4096", "--runs-dir", str(tmp_path / "runs"), "--port", str(port)],
+                     ["evaluate", "basic_v3_seed0", str(weights), "--port", str(port)]):
+            r = pipeline(w, rec, calls, *args)
+            assert r.returncode == 1, (args, r.stdout + r.stderr)
+            assert "port %d is taken" % port in r.stderr and "nothing was started" in r.stderr, r.stderr
+            assert not calls.exists() or "roslaunch" not in calls.read_text(), args
+    assert not (tmp_path / "runs" / "basic_4096_seed0" / "training_log.csv").exists()
+    r = pipeline(w, rec, calls, "evaluate", "basic_v3_seed0", str(weights), "--port", str(port))
+    assert r.returncode == 0, r.stdout + r.stderr  # the port free again: the same command runs
 
 
 def test_a_run_that_stops_short_records_nothing(ws, tmp_path):

@@ -100,6 +100,25 @@ def test_a_generation_s_time_is_its_own_though_each_side_resumes_one_run():
     assert sum(selfplay.generation_seconds(saved)) == 230 + 110
 
 
+def test_a_generation_s_time_leaves_out_the_pauses_that_held_it(tmp_path):
+    """seeker_g001 of the 2026-12-02 self-play listed 3,186 s, of which make test held it 2,131 s:
+    each pause the queue booked counts against the generation saved first after it ended."""
+    saved = [dict(gen("seeker", 1), wall_s=3186), dict(gen("hider", 1), wall_s=900),
+             dict(gen("seeker", 2), wall_s=4300)]
+    (tmp_path / "generations").mkdir()
+    for g, at in zip(saved, (10_000, 11_000, 13_000)):
+        path = tmp_path / g["checkpoint"]
+        path.write_text("w")
+        os.utime(path, (at, at))
+    assert selfplay.generation_pauses(str(tmp_path), saved) == [0, 0, 0]  # no pause booked
+    (tmp_path / "paused.log").write_text("9000.5 2131\n12000.0 30\n12500.0 40\n14000.0 50\n12600")
+    # 2131 s in seeker_g001; 70 s in seeker_g002; 50 s after the last saved generation; a cut line
+    assert selfplay.generation_pauses(str(tmp_path), saved) == [2131, 0, 70]
+    assert selfplay.training_seconds(str(tmp_path), saved) == [3186 - 2131, 900, 4300 - 3186 - 70]
+    (tmp_path / saved[1]["checkpoint"]).unlink()  # weights not on this machine: nothing to place pauses by
+    assert selfplay.generation_pauses(str(tmp_path), saved) == [0, 0, 0]
+
+
 def test_the_records_of_a_self_play_wait_for_every_generation(tmp_path):
     o = selfplay.SelfPlayOptions(out=str(tmp_path), generations=2)
     selfplay.write_generations(str(tmp_path), [gen("seeker", 1), gen("hider", 1), gen("seeker", 2)])

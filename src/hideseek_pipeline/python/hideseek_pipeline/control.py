@@ -12,7 +12,8 @@ import yaml
 from hideseek_pipeline import processes as proc
 from hideseek_pipeline import selfplay
 from hideseek_pipeline.workspace import Workspace
-from hideseek_pipeline.queue import RETRAIN_SUFFIX, SweepError, last_line, read_lines, remove_file, write_atomically
+from hideseek_pipeline.queue import (PAUSES_LOG, RETRAIN_SUFFIX, SweepError, last_line, read_lines, remove_file,
+                                     write_atomically)
 from hideseek_pipeline.sweep_config import start_window
 
 
@@ -369,7 +370,6 @@ def resume(sweep, book=True):
     return 0
 
 
-PAUSES_LOG = "paused.log"  # beside paused_s: one `end_time held_s` line per pause booked
 PAUSES_LOCK = "paused.lock"  # held while either is written: resume() and a run's start may meet
 
 

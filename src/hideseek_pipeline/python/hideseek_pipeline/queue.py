@@ -21,6 +21,9 @@ class SweepError(Exception):
     """Stops the command with a message naming what is wrong (exit status 2)."""
 
 
+PAUSES_LOG = "paused.log"  # beside a run's paused_s: one `end_time held_s` line per pause booked
+
+
 def say(message):
     print("sweep %s: %s" % (time.strftime("%H:%M:%S"), message), flush=True)
 

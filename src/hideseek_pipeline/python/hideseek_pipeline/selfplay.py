@@ -31,7 +31,7 @@ from typing import Optional
 import yaml
 
 from hideseek_pipeline import seeker as seeker_evaluation
-from hideseek_pipeline.queue import write_atomically
+from hideseek_pipeline.queue import PAUSES_LOG, read_lines, write_atomically
 from hideseek_pipeline.workspace import ToolError
 
 ROLES = ("seeker", "hider")  # the order within a generation
@@ -137,6 +137,34 @@ def generation_seconds(generations):
         out.append(total - last.get(g["role"], 0.0))
         last[g["role"]] = total
     return out
+
+
+def generation_pauses(out, generations):
+    """The seconds the sweep held each generation paused: a pause its queue booked in
+    OUT/paused.log belongs to the first generation saved after the pause ended, a generation's time
+    of saving being its exported weights' (OUT/generations/...); no generation is saved during a
+    pause, which stops the training. Zeros where the log or the weights are not on this machine."""
+    held = [0] * len(generations)
+    try:
+        saved = [os.path.getmtime(os.path.join(out, g["checkpoint"])) for g in generations]
+    except (OSError, KeyError, TypeError):
+        return held
+    order = sorted(range(len(generations)), key=lambda i: saved[i])
+    for line in read_lines(os.path.join(out, PAUSES_LOG)):
+        fields = line.split()
+        try:
+            ended, seconds = float(fields[0]), int(fields[1])
+        except (IndexError, ValueError):
+            continue  # a line cut short as it was written
+        after = next((i for i in order if saved[i] >= ended), None)
+        if after is not None:  # else: held after the last saved generation
+            held[after] += seconds
+    return held
+
+
+def training_seconds(out, generations):
+    """Each generation's own training seconds (generation_seconds), less the pauses that held it."""
+    return [max(s - p, 0.0) for s, p in zip(generation_seconds(generations), generation_pauses(out, generations))]
 
 
 def require_generations(o):
@@ -422,8 +450,9 @@ def summary(name, o, game, generations, against_scripted, scripted_only, episode
              % (o.steps, episodes - 1, ", ".join("[trajectories_g%03d.png](trajectories_g%03d.png)" % (k, k)
                                                    for k in sorted({hiders[0]["generation"],
                                                                     hiders[-1]["generation"]}))), "",
-             "| generation | role | steps | trained against | wall time (min) |", "| --- | --- | --- | --- | --- |"]
-    for g, seconds in zip(generations, generation_seconds(generations)):
+             "| generation | role | steps | trained against | training time (min), pauses left out |",
+             "| --- | --- | --- | --- | --- |"]
+    for g, seconds in zip(generations, training_seconds(o.out, generations)):
         lines.append("| %d | %s | %d | %s | %.0f |" % (g["generation"], g["role"], g["steps"],
                                                        seeker_evaluation.label(g["opponent"]), seconds / 60.0))
     lines += ["", "## Against the scripted seeker", "",

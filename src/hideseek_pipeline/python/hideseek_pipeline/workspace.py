@@ -5,6 +5,8 @@ import os
 import signal
 import subprocess
 
+from hideseek_pipeline import processes as proc
+
 ANALYSIS_SCRIPTS = os.path.join("src", "hideseek_analysis", "scripts")
 
 
@@ -30,6 +32,7 @@ class Workspace:
         ToolError naming the command when `check` and it fails. `through_interrupt`: a Ctrl-C at the
         terminal, which reaches the command too, is left to it (roslaunch stops its nodes, and a
         training writes its checkpoint), and this process waits for it to end instead of killing it."""
+        _refuse_a_taken_port(args)
         wrapped = ["bash", "-c", 'source scripts/env.sh && exec "$@"', "hideseek"] + [str(a) for a in args]
         full_env = dict(os.environ, **(env or {}))
         if log:
@@ -75,3 +78,17 @@ class Workspace:
     def python(self, script, *args, log=None, show_stderr=False):
         return self.command(["/usr/bin/python3", self.analysis_script(script)] + list(args), log=log,
                             show_stderr=show_stderr)
+
+
+def _refuse_a_taken_port(args):
+    """roslaunch -p PORT joins the master already listening at PORT, if one does: two graphs would
+    meet, and each would take the other's topics. Refused before anything starts."""
+    args = [str(a) for a in args]
+    if not args or os.path.basename(args[0]) != "roslaunch" or "-p" not in args[:-1]:
+        return
+    port = args[args.index("-p") + 1]
+    if port.isdigit() and not proc.port_free(int(port)):
+        launch = next((a for a in args if a.endswith(".launch")), "roslaunch")
+        raise ToolError("port %s is taken (a ROS master or another program listens there): %s would join "
+                        "its graph; nothing was started. Stop what listens there, or choose a free port (--port; "
+                        "a training's evaluation: --eval-port)" % (port, launch))
