@@ -12,6 +12,7 @@ import types
 import zipfile
 
 import numpy as np
+import pytest
 import yaml
 from stand_ins import stand_in_workspace
 
@@ -316,6 +317,42 @@ def test_retrain_queues_a_done_run_without_weights_after_every_other_run(tmp_pat
     assert "left to train, in order: slowerhider_seed0 basic_seed1 slowerhider_seed1\n" in status
     r = sweep(tmp_path, rec, "retrain", "basic_seed0")
     assert r.returncode == 0 and "nothing to retrain" in r.stdout
+
+
+def test_the_config_s_retrain_list_is_trained_on_a_machine_that_never_queued_it(tmp_path):
+    """`sweep retrain` queues a run on this machine only (its state folder), and a new machine loses
+    it; config/sweep.yaml's `retrain:` keeps the same wish in the repository."""
+    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000000, [30, 1000], [20, 40])})
+    text = config_file(tmp_path).read_text()
+    config = config_file(tmp_path, text + "retrain: [basic_seed0]\n")
+    status = sweep(tmp_path, rec, "status", config=config).stdout
+    assert "queued for retraining (weights lost; after every other run): basic_seed0" in status, status
+    assert "left to train, in order: slowerhider_seed0 basic_seed1 slowerhider_seed1 basic_seed0_retrain" in status
+    assert not (tmp_path / "sweep" / "state" / "retrain").exists()
+    r = sweep(tmp_path, rec, "retrain", "basic_seed0", config=config)
+    assert r.returncode == 0 and "queued on this machine only" not in r.stdout, r.stdout
+    # queued by hand only: said to be this machine's alone
+    r = sweep(tmp_path, rec, "retrain", "basic_seed0", config=config_file(tmp_path, text))
+    assert r.returncode == 0 and "queued on this machine only; add it to the retrain: list of" in r.stdout, r.stdout
+    # weights back: nothing left to retrain, though the config still names it
+    w = tmp_path / "sweep" / "runs" / "basic_seed0"
+    w.mkdir(parents=True)
+    (w / "policy.pt").write_bytes(b"weights")
+    status = sweep(tmp_path, rec, "status", config=config_file(tmp_path, text + "retrain: [basic_seed0]\n")).stdout
+    assert "queued for retraining" not in status and "basic_seed0_retrain" not in status.split("in order:")[-1]
+    for bad, said in (("[basic_seed9]", "retrain: 'basic_seed9' is not a run of the queue"),
+                      ("basic_seed0 nobody", "retrain: 'nobody' is not a run of the queue")):
+        r = sweep(tmp_path, rec, "status", config=config_file(tmp_path, text + "retrain: %s\n" % bad))
+        assert r.returncode == 2 and said in r.stderr, r.stderr
+    # a phase left out by SWEEP_PHASES leaves its runs out of the list, not refused; a seeker's run is refused
+    two = TWO_PHASES + "retrain: [slowerhider_seed1, basic_v3_gru_8m_seed0]\n"
+    variants = ["basic", "slowerhider"]
+    assert sweep_config.load(_write(two), variants, variants, "v2", {}).retrain == ["slowerhider_seed1",
+                                                                                     "basic_v3_gru_8m_seed0"]
+    assert sweep_config.load(_write(two), variants, variants, "v2", {"SWEEP_PHASES": "first"}).retrain == [
+        "slowerhider_seed1"]
+    with pytest.raises(sweep_config.ConfigError, match="retrain: 'basic_seeker_seed0' is a seeker phase's run"):
+        sweep_config.load(_write(SEEKER_PHASE + "retrain: [basic_seeker_seed0]\n"), ["basic"], ["basic"], "v2", {})
 
 
 def proc_state(pid, want=None, wait=10.0):

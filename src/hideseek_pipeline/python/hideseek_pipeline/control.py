@@ -308,6 +308,9 @@ def retrain(sweep, names):
                 f.write(name + "\n")
         print("sweep: %s queued for retraining, after every other run of the queue, as %s%s beside its "
               "first draw" % (name, name, RETRAIN_SUFFIX))
+        if name not in sweep.config.retrain:
+            print("sweep: %s: queued on this machine only; add it to the retrain: list of %s to keep it on any "
+                  "machine" % (name, sweep.config.path or "config/sweep.yaml"))
         queued += 1
     if queued and sweep.queue_pid():
         print("sweep: the running queue takes it up when a slot frees")

@@ -55,11 +55,9 @@ class Sweep:
     # ---- the queue's order ----------------------------------------------------------------------
 
     def retrain_list(self):
-        try:
-            with open(self.state_file("retrain")) as f:
-                return [line.strip() for line in f if line.strip()]
-        except OSError:
-            return []
+        """The runs to train again: config/sweep.yaml's `retrain` (kept in the repository, so a new
+        machine trains them too), then those `sweep retrain` queued on this machine."""
+        return list(dict.fromkeys(self.config.retrain + read_lines(self.state_file("retrain"))))
 
     def retrain_runs(self):
         """A retrain is a run of its own, <run>_retrain, recorded beside its first draw (which Table 2

@@ -28,7 +28,7 @@ import yaml
 TWO_MILLION = 2_000_000
 PHASE_KEYS = ("commit", "game", "variants", "seeds", "network", "steps", "precision", "jobs", "hider_threads", "ship",
               "role", "opponent", "generations", "latest_share", "start_within_min")
-TOP_KEYS = PHASE_KEYS + ("port", "phases")
+TOP_KEYS = PHASE_KEYS + ("port", "phases", "retrain")
 NETWORKS = ("ff", "gru")
 ROLES = ("hider", "seeker", "selfplay")
 
@@ -73,6 +73,7 @@ class SweepConfig:
     port: int
     path: str = ""
     phases: List[Phase] = field(default_factory=list)
+    retrain: List[str] = field(default_factory=list)  # done runs whose weights are lost, to train again
 
     def runs(self):
         """Every run of every phase, in the queue's order."""
@@ -171,7 +172,7 @@ def load(path, known_variants, paper_order, default_game, environ=None):
         raise ConfigError("%s: unknown key %s (keys: %s)" % (path, unknown[0], ", ".join(TOP_KEYS)))
     where = os.path.basename(path)
     overrides = _env_overrides(environ)
-    top = {k: v for k, v in raw.items() if k != "phases"}
+    top = {k: v for k, v in raw.items() if k not in ("phases", "retrain")}
     raw_phases = raw.get("phases") or [{"name": "sweep"}]
     if not isinstance(raw_phases, list):
         raise ConfigError("%s: phases: a list of phases" % where)
@@ -203,7 +204,25 @@ def load(path, known_variants, paper_order, default_game, environ=None):
             raise ConfigError("%s: phases %s and %s both hold the run %s" % (
                 where, seen[run.name], run.phase.name, run.name))
         seen[run.name] = run.phase.name
+    config.retrain = _retrain(raw.get("retrain"), where, {r.name: r for r in config.runs()}, bool(wanted))
     return config
+
+
+def _retrain(value, where, runs, some_phases):
+    """The `retrain` list: runs of the queue, each a hider's (a retrain recovers weights a variant
+    ships). With SWEEP_PHASES, the runs of the phases left out are dropped, not refused."""
+    names = _words(value) if value is not None else []
+    for name in names:
+        run = runs.get(name)
+        if run is None and some_phases:
+            continue
+        if run is None:
+            raise ConfigError("%s: retrain: '%s' is not a run of the queue (hideseek_pipeline sweep status lists them)"
+                              % (where, name))
+        if run.phase.role != "hider":
+            raise ConfigError("%s: retrain: '%s' is a %s phase's run, which ships no weights to recover"
+                              % (where, name, run.phase.role))
+    return [n for n in dict.fromkeys(names) if n in runs]
 
 
 def _phase(m, where, known_variants, paper_order, default_game):
