@@ -823,6 +823,39 @@ def test_ship_takes_the_median_run_s_weights_from_git_history_only_where_they_re
     assert "already shipped" in ship()
 
 
+def test_a_worktree_whose_link_to_a_new_checkout_is_lost_is_linked_again_with_its_build_kept(tmp_path, monkeypatch):
+    """The checkout is cloned anew (its .git/worktrees/ gone) while ~/hideseek_sweep stays: the
+    pinned tree is linked again at its pin, its build kept, rather than refused; a tree whose
+    files are not the pin's is still refused."""
+    repo = shell_trainer_repo(tmp_path)
+    commit = pinned_repo(repo)
+    sweep_dir = tmp_path / "sweep"
+    (sweep_dir / "state").mkdir(parents=True)
+    (sweep_dir / "state" / ("built." + commit[:12])).write_text(commit)
+    monkeypatch.setenv("SWEEP_DIR", str(sweep_dir))
+    from hideseek_pipeline import cli
+    sweep = cli.make_sweep(ROOT, str(config_file(tmp_path, TWO_PHASES.replace("0123456789ab", commit))))
+    sweep.checkout = str(repo)
+    phase = sweep.config.phases[0]
+    tree = runner.prepare_tree(sweep, phase)
+    (repo / ".git" / "info" / "exclude").write_text("build/\n")
+    os.makedirs(os.path.join(tree, "build"))
+    open(os.path.join(tree, "build", "stamp"), "w").write("built\n")
+    subprocess.run(["rm", "-rf", str(repo / ".git" / "worktrees")], check=True)
+    assert subprocess.run(["git", "-C", tree, "rev-parse", "HEAD"], capture_output=True).returncode != 0
+    assert runner.prepare_tree(sweep, phase) == tree
+    assert subprocess.check_output(["git", "-C", tree, "rev-parse", "HEAD"], text=True).strip() == commit
+    assert subprocess.check_output(["git", "-C", tree, "status", "--porcelain"], text=True) == ""
+    assert open(os.path.join(tree, "build", "stamp")).read() == "built\n"
+    assert not os.path.exists(tree + ".link")
+    assert runner.prepare_tree(sweep, phase) == tree  # linked: nothing more to do
+    # the link lost again, and a file of the tree no longer the pin's: linked, then refused
+    subprocess.run(["rm", "-rf", str(repo / ".git" / "worktrees")], check=True)
+    open(os.path.join(tree, "scripts", "helper.py"), "w").write("VALUE = 2\n")
+    with pytest.raises(runner.SweepError, match="has uncommitted changes"):
+        runner.prepare_tree(sweep, phase)
+
+
 def test_a_later_phase_s_tree_is_built_only_when_its_first_run_could_start_and_a_failed_build_fails_only_its_runs(
         tmp_path):
     """A later phase's pin is built once its first run could start (here, once the first phase's

@@ -34,8 +34,11 @@ def prepare_tree(sweep, phase):
         r = sweep.git("worktree", "add", "--detach", tree, full)
         if r.returncode != 0:
             raise SweepError("git worktree add %s failed: %s" % (tree, r.stderr.strip()))
-    elif sweep.git("rev-parse", "HEAD", cwd=tree).stdout.strip() != full:
-        raise SweepError("the worktree %s is not at %s" % (tree, full))
+    else:
+        if _link_lost(tree):
+            relink_tree(sweep, tree, full)
+        if sweep.git("rev-parse", "HEAD", cwd=tree).stdout.strip() != full:
+            raise SweepError("the worktree %s is not at %s" % (tree, full))
     if sweep.git("status", "--porcelain", cwd=tree).stdout.strip():
         raise SweepError("the worktree %s has uncommitted changes; a sweep run trains from a clean tree "
                          "(git -C %s status)" % (tree, tree))
@@ -50,6 +53,35 @@ def prepare_tree(sweep, phase):
                 raise SweepError("the worktree's build failed: %s" % log)
         open(built, "w").write(full + "\n")
     return tree
+
+def _link_lost(tree):
+    """Whether the worktree's `.git` file names a folder of the checkout's `.git/worktrees/` that is
+    gone (the checkout was cloned or restored anew while the sweep's folder stayed)."""
+    try:
+        line = open(os.path.join(tree, ".git")).read().strip()
+    except (IsADirectoryError, FileNotFoundError):
+        return False
+    return line.startswith("gitdir: ") and not os.path.isdir(line[len("gitdir: "):])
+
+
+def relink_tree(sweep, tree, full):
+    """Registers again, at `full`, a worktree whose link to the checkout is lost, keeping its files
+    and its build: git makes a new link (without checking anything out), the tree takes it, and its
+    index is read from `full`. A tree whose files are not `full`'s then shows them as changes, which
+    the caller refuses."""
+    say("the worktree %s lost its link to the checkout (%s); linking it again at %s, its build kept"
+        % (tree, open(os.path.join(tree, ".git")).read().strip(), full[:12]))
+    scratch = tree + ".link"
+    r = sweep.git("worktree", "add", "--no-checkout", "--detach", scratch, full)
+    if r.returncode != 0:
+        raise SweepError("git worktree add %s failed: %s" % (scratch, r.stderr.strip()))
+    os.replace(os.path.join(scratch, ".git"), os.path.join(tree, ".git"))
+    os.rmdir(scratch)
+    for args in (("worktree", "repair", tree), ("-C", tree, "reset", "-q")):
+        r = sweep.git(*args)
+        if r.returncode != 0:
+            raise SweepError("git %s failed: %s" % (" ".join(args), r.stderr.strip()))
+
 
 # ---- one run --------------------------------------------------------------------------------
 
