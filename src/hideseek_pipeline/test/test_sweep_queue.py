@@ -505,6 +505,23 @@ def test_analyze_redoes_only_the_missing_memoryless_ablation_of_a_gru_run(tmp_pa
     assert not calls.exists()
 
 
+def test_an_analysis_in_a_checkout_not_built_names_the_missing_program_and_the_retry(tmp_path):
+    """A machine's first sweep trains from its pinned tree while the records' checkout is not built:
+    the run's analysis fails naming the program it lacks and how to redo it, and the run stays done."""
+    rec = make_records(tmp_path, {"basic_seed0": ("basic", 0, 2000000, [30], [30])})
+    fake_analysis(rec)
+    (rec / "devel" / "lib" / "hideseek_analysis" / "probe_set").unlink()
+    w = tmp_path / "sweep" / "runs" / "basic_seed0"
+    w.mkdir(parents=True)
+    (w / "policy.pt").write_bytes(b"w")
+    r = sweep(tmp_path, rec, "analyze")
+    out = r.stdout + r.stderr
+    assert re.search(r"basic_seed0: the analysis failed \(hideseek_pipeline: hideseek_analysis/probe_set is not "
+                     r"built in \S+ \(no \S+\): build the workspace first \(make build\)\); see \S+analysis.log; "
+                     r"hideseek_pipeline sweep analyze retries it", out), out
+    assert not (rec / "docs" / "runs" / "basic_seed0" / "analysis" / "probes.csv").exists()
+
+
 def test_the_checkout_s_config_is_valid_and_no_v3_run_collides_with_a_v2_run():
     sys.path.insert(0, os.path.join(ROOT, "src", "hideseek_analysis", "python"))
     from hideseek_analysis import registry as reg

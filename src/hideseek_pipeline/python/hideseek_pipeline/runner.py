@@ -264,7 +264,8 @@ def analyze(sweep, name, part=None):
     if ok:
         say("%s: %s into %s" % (name, what if part else "analysed", sweep.records.docs(name, "analysis")))
     else:
-        say("%s: the %s failed; see %s" % (name, "%s part" % part if part else "analysis", log))
+        say("%s: the %s failed (%s); see %s; hideseek_pipeline sweep analyze retries it" % (
+            name, "%s part" % part if part else "analysis", last_line(log), log))
     return ok
 
 

@@ -59,7 +59,13 @@ class Workspace:
         self.interrupted = True
 
     def tool(self, package, name):
-        return os.path.join(self.root, "devel", "lib", package, name)
+        """A program of the workspace's devel space; a workspace not built (a fresh clone beside a
+        sweep's folder) stops here by name rather than as a shell's exit 127."""
+        path = os.path.join(self.root, "devel", "lib", package, name)
+        if not os.access(path, os.X_OK):
+            raise ToolError("%s/%s is not built in %s (no %s): build the workspace first (make build)"
+                            % (package, name, self.root, path))
+        return path
 
     def resolve(self, variant, key, game=None, variant_config=None):
         """The resolver's answer for a variant (hideseek_game's resolve: game, map_file, ...), or for
