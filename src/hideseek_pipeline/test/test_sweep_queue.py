@@ -840,10 +840,12 @@ def test_ship_takes_the_median_run_s_weights_from_git_history_only_where_they_re
     assert "already shipped" in ship()
 
 
-def test_a_worktree_whose_link_to_a_new_checkout_is_lost_is_linked_again_with_its_build_kept(tmp_path, monkeypatch):
+def test_a_worktree_whose_link_to_a_new_checkout_is_lost_is_linked_again_with_its_build_kept(tmp_path, monkeypatch,
+                                                                                              capsys):
     """The checkout is cloned anew (its .git/worktrees/ gone) while ~/hideseek_sweep stays: the
-    pinned tree is linked again at its pin, its build kept, rather than refused; a tree whose
-    files are not the pin's is still refused."""
+    pinned tree is linked again at its pin, its build kept, rather than refused, and a relink that
+    stopped half-way is finished by the next start; a tree whose files are not the pin's is still
+    refused."""
     repo = shell_trainer_repo(tmp_path)
     commit = pinned_repo(repo)
     sweep_dir = tmp_path / "sweep"
@@ -858,14 +860,29 @@ def test_a_worktree_whose_link_to_a_new_checkout_is_lost_is_linked_again_with_it
     (repo / ".git" / "info" / "exclude").write_text("build/\n")
     os.makedirs(os.path.join(tree, "build"))
     open(os.path.join(tree, "build", "stamp"), "w").write("built\n")
+
+    def clean_at_the_pin():
+        assert subprocess.check_output(["git", "-C", tree, "rev-parse", "HEAD"], text=True).strip() == commit
+        assert subprocess.check_output(["git", "-C", tree, "status", "--porcelain"], text=True) == ""
+        assert open(os.path.join(tree, "build", "stamp")).read() == "built\n"
+        assert not os.path.exists(tree + ".link")
+
     subprocess.run(["rm", "-rf", str(repo / ".git" / "worktrees")], check=True)
     assert subprocess.run(["git", "-C", tree, "rev-parse", "HEAD"], capture_output=True).returncode != 0
+    # and a relink stopped before the tree took its new link left the scratch link behind
+    subprocess.run(["git", "-C", str(repo), "worktree", "add", "-q", "--no-checkout", "--detach", tree + ".link",
+                    commit], check=True)
+    capsys.readouterr()
     assert runner.prepare_tree(sweep, phase) == tree
-    assert subprocess.check_output(["git", "-C", tree, "rev-parse", "HEAD"], text=True).strip() == commit
-    assert subprocess.check_output(["git", "-C", tree, "status", "--porcelain"], text=True) == ""
-    assert open(os.path.join(tree, "build", "stamp")).read() == "built\n"
-    assert not os.path.exists(tree + ".link")
+    said = capsys.readouterr().out
+    assert "lost its link to the checkout" in said and "linking it again at %s, its build kept" % commit[:12] in said
+    clean_at_the_pin()
     assert runner.prepare_tree(sweep, phase) == tree  # linked: nothing more to do
+    # a relink stopped before its index was read: the next start reads it
+    index = subprocess.check_output(["git", "-C", tree, "rev-parse", "--git-path", "index"], text=True).strip()
+    os.remove(os.path.join(tree, index))
+    assert runner.prepare_tree(sweep, phase) == tree
+    clean_at_the_pin()
     # the link lost again, and a file of the tree no longer the pin's: linked, then refused
     subprocess.run(["rm", "-rf", str(repo / ".git" / "worktrees")], check=True)
     open(os.path.join(tree, "scripts", "helper.py"), "w").write("VALUE = 2\n")

@@ -62,9 +62,10 @@ def analyze_run(ws, records, name, policy, part="all", episodes=100, first=10000
         elif part == "behaviour":
             behaviour("memory", out)
         else:
+            probe_set = ws.tool("hideseek_analysis", "probe_set")  # (probe_set.sh runs it too, to make the set)
             probe = ws.command([ws.analysis_script("probe_set.sh")]).strip().splitlines()[-1]
             features = os.path.join(tmp, "trained.npy")
-            ws.command([ws.tool("hideseek_analysis", "probe_set"), "features", probe, features, "--policy", policy])
+            ws.command([probe_set, "features", probe, features, "--policy", policy])
             tsne = ["tsne", probe, features, out, "--run", name, "--baselines",
                     os.path.join(ws.root, "docs", "probe_set", "tsne_baselines.csv")]
             if part == "tsne":

@@ -6,6 +6,7 @@ and ships each variant's median run. Runs resume from their checkpoints.
 import csv
 import multiprocessing
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -39,6 +40,7 @@ def prepare_tree(sweep, phase):
             relink_tree(sweep, tree, full)
         if sweep.git("rev-parse", "HEAD", cwd=tree).stdout.strip() != full:
             raise SweepError("the worktree %s is not at %s" % (tree, full))
+        _read_index(sweep, tree)
     if sweep.git("status", "--porcelain", cwd=tree).stdout.strip():
         raise SweepError("the worktree %s has uncommitted changes; a sweep run trains from a clean tree "
                          "(git -C %s status)" % (tree, tree))
@@ -59,9 +61,19 @@ def _link_lost(tree):
     gone (the checkout was cloned or restored anew while the sweep's folder stayed)."""
     try:
         line = open(os.path.join(tree, ".git")).read().strip()
-    except (IsADirectoryError, FileNotFoundError):
+    except (OSError, UnicodeDecodeError):  # a folder (a checkout of its own), or unreadable: git says
         return False
-    return line.startswith("gitdir: ") and not os.path.isdir(line[len("gitdir: "):])
+    return line.startswith("gitdir: ") and not os.path.isdir(os.path.join(tree, line[len("gitdir: "):]))
+
+
+def _read_index(sweep, tree):
+    """A linked tree without its index (a relink stopped before reading it) reads it from its HEAD,
+    so that its files are compared with the pin's rather than all shown as deleted."""
+    index = sweep.git("rev-parse", "--git-path", "index", cwd=tree).stdout.strip()
+    if index and not os.path.exists(os.path.join(tree, index)):
+        r = sweep.git("-C", tree, "reset", "-q")
+        if r.returncode != 0:
+            raise SweepError("git -C %s reset failed: %s" % (tree, r.stderr.strip()))
 
 
 def relink_tree(sweep, tree, full):
@@ -72,15 +84,21 @@ def relink_tree(sweep, tree, full):
     say("the worktree %s lost its link to the checkout (%s); linking it again at %s, its build kept"
         % (tree, open(os.path.join(tree, ".git")).read().strip(), full[:12]))
     scratch = tree + ".link"
+    if os.path.lexists(scratch):  # left by a relink that stopped before the tree took its link
+        if os.path.isdir(scratch) and not os.path.islink(scratch):
+            shutil.rmtree(scratch)
+        else:
+            os.remove(scratch)
+        sweep.git("worktree", "prune")
     r = sweep.git("worktree", "add", "--no-checkout", "--detach", scratch, full)
     if r.returncode != 0:
         raise SweepError("git worktree add %s failed: %s" % (scratch, r.stderr.strip()))
     os.replace(os.path.join(scratch, ".git"), os.path.join(tree, ".git"))
     os.rmdir(scratch)
-    for args in (("worktree", "repair", tree), ("-C", tree, "reset", "-q")):
-        r = sweep.git(*args)
-        if r.returncode != 0:
-            raise SweepError("git %s failed: %s" % (" ".join(args), r.stderr.strip()))
+    r = sweep.git("worktree", "repair", tree)
+    if r.returncode != 0:
+        raise SweepError("git worktree repair %s failed: %s" % (tree, r.stderr.strip()))
+    # the index is read by the caller (_read_index), as after a relink that stopped here
 
 
 # ---- one run --------------------------------------------------------------------------------
